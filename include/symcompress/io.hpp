@@ -1,0 +1,56 @@
+// Reading and writing scenes. The format follows the file name's extension.
+#pragma once
+
+#include "symcompress/scene.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace symcompress {
+
+// A file that cannot be read or written. what() names the file and the problem, ready for the user.
+class FileError : public std::runtime_error {
+public:
+    FileError(const std::filesystem::path& file, const std::string& problem)
+        : std::runtime_error(file.string() + ": " + problem) {}
+};
+
+enum class FileFormat { Gltf, Glb, X3d, Obj, Ply, Stl };
+
+// The format named by the extension (case-insensitive); throws FileError for an unknown one.
+FileFormat formatFromExtension(const std::filesystem::path& file);
+
+// Reads any supported scene file. Throws FileError for anything it cannot read; what it can read
+// but not carry through is listed in Scene::warnings. The result satisfies the invariants of
+// scene.hpp (validateScene).
+Scene readScene(const std::filesystem::path& file);
+
+Scene readGltf(const std::filesystem::path& file);  // .gltf and .glb
+Scene readX3d(const std::filesystem::path& file);
+Scene readObj(const std::filesystem::path& file);
+Scene readPly(const std::filesystem::path& file);
+Scene readStl(const std::filesystem::path& file);
+
+struct WriteOptions {
+    bool draco = true;       // glTF: compress geometry with KHR_draco_mesh_compression
+    int positionBits = 14;   // Draco position quantization
+    int normalBits = 10;
+    int texcoordBits = 12;
+    int colorBits = 8;
+    int compressionLevel = 10;  // Draco speed 0 (best compression)
+    // Written as glTF asset.extras / X3D MetadataSet, e.g. the digest of the original scene.
+    std::string extrasJson;
+};
+
+// Writes atomically (temporary file in the same folder, then rename). Refuses to overwrite any of
+// `inputs` (the files the scene was read from). Throws FileError.
+void writeScene(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options = {},
+                const std::vector<std::filesystem::path>& inputs = {});
+
+void writeGltf(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);  // .gltf/.glb
+void writeX3d(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
+void writeObj(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
+void writePly(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
+
+}  // namespace symcompress

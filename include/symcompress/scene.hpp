@@ -1,0 +1,96 @@
+// The scene model: what every reader produces and every writer consumes.
+//
+// Invariants (checked by validateScene):
+// - every Primitive has positions.size() vertices; normals, texcoords and colors are either empty or
+//   have exactly positions.size() entries; every triangle index is < positions.size();
+// - every coordinate and attribute value is finite;
+// - Primitive::material is -1 (default material) or an index into Scene::materials;
+// - Node::mesh is -1 or an index into Scene::meshes; Node::children index into Scene::nodes and the
+//   node graph is a forest (a node is the child of at most one node, no cycles);
+// - Material::baseColorTexture is -1 or an index into Scene::textures.
+// Geometry is double precision; readers convert whatever the file stores.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace symcompress {
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+// Positions and triangles only: the input of the geometry stages (moments, symmetry, congruence).
+struct TriangleMesh {
+    std::vector<Eigen::Vector3d> positions;
+    std::vector<Triangle> triangles;  // counter-clockwise seen from outside
+};
+
+// An image used by a material, kept as the bytes of the file so that writers can embed it unchanged.
+struct Texture {
+    std::string name;
+    std::string uri;                  // as written in the source file (may be empty when embedded)
+    std::string mimeType;             // "image/png", "image/jpeg", ... (may be empty when unknown)
+    std::vector<std::uint8_t> bytes;  // empty when the image file could not be read (a warning says so)
+};
+
+// X3D's Phong Material fields, kept when the source was X3D so that an X3D writer gives them back.
+struct PhongMaterial {
+    Eigen::Vector3d diffuseColor{0.8, 0.8, 0.8};
+    Eigen::Vector3d specularColor{0, 0, 0};
+    Eigen::Vector3d emissiveColor{0, 0, 0};
+    double ambientIntensity = 0.2;
+    double shininess = 0.2;
+    double transparency = 0;
+};
+
+// glTF's metallic-roughness material; X3D materials are mapped onto it (diffuseColor -> baseColor,
+// 1 - transparency -> alpha) and keep their Phong fields in `phong`.
+struct Material {
+    std::string name;
+    Eigen::Vector4d baseColorFactor{1, 1, 1, 1};
+    double metallicFactor = 1;
+    double roughnessFactor = 1;
+    Eigen::Vector3d emissiveFactor{0, 0, 0};
+    enum class AlphaMode { Opaque, Mask, Blend } alphaMode = AlphaMode::Opaque;
+    double alphaCutoff = 0.5;
+    bool doubleSided = false;
+    int baseColorTexture = -1;  // index into Scene::textures
+    std::optional<PhongMaterial> phong;
+};
+
+// Triangles of one material with their per-vertex attributes.
+struct Primitive {
+    std::vector<Eigen::Vector3d> positions;
+    std::vector<Eigen::Vector3d> normals;    // empty or one per vertex
+    std::vector<Eigen::Vector2d> texcoords;  // TEXCOORD_0, glTF convention (v down); empty or one per vertex
+    std::vector<Eigen::Vector4d> colors;     // COLOR_0 as linear RGBA; empty or one per vertex
+    std::vector<Triangle> triangles;
+    int material = -1;  // index into Scene::materials, -1 for the default material
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Primitive> primitives;
+};
+
+struct Node {
+    std::string name;
+    Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // local, column vectors: parent * this
+    int mesh = -1;                                            // index into Scene::meshes
+    std::vector<int> children;                                // indices into Scene::nodes
+};
+
+struct Scene {
+    std::vector<Texture> textures;
+    std::vector<Material> materials;
+    std::vector<Mesh> meshes;
+    std::vector<Node> nodes;
+    std::vector<int> roots;             // the nodes drawn, in order
+    std::vector<std::string> warnings;  // what the reader could not carry through, one line each
+};
+
+}  // namespace symcompress

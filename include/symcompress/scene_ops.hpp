@@ -1,0 +1,41 @@
+// Operations on a whole scene: checking it, measuring it, flattening it to world space.
+#pragma once
+
+#include "symcompress/scene.hpp"
+
+#include <Eigen/Geometry>
+
+#include <string>
+#include <vector>
+
+namespace symcompress {
+
+// Throws std::invalid_argument naming the first broken invariant of scene.hpp.
+void validateScene(const Scene& scene);
+
+// A primitive placed in world space: attributes transformed (normals by the inverse transpose and
+// renormalized), winding flipped where the world transform has a negative determinant.
+struct WorldPrimitive {
+    Primitive primitive;
+    int node = -1;  // the node that draws it
+    int mesh = -1;
+};
+
+// Every drawn primitive in world space, in traversal order of Scene::roots.
+std::vector<WorldPrimitive> flattenScene(const Scene& scene);
+
+// The world transform of every node (identity for nodes that are not reachable from the roots).
+std::vector<Eigen::Matrix4d> worldTransforms(const Scene& scene);
+
+struct SceneStatistics {
+    std::size_t nodes = 0;
+    std::size_t meshes = 0;
+    std::size_t materials = 0;
+    std::size_t trianglesStored = 0;  // in Scene::meshes
+    std::size_t trianglesDrawn = 0;   // instances expanded
+    Eigen::AlignedBox3d bounds;       // world space, of what is drawn (empty when nothing is)
+};
+
+SceneStatistics sceneStatistics(const Scene& scene);
+
+}  // namespace symcompress

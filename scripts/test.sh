@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds (Release, then AddressSanitizer + UndefinedBehaviorSanitizer) and
+# runs every test through CTest in both builds.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$here"
+scripts/install-deps.sh
+jobs=$(nproc)
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j "$jobs"
+(cd build && ctest --output-on-failure -j "$jobs")
+
+# The sanitizer build skips the benchmarks and the slow interoperability checks run above.
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSYMCOMPRESS_SANITIZE=ON -DSYMCOMPRESS_BUILD_BENCH=OFF >/dev/null
+cmake --build build-asan -j "$jobs"
+(cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 SYMCOMPRESS_SKIP_INTEROP=1 \
+   ctest --output-on-failure -j "$jobs")
