@@ -21,8 +21,16 @@ struct WorldPrimitive {
     int mesh = -1;
 };
 
+// Brings every normal to unit length; a normal of zero length (or not finite) is replaced by the
+// area-weighted normal of the vertex's triangles. Returns how many were replaced, for a warning.
+std::size_t repairNormals(Scene& scene);
+
 // Every drawn primitive in world space, in traversal order of Scene::roots.
 std::vector<WorldPrimitive> flattenScene(const Scene& scene);
+
+// The same drawing as one mesh under one root node with the identity transform: every instance
+// expanded, materials and textures kept.
+Scene expandInstances(const Scene& scene);
 
 // The world transform of every node (identity for nodes that are not reachable from the roots).
 std::vector<Eigen::Matrix4d> worldTransforms(const Scene& scene);

@@ -1,0 +1,113 @@
+// bolts.glb: 24 copies of one bolt baked into the vertices of a single mesh, each at a random position and
+// orientation, every third one mirrored. The bolt is one closed surface: a 12-sided shaft with a chamfered tip
+// under a hexagonal-star head, so its own group is C6v (order 12).
+#include "sample_scenes.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <random>
+
+namespace symcompress::samples {
+
+namespace {
+
+constexpr int kSides = 12;
+
+// One ring of the bolt's lathe: radius of even and odd corners at height z.
+struct Ring {
+    double evenRadius;
+    double oddRadius;
+    double z;
+};
+
+Eigen::Vector3d ringCorner(const Ring& ring, int k) {
+    const double angle = 2 * M_PI * k / kSides;
+    const double radius = (k % 2 == 0) ? ring.evenRadius : ring.oddRadius;
+    return {radius * std::cos(angle), radius * std::sin(angle), ring.z};
+}
+
+// Appends a flat-shaded triangle (its own three vertices, so that normals stay sharp).
+void addFlatTriangle(Primitive& out, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+    const auto base = static_cast<std::uint32_t>(out.positions.size());
+    for (const Eigen::Vector3d& corner : {a, b, c}) {
+        out.positions.push_back(corner);
+        out.normals.push_back(normal);
+    }
+    out.triangles.push_back({base, base + 1, base + 2});
+}
+
+Primitive makeBolt() {
+    const std::vector<Ring> rings = {{0.38, 0.38, 0.0}, {0.5, 0.5, 0.12}, {0.5, 0.5, 3.0},
+                                     {1.0, 0.87, 3.0}, {1.0, 0.87, 3.7}, {0.9, 0.78, 3.8}};
+    Primitive bolt;
+    for (std::size_t level = 0; level + 1 < rings.size(); ++level)
+        for (int k = 0; k < kSides; ++k) {
+            const Eigen::Vector3d a = ringCorner(rings[level], k), b = ringCorner(rings[level], k + 1),
+                                  c = ringCorner(rings[level + 1], k + 1), d = ringCorner(rings[level + 1], k);
+            addFlatTriangle(bolt, a, b, c);
+            addFlatTriangle(bolt, a, c, d);
+        }
+    // Caps fanned from their centres, so that the tessellation keeps the 6-fold symmetry.
+    const Eigen::Vector3d bottomCentre(0, 0, rings.front().z), topCentre(0, 0, rings.back().z);
+    for (int k = 0; k < kSides; ++k) {
+        addFlatTriangle(bolt, bottomCentre, ringCorner(rings.front(), k + 1), ringCorner(rings.front(), k));
+        addFlatTriangle(bolt, topCentre, ringCorner(rings.back(), k), ringCorner(rings.back(), k + 1));
+    }
+    return bolt;
+}
+
+// Bakes `copies` placements of `part` into one primitive; every `mirrorEvery`-th copy is mirrored.
+Primitive bakeCopies(const Primitive& part, int copies, int mirrorEvery, double spread, std::uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    Primitive out;
+    for (int copy = 0; copy < copies; ++copy) {
+        const Eigen::Quaterniond rotation =
+            Eigen::Quaterniond(uniform(random), uniform(random), uniform(random), uniform(random)).normalized();
+        Eigen::Matrix3d linear = rotation.toRotationMatrix();
+        const bool mirrored = mirrorEvery > 0 && copy % mirrorEvery == mirrorEvery - 1;
+        if (mirrored) linear.col(0) = -linear.col(0);
+        const Eigen::Vector3d offset(spread * uniform(random), spread * uniform(random), spread * uniform(random));
+        const Eigen::Matrix3d normalMatrix = linear.inverse().transpose();
+        const auto base = static_cast<std::uint32_t>(out.positions.size());
+        for (std::size_t v = 0; v < part.positions.size(); ++v) {
+            // Round to float32 as a real file would store it.
+            out.positions.push_back((linear * part.positions[v] + offset).cast<float>().cast<double>());
+            out.normals.push_back((normalMatrix * part.normals[v]).normalized());
+        }
+        for (Triangle t : part.triangles) {
+            if (mirrored) std::swap(t[1], t[2]);
+            out.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+        }
+    }
+    return out;
+}
+
+Scene singleMeshScene(const std::string& name, Primitive primitive, const Eigen::Vector4d& colour) {
+    Scene scene;
+    Material material;
+    material.name = name + "-material";
+    material.baseColorFactor = colour;
+    material.metallicFactor = 0.8;
+    material.roughnessFactor = 0.35;
+    scene.materials.push_back(material);
+    primitive.material = 0;
+    scene.meshes.push_back({name, {std::move(primitive)}});
+    Node node;
+    node.name = name;
+    node.mesh = 0;
+    scene.nodes.push_back(node);
+    scene.roots.push_back(0);
+    return scene;
+}
+
+}  // namespace
+
+Scene makeBoltsScene() {
+    return singleMeshScene("bolts", bakeCopies(makeBolt(), 24, 3, 12.0, 20261122u), {0.7, 0.7, 0.75, 1});
+}
+
+
+}  // namespace symcompress::samples

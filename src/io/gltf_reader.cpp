@@ -1,0 +1,556 @@
+// glTF 2.0 reader (.gltf with external files or data URIs, .glb), on top of tinygltf's JSON and buffer
+// loading. Accessor decoding, Draco decoding and every range check are ours: tinygltf does not check
+// that accessors stay inside their buffers.
+#include "symcompress/atomic_file.hpp"
+#include "symcompress/io.hpp"
+
+#include <tiny_gltf.h>
+
+#include <draco/compression/decode.h>
+#include <draco/core/decoder_buffer.h>
+#include <draco/mesh/mesh.h>
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Keeps images as the bytes of their files: we never decode pixels, and a broken image must not stop
+// the geometry from loading.
+bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void*) {
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+class GltfReader {
+public:
+    GltfReader(const fs::path& file, const tinygltf::Model& model) : file_(file), model_(model) {}
+
+    Scene read();
+
+private:
+    [[noreturn]] void fail(const std::string& problem) const { throw FileError(file_, problem); }
+    std::vector<double> readAccessor(int accessorIndex, int expectedComponents, const char* what) const;
+    std::vector<std::uint32_t> readIndices(int accessorIndex) const;
+    void readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, const std::string& where);
+    void decodeDracoPrimitive(const tinygltf::Primitive& source, const tinygltf::Value& extension, Primitive& out,
+                              std::vector<std::uint32_t>& indices, const std::string& where) const;
+    Eigen::Matrix4d nodeTransform(const tinygltf::Node& node) const;
+    void readMaterials(Scene& scene);
+    void warnAbout(const std::string& warning) { warnings_.insert(warning); }
+
+    fs::path file_;
+    const tinygltf::Model& model_;
+    std::set<std::string> warnings_;
+    std::map<std::string, int> skippedModes_;
+};
+
+int componentCount(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR: return 1;
+        case TINYGLTF_TYPE_VEC2: return 2;
+        case TINYGLTF_TYPE_VEC3: return 3;
+        case TINYGLTF_TYPE_VEC4: return 4;
+        case TINYGLTF_TYPE_MAT2: return 4;
+        case TINYGLTF_TYPE_MAT3: return 9;
+        case TINYGLTF_TYPE_MAT4: return 16;
+        default: return 0;
+    }
+}
+
+int componentSize(int componentType) {
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_INT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE: return 8;
+        default: return 0;
+    }
+}
+
+// One component as a double; normalized integers map to [0, 1] or [-1, 1] as the glTF spec says.
+double readComponent(const unsigned char* at, int componentType, bool normalized) {
+    auto load = [at](auto value) {
+        std::memcpy(&value, at, sizeof value);
+        return value;
+    };
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const double v = load(std::int8_t());
+            return normalized ? std::max(v / 127.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            const double v = load(std::uint8_t());
+            return normalized ? v / 255.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            const double v = load(std::int16_t());
+            return normalized ? std::max(v / 32767.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            const double v = load(std::uint16_t());
+            return normalized ? v / 65535.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_INT: return load(std::int32_t());
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load(std::uint32_t());
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return load(float());
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE: return load(double());
+        default: return 0;
+    }
+}
+
+std::vector<double> GltfReader::readAccessor(int accessorIndex, int expectedComponents, const char* what) const {
+    if (accessorIndex < 0 || accessorIndex >= static_cast<int>(model_.accessors.size()))
+        fail(std::string(what) + ": accessor " + std::to_string(accessorIndex) + " does not exist");
+    const tinygltf::Accessor& accessor = model_.accessors[accessorIndex];
+    const std::string where = std::string(what) + " (accessor " + std::to_string(accessorIndex) + ")";
+    const int components = componentCount(accessor.type);
+    const int size = componentSize(accessor.componentType);
+    if (components == 0 || size == 0) fail(where + ": unknown type or component type");
+    if (expectedComponents > 0 && components != expectedComponents)
+        fail(where + ": has " + std::to_string(components) + " components, expected " +
+             std::to_string(expectedComponents));
+    std::vector<double> values(accessor.count * components, 0.0);
+
+    // Reads `count` elements from a buffer view into `out`, checking every byte it touches.
+    auto readView = [&](int viewIndex, std::size_t offset, std::size_t count, int componentType, int elementComponents,
+                        std::size_t stride, auto&& store) {
+        if (viewIndex < 0 || viewIndex >= static_cast<int>(model_.bufferViews.size()))
+            fail(where + ": buffer view " + std::to_string(viewIndex) + " does not exist");
+        const tinygltf::BufferView& view = model_.bufferViews[viewIndex];
+        if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size()))
+            fail(where + ": buffer " + std::to_string(view.buffer) + " does not exist");
+        const tinygltf::Buffer& buffer = model_.buffers[view.buffer];
+        const std::size_t elementSize = static_cast<std::size_t>(componentSize(componentType)) * elementComponents;
+        if (stride == 0) stride = view.byteStride ? view.byteStride : elementSize;
+        if (view.byteOffset + view.byteLength > buffer.data.size())
+            fail(where + ": buffer view runs past the end of its buffer (" + std::to_string(buffer.data.size()) +
+                 " bytes; missing or truncated .bin?)");
+        if (count > 0 && offset + (count - 1) * stride + elementSize > view.byteLength)
+            fail(where + ": runs past the end of its buffer view");
+        const unsigned char* base = buffer.data.data() + view.byteOffset + offset;
+        for (std::size_t i = 0; i < count; ++i)
+            for (int c = 0; c < elementComponents; ++c)
+                store(i, c, readComponent(base + i * stride + c * componentSize(componentType), componentType,
+                                          accessor.normalized));
+    };
+
+    if (accessor.bufferView >= 0)
+        readView(accessor.bufferView, accessor.byteOffset, accessor.count, accessor.componentType, components, 0,
+                 [&](std::size_t i, int c, double v) { values[i * components + c] = v; });
+    if (accessor.sparse.isSparse) {
+        const auto sparseCount = static_cast<std::size_t>(std::max(accessor.sparse.count, 0));
+        std::vector<std::size_t> targets(sparseCount);
+        readView(accessor.sparse.indices.bufferView, accessor.sparse.indices.byteOffset, sparseCount,
+                 accessor.sparse.indices.componentType, 1, 0,
+                 [&](std::size_t i, int, double v) { targets[i] = static_cast<std::size_t>(v); });
+        for (std::size_t target : targets)
+            if (target >= accessor.count) fail(where + ": sparse index out of range");
+        readView(accessor.sparse.values.bufferView, accessor.sparse.values.byteOffset, sparseCount,
+                 accessor.componentType, components, 0,
+                 [&](std::size_t i, int c, double v) { values[targets[i] * components + c] = v; });
+    }
+    return values;
+}
+
+std::vector<std::uint32_t> GltfReader::readIndices(int accessorIndex) const {
+    const std::vector<double> values = readAccessor(accessorIndex, 1, "indices");
+    std::vector<std::uint32_t> indices(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (!std::isfinite(values[i]) || values[i] < 0 || values[i] > 4294967295.0) fail("indices: value out of range");
+        indices[i] = static_cast<std::uint32_t>(values[i]);
+    }
+    return indices;
+}
+
+// Converts glTF's triangle topologies into a triangle list.
+std::vector<Triangle> trianglesFromIndices(const std::vector<std::uint32_t>& indices, int mode) {
+    std::vector<Triangle> triangles;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        for (std::size_t i = 0; i + 2 < indices.size(); i += 3)
+            triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        // Every other triangle of a strip is wound the other way round (glTF spec 3.7.2.1).
+        for (std::size_t i = 0; i + 2 < indices.size(); ++i)
+            triangles.push_back(i % 2 == 0 ? Triangle{indices[i], indices[i + 1], indices[i + 2]}
+                                           : Triangle{indices[i + 1], indices[i], indices[i + 2]});
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (std::size_t i = 1; i + 1 < indices.size(); ++i)
+            triangles.push_back({indices[0], indices[i], indices[i + 1]});
+    }
+    // Degenerate strip/fan joints carry no area: drop triangles with repeated corners.
+    if (mode != TINYGLTF_MODE_TRIANGLES)
+        triangles.erase(std::remove_if(triangles.begin(), triangles.end(),
+                                       [](const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; }),
+                        triangles.end());
+    return triangles;
+}
+
+template <typename Vector>
+std::vector<Vector> toVectors(const std::vector<double>& flat, int components) {
+    std::vector<Vector> out(flat.size() / components, Vector::Zero());
+    for (std::size_t i = 0; i < out.size(); ++i)
+        for (int c = 0; c < std::min<int>(components, Vector::RowsAtCompileTime); ++c) out[i][c] = flat[i * components + c];
+    return out;
+}
+
+std::vector<Eigen::Vector4d> toColors(const std::vector<double>& flat, int components) {
+    std::vector<Eigen::Vector4d> colors = toVectors<Eigen::Vector4d>(flat, components);
+    if (components == 3)
+        for (Eigen::Vector4d& color : colors) color.w() = 1;
+    return colors;
+}
+
+void GltfReader::decodeDracoPrimitive(const tinygltf::Primitive& source, const tinygltf::Value& extension,
+                                      Primitive& out, std::vector<std::uint32_t>& indices,
+                                      const std::string& where) const {
+    const int viewIndex = extension.Get("bufferView").IsInt() ? extension.Get("bufferView").Get<int>() : -1;
+    if (viewIndex < 0 || viewIndex >= static_cast<int>(model_.bufferViews.size()))
+        fail(where + ": KHR_draco_mesh_compression has no valid bufferView");
+    const tinygltf::BufferView& view = model_.bufferViews[viewIndex];
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size()) ||
+        view.byteOffset + view.byteLength > model_.buffers[view.buffer].data.size())
+        fail(where + ": the Draco buffer view runs past the end of its buffer");
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(model_.buffers[view.buffer].data.data() + view.byteOffset),
+                view.byteLength);
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!decoded.ok()) fail(where + ": Draco cannot decode the mesh: " + decoded.status().error_msg_string());
+    const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
+
+    const tinygltf::Value& attributes = extension.Get("attributes");
+    auto readDracoAttribute = [&](const char* name, int components) -> std::vector<double> {
+        if (!attributes.Has(name) || !attributes.Get(name).IsInt()) return {};
+        const draco::PointAttribute* attribute = mesh->GetAttributeByUniqueId(attributes.Get(name).Get<int>());
+        if (!attribute) fail(where + ": Draco attribute " + name + " is missing from the compressed data");
+        const int stored = attribute->num_components();
+        std::vector<double> values(mesh->num_points() * static_cast<std::size_t>(components), 0.0);
+        std::vector<float> element(std::max(stored, 4));
+        for (draco::PointIndex point(0); point < mesh->num_points(); ++point) {
+            attribute->ConvertValue<float>(attribute->mapped_index(point), stored, element.data());
+            for (int c = 0; c < std::min(stored, components); ++c) values[point.value() * components + c] = element[c];
+            if (components == 4 && stored == 3) values[point.value() * components + 3] = 1;
+            // Draco stores normalized integer colours as integers: bring them to [0, 1].
+            if (std::string(name) == "COLOR_0" && attribute->normalized()) {
+                const double scale = attribute->data_type() == draco::DT_UINT8 ? 255.0 : 65535.0;
+                for (int c = 0; c < std::min(stored, components); ++c) values[point.value() * components + c] /= scale;
+            }
+        }
+        return values;
+    };
+    out.positions = toVectors<Eigen::Vector3d>(readDracoAttribute("POSITION", 3), 3);
+    out.normals = toVectors<Eigen::Vector3d>(readDracoAttribute("NORMAL", 3), 3);
+    out.texcoords = toVectors<Eigen::Vector2d>(readDracoAttribute("TEXCOORD_0", 2), 2);
+    out.colors = toColors(readDracoAttribute("COLOR_0", 4), 4);
+    if (out.positions.empty()) fail(where + ": Draco mesh has no POSITION");
+    indices.clear();
+    for (draco::FaceIndex face(0); face < mesh->num_faces(); ++face)
+        for (int corner = 0; corner < 3; ++corner) indices.push_back(mesh->face(face)[corner].value());
+    (void)source;
+}
+
+void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, const std::string& where) {
+    const int mode = source.mode < 0 ? TINYGLTF_MODE_TRIANGLES : source.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        static const char* names[] = {"points", "lines", "line loops", "line strips"};
+        ++skippedModes_[mode >= 0 && mode < 4 ? names[mode] : "primitives of unknown mode"];
+        return;
+    }
+    if (!source.targets.empty()) warnAbout("morph targets ignored (the base shape is kept)");
+    Primitive out;
+    std::vector<std::uint32_t> indices;
+    auto draco = source.extensions.find("KHR_draco_mesh_compression");
+    if (draco != source.extensions.end()) {
+        decodeDracoPrimitive(source, draco->second, out, indices, where);
+    } else {
+        auto attribute = [&](const char* name) {
+            auto found = source.attributes.find(name);
+            return found == source.attributes.end() ? -1 : found->second;
+        };
+        if (attribute("POSITION") < 0) fail(where + ": primitive has no POSITION");
+        out.positions = toVectors<Eigen::Vector3d>(readAccessor(attribute("POSITION"), 3, "POSITION"), 3);
+        if (attribute("NORMAL") >= 0)
+            out.normals = toVectors<Eigen::Vector3d>(readAccessor(attribute("NORMAL"), 3, "NORMAL"), 3);
+        if (attribute("TEXCOORD_0") >= 0)
+            out.texcoords = toVectors<Eigen::Vector2d>(readAccessor(attribute("TEXCOORD_0"), 2, "TEXCOORD_0"), 2);
+        if (attribute("COLOR_0") >= 0) {
+            const int components = componentCount(model_.accessors.at(attribute("COLOR_0")).type);
+            if (components != 3 && components != 4) fail(where + ": COLOR_0 must be VEC3 or VEC4");
+            out.colors = toColors(readAccessor(attribute("COLOR_0"), components, "COLOR_0"), components);
+        }
+        if (source.indices >= 0) {
+            indices = readIndices(source.indices);
+        } else {
+            indices.resize(out.positions.size());
+            for (std::uint32_t i = 0; i < indices.size(); ++i) indices[i] = i;
+        }
+    }
+    const std::size_t vertexCount = out.positions.size();
+    for (const Eigen::Vector3d& p : out.positions)
+        if (!p.allFinite()) fail(where + ": POSITION contains NaN or infinite values");
+    // A broken attribute is dropped rather than the whole file refused: the geometry is still right.
+    auto dropIfNotFinite = [&](auto& attribute, const char* name) {
+        for (const auto& value : attribute)
+            if (!value.allFinite()) {
+                warnAbout(std::string(name) + " with NaN or infinite values dropped (" + where + ")");
+                attribute.clear();
+                return;
+            }
+    };
+    dropIfNotFinite(out.normals, "NORMAL");
+    dropIfNotFinite(out.texcoords, "TEXCOORD_0");
+    dropIfNotFinite(out.colors, "COLOR_0");
+    auto sameCount = [&](auto& attribute, const char* name) {
+        if (!attribute.empty() && attribute.size() != vertexCount)
+            fail(where + ": " + name + " has " + std::to_string(attribute.size()) + " elements for " +
+                 std::to_string(vertexCount) + " positions");
+    };
+    sameCount(out.normals, "NORMAL");
+    sameCount(out.texcoords, "TEXCOORD_0");
+    sameCount(out.colors, "COLOR_0");
+    for (std::uint32_t index : indices)
+        if (index >= vertexCount)
+            fail(where + ": index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) +
+                 " vertices)");
+    out.triangles = trianglesFromIndices(indices, mode);
+    out.material = source.material >= 0 && source.material < static_cast<int>(model_.materials.size()) ? source.material
+                                                                                                      : -1;
+    for (const auto& [name, accessor] : source.attributes)
+        if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0" && name != "COLOR_0")
+            warnAbout("attribute " + name + " not carried through");
+    mesh.primitives.push_back(std::move(out));
+}
+
+Eigen::Matrix4d GltfReader::nodeTransform(const tinygltf::Node& node) const {
+    Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
+    if (node.matrix.size() == 16) {
+        for (int i = 0; i < 16; ++i) transform(i % 4, i / 4) = node.matrix[i];  // column-major
+    } else {
+        Eigen::Affine3d trs = Eigen::Affine3d::Identity();
+        if (node.translation.size() == 3) trs.translate(Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]));
+        if (node.rotation.size() == 4)
+            trs.rotate(Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]).normalized());
+        if (node.scale.size() == 3) trs.scale(Eigen::Vector3d(node.scale[0], node.scale[1], node.scale[2]));
+        transform = trs.matrix();
+    }
+    if (!transform.allFinite()) fail("node '" + node.name + "': transform contains NaN or infinite values");
+    return transform;
+}
+
+std::string mimeTypeFromUri(const std::string& uri) {
+    auto endsWith = [&](const char* suffix) {
+        const std::size_t n = std::strlen(suffix);
+        return uri.size() >= n && uri.compare(uri.size() - n, n, suffix) == 0;
+    };
+    if (endsWith(".png") || endsWith(".PNG")) return "image/png";
+    if (endsWith(".jpg") || endsWith(".jpeg") || endsWith(".JPG")) return "image/jpeg";
+    return "";
+}
+
+void GltfReader::readMaterials(Scene& scene) {
+    std::map<int, int> textureOfImage;
+    for (const tinygltf::Material& source : model_.materials) {
+        Material material;
+        material.name = source.name;
+        const auto& pbr = source.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() == 4)
+            material.baseColorFactor = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                                        pbr.baseColorFactor[3]};
+        material.metallicFactor = pbr.metallicFactor;
+        material.roughnessFactor = pbr.roughnessFactor;
+        if (source.emissiveFactor.size() == 3)
+            material.emissiveFactor = {source.emissiveFactor[0], source.emissiveFactor[1], source.emissiveFactor[2]};
+        material.alphaMode = source.alphaMode == "MASK"    ? Material::AlphaMode::Mask
+                             : source.alphaMode == "BLEND" ? Material::AlphaMode::Blend
+                                                           : Material::AlphaMode::Opaque;
+        material.alphaCutoff = source.alphaCutoff;
+        material.doubleSided = source.doubleSided;
+        const int texture = pbr.baseColorTexture.index;
+        if (texture >= 0 && texture < static_cast<int>(model_.textures.size())) {
+            const int imageIndex = model_.textures[texture].source;
+            if (imageIndex >= 0 && imageIndex < static_cast<int>(model_.images.size())) {
+                auto [entry, inserted] = textureOfImage.try_emplace(imageIndex, static_cast<int>(scene.textures.size()));
+                if (inserted) {
+                    const tinygltf::Image& image = model_.images[imageIndex];
+                    Texture out;
+                    out.name = image.name;
+                    out.uri = image.uri.rfind("data:", 0) == 0 ? "" : image.uri;
+                    out.mimeType = image.mimeType.empty() ? mimeTypeFromUri(image.uri) : image.mimeType;
+                    out.bytes = image.image;
+                    if (out.bytes.empty()) warnAbout("image '" + image.uri + "' could not be read; materials using it are written without it");
+                    scene.textures.push_back(std::move(out));
+                }
+                material.baseColorTexture = entry->second;
+            }
+            if (pbr.baseColorTexture.texCoord != 0) warnAbout("base colour textures on TEXCOORD_1 or higher are not carried through");
+        }
+        if (source.normalTexture.index >= 0 || source.occlusionTexture.index >= 0 || source.emissiveTexture.index >= 0 ||
+            pbr.metallicRoughnessTexture.index >= 0)
+            warnAbout("normal, occlusion, emissive and metallic-roughness textures are not carried through");
+        scene.materials.push_back(std::move(material));
+    }
+}
+
+Scene GltfReader::read() {
+    Scene scene;
+    readMaterials(scene);
+    for (std::size_t m = 0; m < model_.meshes.size(); ++m) {
+        Mesh mesh;
+        mesh.name = model_.meshes[m].name;
+        for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p)
+            readPrimitive(model_.meshes[m].primitives[p], mesh,
+                          "mesh " + std::to_string(m) + " primitive " + std::to_string(p));
+        scene.meshes.push_back(std::move(mesh));
+    }
+    std::vector<int> parentCount(model_.nodes.size(), 0);
+    for (const tinygltf::Node& source : model_.nodes) {
+        Node node;
+        node.name = source.name;
+        node.transform = nodeTransform(source);
+        node.mesh = source.mesh >= 0 && source.mesh < static_cast<int>(scene.meshes.size()) ? source.mesh : -1;
+        for (int child : source.children) {
+            if (child < 0 || child >= static_cast<int>(model_.nodes.size())) fail("node '" + source.name + "': child out of range");
+            if (++parentCount[child] > 1) fail("node " + std::to_string(child) + " has more than one parent");
+            node.children.push_back(child);
+        }
+        if (source.skin >= 0) warnAbout("skins ignored: skinned meshes are drawn in their bind pose");
+        if (source.camera >= 0) warnAbout("cameras ignored");
+        scene.nodes.push_back(std::move(node));
+    }
+    const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    if (sceneIndex < static_cast<int>(model_.scenes.size())) {
+        for (int root : model_.scenes[sceneIndex].nodes) {
+            if (root < 0 || root >= static_cast<int>(scene.nodes.size())) fail("scene: root node out of range");
+            scene.roots.push_back(root);
+        }
+    } else {
+        // No scene: every node without a parent is drawn.
+        for (int n = 0; n < static_cast<int>(scene.nodes.size()); ++n)
+            if (parentCount[n] == 0) scene.roots.push_back(n);
+    }
+    if (model_.scenes.size() > 1) warnAbout(std::to_string(model_.scenes.size() - 1) + " scenes besides the default one ignored");
+    if (!model_.animations.empty()) warnAbout(std::to_string(model_.animations.size()) + " animations ignored");
+    if (!model_.skins.empty()) warnAbout(std::to_string(model_.skins.size()) + " skins ignored");
+    if (!model_.lights.empty()) warnAbout(std::to_string(model_.lights.size()) + " KHR_lights_punctual lights ignored");
+    for (const auto& [mode, count] : skippedModes_)
+        warnAbout(std::to_string(count) + " " + mode + " skipped (only triangles are kept)");
+    for (const std::string& warning : warnings_) scene.warnings.push_back(file_.filename().string() + ": " + warning);
+    return scene;
+}
+
+// Extensions we read, or whose absence from our reading changes nothing that we keep.
+bool understoodExtension(const std::string& name) {
+    static const std::set<std::string> known = {"KHR_draco_mesh_compression", "KHR_lights_punctual",
+                                                "KHR_materials_emissive_strength", "KHR_texture_transform",
+                                                "KHR_materials_unlit", "KHR_materials_ior", "KHR_materials_specular",
+                                                "KHR_materials_transmission", "KHR_materials_volume",
+                                                "KHR_materials_clearcoat", "KHR_materials_sheen"};
+    return known.count(name) > 0;
+}
+
+// tinygltf (as packaged, without its own Draco support) rejects a primitive whose indices accessor has no
+// bufferView, which is how KHR_draco_mesh_compression files are written. The indices of such primitives
+// come from the Draco data anyway, so they are removed from the JSON before tinygltf sees it.
+std::vector<unsigned char> withoutDracoIndices(const std::vector<unsigned char>& bytes, bool binary) {
+    auto readU32 = [&](std::size_t at) {
+        std::uint32_t value;
+        std::memcpy(&value, bytes.data() + at, 4);
+        return value;
+    };
+    std::size_t jsonBegin = 0, jsonLength = bytes.size();
+    if (binary) {
+        if (bytes.size() < 20) return bytes;  // tinygltf reports the broken header
+        jsonBegin = 20;
+        jsonLength = readU32(12);
+        if (readU32(16) != 0x4E4F534Au || jsonBegin + jsonLength > bytes.size()) return bytes;
+    }
+    nlohmann::json json = nlohmann::json::parse(bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin),
+                                                bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin + jsonLength),
+                                                nullptr, false);
+    if (json.is_discarded() || !json.contains("meshes") || !json["meshes"].is_array()) return bytes;
+    bool changed = false;
+    for (auto& mesh : json["meshes"]) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (auto& primitive : mesh["primitives"]) {
+            if (!primitive.is_object() || !primitive.contains("extensions") || !primitive.contains("indices")) continue;
+            const auto& extensions = primitive["extensions"];
+            if (extensions.is_object() && extensions.contains("KHR_draco_mesh_compression")) {
+                primitive.erase("indices");
+                changed = true;
+            }
+        }
+    }
+    if (!changed) return bytes;
+    std::string text = json.dump();
+    if (!binary) return std::vector<unsigned char>(text.begin(), text.end());
+    while (text.size() % 4) text.push_back(' ');
+    std::vector<unsigned char> rebuilt(bytes.begin(), bytes.begin() + 12);
+    auto appendU32 = [&](std::uint32_t value) {
+        const auto* raw = reinterpret_cast<const unsigned char*>(&value);
+        rebuilt.insert(rebuilt.end(), raw, raw + 4);
+    };
+    appendU32(static_cast<std::uint32_t>(text.size()));
+    appendU32(0x4E4F534Au);
+    rebuilt.insert(rebuilt.end(), text.begin(), text.end());
+    std::size_t rest = jsonBegin + jsonLength;
+    rest += (4 - rest % 4) % 4;
+    if (rest < bytes.size()) rebuilt.insert(rebuilt.end(), bytes.begin() + static_cast<std::ptrdiff_t>(rest), bytes.end());
+    const auto total = static_cast<std::uint32_t>(rebuilt.size());
+    std::memcpy(rebuilt.data() + 8, &total, 4);
+    return rebuilt;
+}
+
+}  // namespace
+
+Scene readGltf(const fs::path& file) {
+    const std::vector<unsigned char> bytes = readFileBytes(file);
+    if (bytes.empty()) throw FileError(file, "the file is empty");
+    const bool binary = formatFromExtension(file) == FileFormat::Glb ||
+                        (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0);
+    if (formatFromExtension(file) == FileFormat::Glb && (bytes.size() < 12 || std::memcmp(bytes.data(), "glTF", 4) != 0))
+        throw FileError(file, "not a GLB file (wrong magic number; expected 'glTF')");
+
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keepImageBytes, nullptr);
+    tinygltf::Model model;
+    std::string error, warning;
+    const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw FileError(file, "larger than 4 GiB");
+    const std::vector<unsigned char> parsed = withoutDracoIndices(bytes, binary);
+    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, parsed.data(),
+                                                         static_cast<unsigned int>(parsed.size()), baseDir)
+                           : loader.LoadASCIIFromString(&model, &error, &warning,
+                                                        reinterpret_cast<const char*>(parsed.data()),
+                                                        static_cast<unsigned int>(parsed.size()), baseDir);
+    if (!ok) {
+        while (!error.empty() && error.back() == '\n') error.pop_back();
+        throw FileError(file, "invalid glTF: " + (error.empty() ? std::string("cannot be parsed") : error));
+    }
+    for (const std::string& required : model.extensionsRequired)
+        if (!understoodExtension(required))
+            throw FileError(file, "requires the extension " + required + ", which symcompress cannot read");
+    Scene scene = GltfReader(file, model).read();
+    for (const std::string& used : model.extensionsUsed)
+        if (!understoodExtension(used))
+            scene.warnings.push_back(file.filename().string() + ": extension " + used + " ignored");
+    return scene;
+}
+
+}  // namespace symcompress

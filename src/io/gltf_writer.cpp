@@ -1,0 +1,336 @@
+// glTF 2.0 writer: .glb (one binary chunk) or .gltf (JSON plus a sibling .bin). Meshes shared by several
+// nodes stay shared (instancing, mirrors included: a negative-determinant node matrix is valid glTF and
+// renderers flip the winding for it). Geometry is compressed with KHR_draco_mesh_compression unless
+// WriteOptions::draco is false.
+#include "symcompress/atomic_file.hpp"
+#include "symcompress/io.hpp"
+
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cstring>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+namespace {
+
+constexpr int kFloat = 5126, kUnsignedShort = 5123, kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+
+// The growing binary buffer and the JSON arrays that describe it.
+class GltfBuilder {
+public:
+    explicit GltfBuilder(Json& root) : root_(root) {}
+
+    // Appends bytes (4-byte aligned) as a new buffer view; returns its index.
+    int addBufferView(const void* data, std::size_t size, int target = 0) {
+        while (binary_.size() % 4) binary_.push_back(0);
+        Json view = {{"buffer", 0}, {"byteOffset", binary_.size()}, {"byteLength", size}};
+        if (target) view["target"] = target;
+        const auto* bytes = static_cast<const unsigned char*>(data);
+        binary_.insert(binary_.end(), bytes, bytes + size);
+        root_["bufferViews"].push_back(view);
+        return static_cast<int>(root_["bufferViews"].size()) - 1;
+    }
+
+    int addAccessor(Json accessor) {
+        root_["accessors"].push_back(std::move(accessor));
+        return static_cast<int>(root_["accessors"].size()) - 1;
+    }
+
+    // A float accessor over `components`-vectors, stored in its own buffer view.
+    template <typename Vector>
+    int addFloatAccessor(const std::vector<Vector>& values, int components, const char* type, bool withBounds) {
+        std::vector<float> flat;
+        flat.reserve(values.size() * components);
+        for (const Vector& value : values)
+            for (int c = 0; c < components; ++c) flat.push_back(static_cast<float>(value[c]));
+        Json accessor = {{"bufferView", addBufferView(flat.data(), flat.size() * sizeof(float), kArrayBuffer)},
+                         {"componentType", kFloat},
+                         {"count", values.size()},
+                         {"type", type}};
+        if (withBounds) addBounds(accessor, flat, components);
+        return addAccessor(std::move(accessor));
+    }
+
+    static void addBounds(Json& accessor, const std::vector<float>& flat, int components) {
+        std::vector<float> lo(components, std::numeric_limits<float>::max()),
+            hi(components, std::numeric_limits<float>::lowest());
+        for (std::size_t i = 0; i < flat.size(); ++i) {
+            lo[i % components] = std::min(lo[i % components], flat[i]);
+            hi[i % components] = std::max(hi[i % components], flat[i]);
+        }
+        accessor["min"] = lo;
+        accessor["max"] = hi;
+    }
+
+    std::vector<unsigned char>& binary() { return binary_; }
+
+private:
+    Json& root_;
+    std::vector<unsigned char> binary_;
+};
+
+// A float32 attribute in a Draco soup builder, one value per triangle corner.
+template <typename Vector>
+void addDracoAttribute(draco::TriangleSoupMeshBuilder& builder, const Primitive& primitive,
+                       const std::vector<Vector>& values, draco::GeometryAttribute::Type type, int components,
+                       int& attributeId) {
+    if (values.empty()) return;
+    attributeId = builder.AddAttribute(type, static_cast<std::int8_t>(components), draco::DT_FLOAT32);
+    std::vector<float> corner(3 * components);
+    for (std::size_t f = 0; f < primitive.triangles.size(); ++f) {
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < components; ++c)
+                corner[k * components + c] = static_cast<float>(values[primitive.triangles[f][k]][c]);
+        builder.SetAttributeValuesForFace(attributeId, draco::FaceIndex(static_cast<std::uint32_t>(f)), corner.data(),
+                                          corner.data() + components, corner.data() + 2 * components);
+    }
+}
+
+struct DracoAttributeIds {
+    int position = -1, normal = -1, texcoord = -1, color = -1;
+};
+
+// Encodes one primitive with Draco and describes it in glTF: the accessors carry counts and bounds
+// (decoded from our own output, since Draco merges equal corners) but no buffer view.
+Json writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
+                         const fs::path& file) {
+    draco::TriangleSoupMeshBuilder soup;
+    soup.Start(static_cast<int>(primitive.triangles.size()));
+    DracoAttributeIds ids;
+    addDracoAttribute(soup, primitive, primitive.positions, draco::GeometryAttribute::POSITION, 3, ids.position);
+    addDracoAttribute(soup, primitive, primitive.normals, draco::GeometryAttribute::NORMAL, 3, ids.normal);
+    addDracoAttribute(soup, primitive, primitive.texcoords, draco::GeometryAttribute::TEX_COORD, 2, ids.texcoord);
+    addDracoAttribute(soup, primitive, primitive.colors, draco::GeometryAttribute::COLOR, 4, ids.color);
+    std::unique_ptr<draco::Mesh> mesh = soup.Finalize();
+    if (!mesh) throw FileError(file, "Draco could not build a mesh from a primitive");
+
+    // Edgebreaker compresses best but drops zero-area triangles (corners that coincide once equal points are
+    // merged); the sequential method keeps every triangle, so it is the fallback when a triangle went missing.
+    auto encode = [&](int method, draco::EncoderBuffer& encoded) {
+        draco::Encoder encoder;
+        const int speed = std::clamp(10 - options.compressionLevel, 0, 10);
+        encoder.SetSpeedOptions(speed, speed);
+        encoder.SetEncodingMethod(method);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.positionBits);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options.normalBits);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, options.texcoordBits);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, options.colorBits);
+        const draco::Status status = encoder.EncodeMeshToBuffer(*mesh, &encoded);
+        if (!status.ok()) throw FileError(file, "Draco encoding failed: " + status.error_msg_string());
+        draco::DecoderBuffer decoderBuffer;
+        decoderBuffer.Init(encoded.data(), encoded.size());
+        auto decoded = draco::Decoder().DecodeMeshFromBuffer(&decoderBuffer);
+        if (!decoded.ok())
+            throw FileError(file, "Draco cannot decode what it encoded: " + decoded.status().error_msg_string());
+        return std::move(decoded).value();
+    };
+    draco::EncoderBuffer encoded;
+    std::unique_ptr<draco::Mesh> result = encode(draco::MESH_EDGEBREAKER_ENCODING, encoded);
+    if (result->num_faces() != primitive.triangles.size()) {
+        encoded.Clear();
+        result = encode(draco::MESH_SEQUENTIAL_ENCODING, encoded);
+    }
+    if (result->num_faces() != primitive.triangles.size())
+        throw FileError(file, "Draco lost " + std::to_string(primitive.triangles.size() - result->num_faces()) +
+                                  " triangles of a primitive; write with --no-draco");
+
+    const int view = builder.addBufferView(encoded.data(), encoded.size());
+    Json attributes = Json::object(), dracoAttributes = Json::object();
+    auto describe = [&](const char* name, int sourceId, draco::GeometryAttribute::Type type, int components,
+                        const char* accessorType) {
+        if (sourceId < 0) return;
+        const draco::PointAttribute* attribute = result->GetNamedAttribute(type);
+        Json accessor = {{"componentType", kFloat}, {"count", result->num_points()}, {"type", accessorType}};
+        if (type == draco::GeometryAttribute::POSITION) {
+            std::vector<float> flat(result->num_points() * 3);
+            for (draco::PointIndex p(0); p < result->num_points(); ++p)
+                attribute->ConvertValue<float>(attribute->mapped_index(p), 3, &flat[p.value() * 3]);
+            GltfBuilder::addBounds(accessor, flat, 3);
+        }
+        (void)components;
+        attributes[name] = builder.addAccessor(std::move(accessor));
+        dracoAttributes[name] = attribute->unique_id();
+    };
+    describe("POSITION", ids.position, draco::GeometryAttribute::POSITION, 3, "VEC3");
+    describe("NORMAL", ids.normal, draco::GeometryAttribute::NORMAL, 3, "VEC3");
+    describe("TEXCOORD_0", ids.texcoord, draco::GeometryAttribute::TEX_COORD, 2, "VEC2");
+    describe("COLOR_0", ids.color, draco::GeometryAttribute::COLOR, 4, "VEC4");
+    const int indexType = result->num_points() <= 65535 ? kUnsignedShort : kUnsignedInt;
+    Json out = {{"attributes", attributes},
+                {"indices", builder.addAccessor({{"componentType", indexType},
+                                                 {"count", result->num_faces() * 3},
+                                                 {"type", "SCALAR"}})},
+                {"mode", 4},
+                {"extensions",
+                 {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", dracoAttributes}}}}}};
+    return out;
+}
+
+Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
+    Json attributes = Json::object();
+    attributes["POSITION"] = builder.addFloatAccessor(primitive.positions, 3, "VEC3", true);
+    if (!primitive.normals.empty()) attributes["NORMAL"] = builder.addFloatAccessor(primitive.normals, 3, "VEC3", false);
+    if (!primitive.texcoords.empty())
+        attributes["TEXCOORD_0"] = builder.addFloatAccessor(primitive.texcoords, 2, "VEC2", false);
+    if (!primitive.colors.empty()) attributes["COLOR_0"] = builder.addFloatAccessor(primitive.colors, 4, "VEC4", false);
+    Json indices;
+    if (primitive.positions.size() <= 65535) {
+        std::vector<std::uint16_t> flat;
+        for (const Triangle& t : primitive.triangles)
+            for (std::uint32_t i : t) flat.push_back(static_cast<std::uint16_t>(i));
+        indices = {{"bufferView", builder.addBufferView(flat.data(), flat.size() * 2, kElementArrayBuffer)},
+                   {"componentType", kUnsignedShort}};
+    } else {
+        std::vector<std::uint32_t> flat;
+        for (const Triangle& t : primitive.triangles) flat.insert(flat.end(), t.begin(), t.end());
+        indices = {{"bufferView", builder.addBufferView(flat.data(), flat.size() * 4, kElementArrayBuffer)},
+                   {"componentType", kUnsignedInt}};
+    }
+    indices["count"] = primitive.triangles.size() * 3;
+    indices["type"] = "SCALAR";
+    return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}, {"mode", 4}};
+}
+
+// Writes only a node's nonzero parts; `matrix` carries any affine transform, mirrors included.
+Json writeNode(const Node& node, const std::vector<int>& meshIndex) {
+    Json out = Json::object();
+    if (!node.name.empty()) out["name"] = node.name;
+    if (!node.transform.isIdentity(0)) {
+        std::vector<double> matrix(16);
+        for (int i = 0; i < 16; ++i) matrix[i] = node.transform(i % 4, i / 4);
+        matrix[3] = matrix[7] = matrix[11] = 0;  // glTF requires an affine matrix
+        matrix[15] = 1;
+        out["matrix"] = matrix;
+    }
+    if (node.mesh >= 0 && meshIndex[node.mesh] >= 0) out["mesh"] = meshIndex[node.mesh];
+    if (!node.children.empty()) out["children"] = node.children;
+    return out;
+}
+
+Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, const Scene& scene,
+                   std::vector<int>& textureIndex) {
+    Json pbr = {{"baseColorFactor", {material.baseColorFactor[0], material.baseColorFactor[1],
+                                     material.baseColorFactor[2], material.baseColorFactor[3]}},
+                {"metallicFactor", material.metallicFactor},
+                {"roughnessFactor", material.roughnessFactor}};
+    const int texture = material.baseColorTexture;
+    if (texture >= 0 && !scene.textures[texture].bytes.empty()) {
+        if (textureIndex[texture] < 0) {
+            const Texture& source = scene.textures[texture];
+            Json image = {{"bufferView", builder.addBufferView(source.bytes.data(), source.bytes.size())},
+                          {"mimeType", source.mimeType.empty() ? "image/png" : source.mimeType}};
+            if (!source.name.empty()) image["name"] = source.name;
+            root["images"].push_back(image);
+            if (!root.contains("samplers")) root["samplers"].push_back(Json::object());
+            root["textures"].push_back({{"source", root["images"].size() - 1}, {"sampler", 0}});
+            textureIndex[texture] = static_cast<int>(root["textures"].size()) - 1;
+        }
+        pbr["baseColorTexture"] = {{"index", textureIndex[texture]}};
+    }
+    Json out = {{"pbrMetallicRoughness", pbr}};
+    if (!material.name.empty()) out["name"] = material.name;
+    if (!material.emissiveFactor.isZero())
+        out["emissiveFactor"] = {material.emissiveFactor[0], material.emissiveFactor[1], material.emissiveFactor[2]};
+    if (material.alphaMode == Material::AlphaMode::Mask) {
+        out["alphaMode"] = "MASK";
+        out["alphaCutoff"] = material.alphaCutoff;
+    } else if (material.alphaMode == Material::AlphaMode::Blend) {
+        out["alphaMode"] = "BLEND";
+    }
+    if (material.doubleSided) out["doubleSided"] = true;
+    return out;
+}
+
+std::string glbFile(const Json& root, std::vector<unsigned char> binary) {
+    std::string json = root.dump();
+    while (json.size() % 4) json.push_back(' ');
+    while (binary.size() % 4) binary.push_back(0);
+    const bool hasBinary = !binary.empty();
+    const std::uint32_t total =
+        static_cast<std::uint32_t>(12 + 8 + json.size() + (hasBinary ? 8 + binary.size() : 0));
+    std::string out;
+    auto put32 = [&out](std::uint32_t value) { out.append(reinterpret_cast<const char*>(&value), 4); };
+    out.append("glTF");
+    put32(2);
+    put32(total);
+    put32(static_cast<std::uint32_t>(json.size()));
+    out.append("JSON");
+    out.append(json);
+    if (hasBinary) {
+        put32(static_cast<std::uint32_t>(binary.size()));
+        out.append("BIN", 3);
+        out.push_back('\0');
+        out.append(reinterpret_cast<const char*>(binary.data()), binary.size());
+    }
+    return out;
+}
+
+}  // namespace
+
+void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& options) {
+    Json root = {{"asset", {{"version", "2.0"}, {"generator", "symcompress"}}}};
+    if (!options.extrasJson.empty()) {
+        try {
+            root["asset"]["extras"] = Json::parse(options.extrasJson);
+        } catch (const Json::exception& error) {
+            throw std::invalid_argument(std::string("extras are not valid JSON: ") + error.what());
+        }
+    }
+    GltfBuilder builder(root);
+    std::vector<int> textureIndex(scene.textures.size(), -1);
+    for (const Material& material : scene.materials)
+        root["materials"].push_back(writeMaterial(material, builder, root, scene, textureIndex));
+
+    // Meshes with no triangles are left out (glTF requires at least one primitive), and so is the
+    // reference to them from nodes.
+    std::vector<int> meshIndex(scene.meshes.size(), -1);
+    bool usedDraco = false;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        Json primitives = Json::array();
+        for (const Primitive& primitive : scene.meshes[m].primitives) {
+            if (primitive.triangles.empty()) continue;
+            Json out = options.draco ? writeDracoPrimitive(builder, primitive, options, file)
+                                     : writePlainPrimitive(builder, primitive);
+            usedDraco = usedDraco || options.draco;
+            if (primitive.material >= 0) out["material"] = primitive.material;
+            primitives.push_back(std::move(out));
+        }
+        if (primitives.empty()) continue;
+        Json mesh = {{"primitives", primitives}};
+        if (!scene.meshes[m].name.empty()) mesh["name"] = scene.meshes[m].name;
+        root["meshes"].push_back(mesh);
+        meshIndex[m] = static_cast<int>(root["meshes"].size()) - 1;
+    }
+    for (const Node& node : scene.nodes) root["nodes"].push_back(writeNode(node, meshIndex));
+    root["scenes"] = {{{"nodes", scene.roots}}};
+    root["scene"] = 0;
+    if (usedDraco) {
+        root["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+        root["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    }
+
+    std::vector<unsigned char>& binary = builder.binary();
+    if (formatFromExtension(file) == FileFormat::Glb) {
+        if (!binary.empty()) root["buffers"] = {{{"byteLength", binary.size()}}};
+        writeFileAtomically(file, glbFile(root, binary));
+        return;
+    }
+    // .gltf: the binary data in a .bin beside it, written first so that the JSON never points at nothing.
+    if (!binary.empty()) {
+        const fs::path bin = fs::path(file).replace_extension(".bin");
+        root["buffers"] = {{{"byteLength", binary.size()}, {"uri", bin.filename().string()}}};
+        writeFileAtomically(bin, std::string_view(reinterpret_cast<const char*>(binary.data()), binary.size()));
+    }
+    writeFileAtomically(file, root.dump(1));
+}
+
+}  // namespace symcompress

@@ -1,0 +1,132 @@
+// OBJ (with .mtl) and PLY writers. Both formats have no instancing: the scene is written flattened to
+// world space. Coordinates are printed with the shortest text that reads back to the same double.
+#include "symcompress/atomic_file.hpp"
+#include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
+
+#include <charconv>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+
+namespace {
+
+void appendNumber(std::string& out, double value) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    out.append(buffer, result.ptr);
+}
+
+template <typename Vector>
+void appendVector(std::string& out, const char* keyword, const Vector& vector, int components) {
+    out += keyword;
+    for (int c = 0; c < components; ++c) {
+        out += ' ';
+        appendNumber(out, vector[c]);
+    }
+    out += '\n';
+}
+
+std::string materialName(const Scene& scene, int material) {
+    if (material < 0) return "default";
+    const std::string& name = scene.materials[material].name;
+    return "m" + std::to_string(material) + (name.empty() ? "" : "_" + name);
+}
+
+std::string mtlFile(const Scene& scene, const fs::path& file) {
+    std::string out = "# written by symcompress\nnewmtl default\nKd 0.8 0.8 0.8\n";
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        out += "\nnewmtl " + materialName(scene, static_cast<int>(m)) + "\n";
+        appendVector(out, "Kd", material.baseColorFactor, 3);
+        if (material.phong) appendVector(out, "Ks", material.phong->specularColor, 3);
+        appendVector(out, "Ke", material.emissiveFactor, 3);
+        out += "d ";
+        appendNumber(out, material.baseColorFactor[3]);
+        out += '\n';
+        if (material.baseColorTexture >= 0) {
+            const Texture& texture = scene.textures[material.baseColorTexture];
+            if (!texture.uri.empty()) out += "map_Kd " + texture.uri + "\n";
+        }
+    }
+    (void)file;
+    return out;
+}
+
+}  // namespace
+
+void writeObj(const Scene& scene, const fs::path& file, const WriteOptions&) {
+    const fs::path library = fs::path(file).replace_extension(".mtl");
+    std::string out = "# written by symcompress\nmtllib " + library.filename().string() + "\n";
+    std::size_t base = 1, textureBase = 1, normalBase = 1, part = 0;
+    for (const WorldPrimitive& world : flattenScene(scene)) {
+        const Primitive& primitive = world.primitive;
+        out += "o part" + std::to_string(part++) + "\nusemtl " + materialName(scene, primitive.material) + "\n";
+        for (const Eigen::Vector3d& p : primitive.positions) appendVector(out, "v", p, 3);
+        for (const Eigen::Vector2d& t : primitive.texcoords) appendVector(out, "vt", Eigen::Vector2d(t.x(), 1 - t.y()), 2);
+        for (const Eigen::Vector3d& n : primitive.normals) appendVector(out, "vn", n, 3);
+        const bool hasT = !primitive.texcoords.empty(), hasN = !primitive.normals.empty();
+        for (const Triangle& triangle : primitive.triangles) {
+            out += 'f';
+            for (std::uint32_t index : triangle) {
+                out += ' ' + std::to_string(base + index);
+                if (hasT || hasN) out += '/';
+                if (hasT) out += std::to_string(textureBase + index);
+                if (hasN) out += '/' + std::to_string(normalBase + index);
+            }
+            out += '\n';
+        }
+        base += primitive.positions.size();
+        textureBase += primitive.texcoords.size();
+        normalBase += primitive.normals.size();
+    }
+    writeFileAtomically(library, mtlFile(scene, file));
+    writeFileAtomically(file, out);
+}
+
+void writePly(const Scene& scene, const fs::path& file, const WriteOptions&) {
+    // Binary little endian, double positions (exact), and the attributes every drawn primitive has.
+    const std::vector<WorldPrimitive> world = flattenScene(scene);
+    bool normals = !world.empty(), colors = !world.empty(), texcoords = !world.empty();
+    std::size_t vertexCount = 0, faceCount = 0;
+    for (const WorldPrimitive& w : world) {
+        normals = normals && !w.primitive.normals.empty();
+        colors = colors && !w.primitive.colors.empty();
+        texcoords = texcoords && !w.primitive.texcoords.empty();
+        vertexCount += w.primitive.positions.size();
+        faceCount += w.primitive.triangles.size();
+    }
+    std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by symcompress\n";
+    out += "element vertex " + std::to_string(vertexCount) + "\nproperty double x\nproperty double y\nproperty double z\n";
+    if (normals) out += "property float nx\nproperty float ny\nproperty float nz\n";
+    if (texcoords) out += "property float s\nproperty float t\n";
+    if (colors) out += "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n";
+    out += "element face " + std::to_string(faceCount) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+    auto put = [&out](auto value) { out.append(reinterpret_cast<const char*>(&value), sizeof value); };
+    for (const WorldPrimitive& w : world) {
+        const Primitive& p = w.primitive;
+        for (std::size_t v = 0; v < p.positions.size(); ++v) {
+            for (int c = 0; c < 3; ++c) put(p.positions[v][c]);
+            if (normals)
+                for (int c = 0; c < 3; ++c) put(static_cast<float>(p.normals[v][c]));
+            if (texcoords) {
+                put(static_cast<float>(p.texcoords[v].x()));
+                put(static_cast<float>(1 - p.texcoords[v].y()));
+            }
+            if (colors)
+                for (int c = 0; c < 4; ++c)
+                    put(static_cast<std::uint8_t>(std::lround(std::clamp(p.colors[v][c], 0.0, 1.0) * 255)));
+        }
+    }
+    std::uint32_t base = 0;
+    for (const WorldPrimitive& w : world) {
+        for (const Triangle& t : w.primitive.triangles) {
+            put(static_cast<std::uint8_t>(3));
+            for (std::uint32_t index : t) put(base + index);
+        }
+        base += static_cast<std::uint32_t>(w.primitive.positions.size());
+    }
+    writeFileAtomically(file, out);
+}
+
+}  // namespace symcompress

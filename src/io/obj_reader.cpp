@@ -1,0 +1,273 @@
+// Wavefront OBJ reader with its .mtl materials. Each o/g group becomes a node with its own mesh (one
+// primitive per material); vertices are split per distinct (v, vt, vn) triple; polygons are triangulated.
+#include "symcompress/atomic_file.hpp"
+#include "symcompress/io.hpp"
+#include "symcompress/triangulate_polygon.hpp"
+#include "text_scanner.hpp"
+
+#include <map>
+#include <unordered_map>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string rest(std::string_view line) {
+    while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+    while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+    return std::string(line);
+}
+
+std::string mimeTypeOf(const fs::path& image) {
+    std::string extension = image.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".png") return "image/png";
+    if (extension == ".jpg" || extension == ".jpeg") return "image/jpeg";
+    return "";
+}
+
+// Reads a .mtl library into `scene`; returns the material index of every name.
+std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& scene) {
+    std::map<std::string, int> byName;
+    std::error_code error;
+    if (!fs::is_regular_file(library, error)) {
+        scene.warnings.push_back(library.filename().string() + ": material library not found; default material used");
+        return byName;
+    }
+    const std::vector<unsigned char> bytes = readFileBytes(library);
+    TextScanner scanner(library, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    Material* current = nullptr;
+    std::map<std::string, int> textureOfFile;
+    while (!scanner.atEnd()) {
+        std::string_view line = scanner.nextLine();
+        const std::string_view keyword = nextWord(line);
+        if (keyword == "newmtl") {
+            const std::string name = rest(line);
+            scene.materials.emplace_back();
+            current = &scene.materials.back();
+            current->name = name;
+            current->metallicFactor = 0;  // OBJ materials are not metals
+            current->roughnessFactor = 1;
+            current->phong = PhongMaterial();
+            byName[name] = static_cast<int>(scene.materials.size()) - 1;
+            continue;
+        }
+        if (!current || keyword.empty() || keyword.front() == '#') continue;
+        auto readColor = [&]() {
+            Eigen::Vector3d color;
+            for (int c = 0; c < 3; ++c) color[c] = nextNumber<double>(line, scanner, "a colour component");
+            return color;
+        };
+        if (keyword == "Kd") {
+            current->phong->diffuseColor = readColor();
+            current->baseColorFactor.head<3>() = current->phong->diffuseColor;
+        } else if (keyword == "Ks") {
+            current->phong->specularColor = readColor();
+        } else if (keyword == "Ke") {
+            current->emissiveFactor = current->phong->emissiveColor = readColor();
+        } else if (keyword == "Ns") {
+            current->phong->shininess = std::clamp(nextNumber<double>(line, scanner, "Ns") / 1000.0, 0.0, 1.0);
+        } else if (keyword == "d" || keyword == "Tr") {
+            const double value = nextNumber<double>(line, scanner, "a transparency");
+            const double opacity = keyword == "d" ? value : 1 - value;
+            current->baseColorFactor[3] = opacity;
+            current->phong->transparency = 1 - opacity;
+            if (opacity < 1) current->alphaMode = Material::AlphaMode::Blend;
+        } else if (keyword == "map_Kd") {
+            // Options such as -s or -o precede the file name, which is the last word.
+            std::string name = rest(line);
+            const std::size_t space = name.find_last_of(" \t");
+            if (space != std::string::npos && name[0] == '-') name = name.substr(space + 1);
+            auto [entry, inserted] = textureOfFile.try_emplace(name, static_cast<int>(scene.textures.size()));
+            if (inserted) {
+                Texture texture;
+                texture.uri = name;
+                const fs::path image = library.parent_path() / name;
+                texture.mimeType = mimeTypeOf(image);
+                if (fs::is_regular_file(image, error))
+                    texture.bytes = readFileBytes(image);
+                else
+                    scene.warnings.push_back(library.filename().string() + ": texture '" + name + "' not found; materials using it are written without it");
+                scene.textures.push_back(std::move(texture));
+            }
+            current->baseColorTexture = entry->second;
+        }
+    }
+    return byName;
+}
+
+struct CornerKey {
+    int position, texcoord, normal;
+    bool operator<(const CornerKey& other) const {
+        return std::tie(position, texcoord, normal) < std::tie(other.position, other.texcoord, other.normal);
+    }
+};
+
+// The group being read: its mesh, and per material a primitive with its corner index.
+struct Group {
+    std::string name;
+    Mesh mesh;
+    std::map<int, std::size_t> primitiveOfMaterial;
+    std::vector<std::map<CornerKey, std::uint32_t>> cornerIndex;
+};
+
+}  // namespace
+
+Scene readObj(const fs::path& file) {
+    const std::vector<unsigned char> bytes = readFileBytes(file);
+    if (bytes.empty()) throw FileError(file, "the file is empty");
+    TextScanner scanner(file, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    Scene scene;
+    std::vector<Eigen::Vector3d> positions, normals;
+    std::vector<Eigen::Vector4d> vertexColors;
+    std::vector<Eigen::Vector2d> texcoords;
+    std::map<std::string, int> materials;
+    int currentMaterial = -1;
+    std::vector<Group> groups(1);
+    groups[0].name = file.stem().string();
+    std::size_t lines = 0, points = 0, curves = 0, degenerateFaces = 0;
+    bool anyColors = false;
+
+    auto resolve = [&](std::string_view word, std::size_t count, const char* what) -> int {
+        long long index;
+        if (!parseNumber(word, index) || index == 0) scanner.fail(std::string("invalid ") + what + " index '" + std::string(word) + "'");
+        const long long resolved = index < 0 ? static_cast<long long>(count) + index : index - 1;  // negative: relative
+        if (resolved < 0 || resolved >= static_cast<long long>(count))
+            scanner.fail(std::string(what) + " index " + std::string(word) + " out of range (" + std::to_string(count) + " defined)");
+        return static_cast<int>(resolved);
+    };
+
+    while (!scanner.atEnd()) {
+        std::string_view line = scanner.nextLine();
+        const std::string_view keyword = nextWord(line);
+        if (keyword.empty() || keyword.front() == '#') continue;
+        if (keyword == "v") {
+            Eigen::Vector3d p;
+            for (int c = 0; c < 3; ++c) p[c] = nextNumber<double>(line, scanner, "a vertex coordinate");
+            if (!p.allFinite()) scanner.fail("NaN or infinite vertex coordinate");
+            positions.push_back(p);
+            // Optional "v x y z r g b" vertex colours.
+            std::string_view colorText = line;
+            if (!nextWord(colorText).empty()) {
+                Eigen::Vector4d color(1, 1, 1, 1);
+                for (int c = 0; c < 3; ++c) color[c] = nextNumber<double>(line, scanner, "a vertex colour");
+                vertexColors.resize(positions.size(), Eigen::Vector4d(1, 1, 1, 1));
+                vertexColors.back() = color;
+                anyColors = true;
+            }
+        } else if (keyword == "vn") {
+            Eigen::Vector3d n;
+            for (int c = 0; c < 3; ++c) n[c] = nextNumber<double>(line, scanner, "a normal component");
+            normals.push_back(n.allFinite() ? n : Eigen::Vector3d::Zero());
+        } else if (keyword == "vt") {
+            const double u = nextNumber<double>(line, scanner, "a texture coordinate");
+            std::string_view vText = line;
+            const double v = nextWord(vText).empty() ? 0.0 : nextNumber<double>(line, scanner, "a texture coordinate");
+            texcoords.emplace_back(u, 1 - v);  // OBJ's v points up, glTF's down
+        } else if (keyword == "f") {
+            std::vector<CornerKey> corners;
+            for (std::string_view word = nextWord(line); !word.empty(); word = nextWord(line)) {
+                CornerKey key{-1, -1, -1};
+                const std::size_t slash1 = word.find('/');
+                key.position = resolve(word.substr(0, slash1), positions.size(), "vertex");
+                if (slash1 != std::string_view::npos) {
+                    const std::string_view afterFirst = word.substr(slash1 + 1);
+                    const std::size_t slash2 = afterFirst.find('/');
+                    const std::string_view vt = afterFirst.substr(0, slash2);
+                    if (!vt.empty()) key.texcoord = resolve(vt, texcoords.size(), "texture coordinate");
+                    if (slash2 != std::string_view::npos && slash2 + 1 < afterFirst.size())
+                        key.normal = resolve(afterFirst.substr(slash2 + 1), normals.size(), "normal");
+                }
+                corners.push_back(key);
+            }
+            if (corners.size() < 3) scanner.fail("a face with fewer than 3 vertices");
+            Group& group = groups.back();
+            auto [entry, inserted] = group.primitiveOfMaterial.try_emplace(currentMaterial, group.mesh.primitives.size());
+            if (inserted) {
+                group.mesh.primitives.emplace_back();
+                group.mesh.primitives.back().material = currentMaterial;
+                group.cornerIndex.emplace_back();
+            }
+            Primitive& primitive = group.mesh.primitives[entry->second];
+            auto& cornerIndex = group.cornerIndex[entry->second];
+            std::vector<std::uint32_t> local;
+            std::vector<Eigen::Vector3d> polygon;
+            for (const CornerKey& key : corners) {
+                auto [corner, isNew] = cornerIndex.try_emplace(key, static_cast<std::uint32_t>(primitive.positions.size()));
+                if (isNew) {
+                    primitive.positions.push_back(positions[key.position]);
+                    // Attributes are filled per vertex; a vertex without one gets a neutral value, and the
+                    // attribute is dropped at the end when no vertex of the primitive had it.
+                    primitive.normals.push_back(key.normal >= 0 ? normals[key.normal] : Eigen::Vector3d::Zero());
+                    primitive.texcoords.push_back(key.texcoord >= 0 ? texcoords[key.texcoord] : Eigen::Vector2d::Zero());
+                    primitive.colors.push_back(key.position < static_cast<int>(vertexColors.size())
+                                                   ? vertexColors[key.position]
+                                                   : Eigen::Vector4d(1, 1, 1, 1));
+                }
+                local.push_back(corner->second);
+                polygon.push_back(positions[key.position]);
+            }
+            const auto triangles = triangulatePolygon(polygon);
+            if (triangles.empty()) ++degenerateFaces;
+            for (const Triangle& t : triangles) primitive.triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
+        } else if (keyword == "o" || keyword == "g") {
+            const std::string name = rest(line);
+            if (!groups.back().mesh.primitives.empty()) groups.emplace_back();
+            groups.back().name = name;
+        } else if (keyword == "usemtl") {
+            const std::string name = rest(line);
+            auto found = materials.find(name);
+            if (found == materials.end()) {
+                // An unknown material still gets its own (default-looking) entry, so that parts stay apart.
+                scene.materials.emplace_back();
+                scene.materials.back().name = name;
+                found = materials.emplace(name, static_cast<int>(scene.materials.size()) - 1).first;
+                scene.warnings.push_back(file.filename().string() + ": material '" + name + "' is not defined");
+            }
+            currentMaterial = found->second;
+        } else if (keyword == "mtllib") {
+            const std::string name = rest(line);
+            for (const auto& [materialName, index] : readMaterialLibrary(file.parent_path() / name, scene))
+                materials[materialName] = index;
+        } else if (keyword == "l") {
+            ++lines;
+        } else if (keyword == "p") {
+            ++points;
+        } else if (keyword == "curv" || keyword == "curv2" || keyword == "surf" || keyword == "cstype") {
+            ++curves;
+        }
+    }
+
+    // Which attributes the file really had: a primitive keeps one only if every face corner named it.
+    for (Group& group : groups) {
+        if (group.mesh.primitives.empty()) continue;
+        for (std::size_t p = 0; p < group.mesh.primitives.size(); ++p) {
+            Primitive& primitive = group.mesh.primitives[p];
+            bool allNormals = true, allTexcoords = true;
+            for (const auto& [key, index] : group.cornerIndex[p]) {
+                allNormals = allNormals && key.normal >= 0;
+                allTexcoords = allTexcoords && key.texcoord >= 0;
+            }
+            if (!allNormals) primitive.normals.clear();
+            if (!allTexcoords) primitive.texcoords.clear();
+            if (!anyColors) primitive.colors.clear();
+        }
+        group.mesh.name = group.name;
+        Node node;
+        node.name = group.name;
+        node.mesh = static_cast<int>(scene.meshes.size());
+        scene.meshes.push_back(std::move(group.mesh));
+        scene.roots.push_back(static_cast<int>(scene.nodes.size()));
+        scene.nodes.push_back(std::move(node));
+    }
+    const std::string name = file.filename().string();
+    if (lines) scene.warnings.push_back(name + ": " + std::to_string(lines) + " line elements (l) skipped");
+    if (points) scene.warnings.push_back(name + ": " + std::to_string(points) + " point elements (p) skipped");
+    if (curves) scene.warnings.push_back(name + ": " + std::to_string(curves) + " curve and surface statements skipped");
+    if (degenerateFaces)
+        scene.warnings.push_back(name + ": " + std::to_string(degenerateFaces) + " faces with no area skipped");
+    return scene;
+}
+
+}  // namespace symcompress

@@ -1,0 +1,269 @@
+// PLY reader: ASCII, binary little and big endian; any scalar property types; faces as lists of any
+// length (polygons triangulated); properties we do not use are skipped.
+#include "symcompress/atomic_file.hpp"
+#include "symcompress/io.hpp"
+#include "symcompress/triangulate_polygon.hpp"
+#include "text_scanner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+
+namespace {
+
+enum class ScalarType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+struct Property {
+    std::string name;
+    ScalarType type = ScalarType::Float32;
+    bool isList = false;
+    ScalarType countType = ScalarType::UInt8;
+};
+
+struct Element {
+    std::string name;
+    std::size_t count = 0;
+    std::vector<Property> properties;
+};
+
+int scalarSize(ScalarType type) {
+    switch (type) {
+        case ScalarType::Int8:
+        case ScalarType::UInt8: return 1;
+        case ScalarType::Int16:
+        case ScalarType::UInt16: return 2;
+        case ScalarType::Int32:
+        case ScalarType::UInt32:
+        case ScalarType::Float32: return 4;
+        case ScalarType::Float64: return 8;
+    }
+    return 0;
+}
+
+bool parseScalarType(std::string_view name, ScalarType& type) {
+    static const std::pair<const char*, ScalarType> names[] = {
+        {"char", ScalarType::Int8},     {"int8", ScalarType::Int8},       {"uchar", ScalarType::UInt8},
+        {"uint8", ScalarType::UInt8},   {"short", ScalarType::Int16},     {"int16", ScalarType::Int16},
+        {"ushort", ScalarType::UInt16}, {"uint16", ScalarType::UInt16},   {"int", ScalarType::Int32},
+        {"int32", ScalarType::Int32},   {"uint", ScalarType::UInt32},     {"uint32", ScalarType::UInt32},
+        {"float", ScalarType::Float32}, {"float32", ScalarType::Float32}, {"double", ScalarType::Float64},
+        {"float64", ScalarType::Float64}};
+    for (const auto& [known, value] : names)
+        if (name == known) {
+            type = value;
+            return true;
+        }
+    return false;
+}
+
+// Reads values one by one from the body, in whichever encoding the header named.
+class PlyBody {
+public:
+    enum class Encoding { Ascii, LittleEndian, BigEndian };
+    PlyBody(const fs::path& file, const std::vector<unsigned char>& bytes, std::size_t offset, Encoding encoding)
+        : file_(file), bytes_(bytes), position_(offset), encoding_(encoding) {}
+
+    double read(ScalarType type) {
+        if (encoding_ == Encoding::Ascii) return readAscii();
+        const int size = scalarSize(type);
+        if (position_ + size > bytes_.size()) throw FileError(file_, "truncated: the body ends before the header's counts");
+        unsigned char raw[8];
+        std::memcpy(raw, bytes_.data() + position_, size);
+        position_ += size;
+        if (encoding_ == Encoding::BigEndian) std::reverse(raw, raw + size);
+        auto as = [&raw](auto value) {
+            std::memcpy(&value, raw, sizeof value);
+            return static_cast<double>(value);
+        };
+        switch (type) {
+            case ScalarType::Int8: return as(std::int8_t());
+            case ScalarType::UInt8: return as(std::uint8_t());
+            case ScalarType::Int16: return as(std::int16_t());
+            case ScalarType::UInt16: return as(std::uint16_t());
+            case ScalarType::Int32: return as(std::int32_t());
+            case ScalarType::UInt32: return as(std::uint32_t());
+            case ScalarType::Float32: return as(float());
+            case ScalarType::Float64: return as(double());
+        }
+        return 0;
+    }
+
+private:
+    double readAscii() {
+        while (position_ < bytes_.size() && std::isspace(bytes_[position_])) ++position_;
+        std::size_t end = position_;
+        while (end < bytes_.size() && !std::isspace(bytes_[end])) ++end;
+        if (end == position_) throw FileError(file_, "truncated: the body ends before the header's counts");
+        double value;
+        const std::string_view word(reinterpret_cast<const char*>(bytes_.data() + position_), end - position_);
+        if (!parseNumber(word, value)) throw FileError(file_, "cannot read the number '" + std::string(word) + "'");
+        position_ = end;
+        return value;
+    }
+
+    const fs::path& file_;
+    const std::vector<unsigned char>& bytes_;
+    std::size_t position_;
+    Encoding encoding_;
+};
+
+int propertyIndex(const Element& element, std::initializer_list<const char*> names) {
+    for (const char* name : names)
+        for (std::size_t i = 0; i < element.properties.size(); ++i)
+            if (element.properties[i].name == name) return static_cast<int>(i);
+    return -1;
+}
+
+}  // namespace
+
+Scene readPly(const fs::path& file) {
+    const std::vector<unsigned char> bytes = readFileBytes(file);
+    if (bytes.empty()) throw FileError(file, "the file is empty");
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    TextScanner header(file, text);
+    std::string_view magic = header.nextLine();
+    if (nextWord(magic) != "ply")
+        throw FileError(file, "not a PLY file (no 'ply' magic line)");
+    PlyBody::Encoding encoding = PlyBody::Encoding::Ascii;
+    std::vector<Element> elements;
+    bool sawFormat = false, sawEnd = false;
+    while (!header.atEnd() && !sawEnd) {
+        std::string_view line = header.nextLine();
+        const std::string_view keyword = nextWord(line);
+        if (keyword == "format") {
+            const std::string_view name = nextWord(line);
+            if (name == "ascii") encoding = PlyBody::Encoding::Ascii;
+            else if (name == "binary_little_endian") encoding = PlyBody::Encoding::LittleEndian;
+            else if (name == "binary_big_endian") encoding = PlyBody::Encoding::BigEndian;
+            else header.fail("unknown format '" + std::string(name) + "'");
+            sawFormat = true;
+        } else if (keyword == "element") {
+            Element element;
+            element.name = std::string(nextWord(line));
+            element.count = nextNumber<std::size_t>(line, header, "an element count");
+            elements.push_back(element);
+        } else if (keyword == "property") {
+            if (elements.empty()) header.fail("a property before any element");
+            Property property;
+            std::string_view type = nextWord(line);
+            if (type == "list") {
+                property.isList = true;
+                if (!parseScalarType(nextWord(line), property.countType)) header.fail("unknown list count type");
+                type = nextWord(line);
+            }
+            if (!parseScalarType(type, property.type)) header.fail("unknown property type '" + std::string(type) + "'");
+            property.name = std::string(nextWord(line));
+            elements.back().properties.push_back(property);
+        } else if (keyword == "end_header") {
+            sawEnd = true;
+        } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
+            header.fail("unexpected '" + std::string(keyword) + "' in the header");
+        }
+    }
+    if (!sawFormat || !sawEnd) throw FileError(file, "incomplete PLY header (no format or no end_header)");
+
+    Primitive primitive;
+    std::vector<std::vector<std::uint32_t>> faces;
+    std::size_t skippedPolygons = 0, otherElements = 0;
+    PlyBody body(file, bytes, header.offset(), encoding);
+    for (const Element& element : elements) {
+        const bool isVertex = element.name == "vertex", isFace = element.name == "face";
+        if (!isVertex && !isFace) ++otherElements;
+        const int x = propertyIndex(element, {"x"}), y = propertyIndex(element, {"y"}), z = propertyIndex(element, {"z"});
+        const int nx = propertyIndex(element, {"nx"}), ny = propertyIndex(element, {"ny"}), nz = propertyIndex(element, {"nz"});
+        const int red = propertyIndex(element, {"red", "r"}), green = propertyIndex(element, {"green", "g"}),
+                  blue = propertyIndex(element, {"blue", "b"}), alpha = propertyIndex(element, {"alpha", "a"});
+        const int s = propertyIndex(element, {"s", "u", "texture_u", "texture_s"}),
+                  t = propertyIndex(element, {"t", "v", "texture_v", "texture_t"});
+        const int indices = propertyIndex(element, {"vertex_indices", "vertex_index"});
+        if (isVertex && (x < 0 || y < 0 || z < 0)) throw FileError(file, "vertex element without x, y and z");
+        if (isFace && (indices < 0 || !element.properties[indices].isList))
+            throw FileError(file, "face element without a vertex_indices list");
+        std::vector<double> values(element.properties.size());
+        for (std::size_t item = 0; item < element.count; ++item) {
+            std::vector<std::uint32_t> face;
+            for (std::size_t p = 0; p < element.properties.size(); ++p) {
+                const Property& property = element.properties[p];
+                if (!property.isList) {
+                    values[p] = body.read(property.type);
+                    continue;
+                }
+                const double count = body.read(property.countType);
+                if (!(count >= 0 && count < 1e6)) throw FileError(file, "implausible list length " + std::to_string(count));
+                for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k) {
+                    const double value = body.read(property.type);
+                    if (isFace && static_cast<int>(p) == indices) {
+                        if (!(value >= 0 && value < 4294967295.0))
+                            throw FileError(file, "face " + std::to_string(item) + ": negative or invalid vertex index");
+                        face.push_back(static_cast<std::uint32_t>(value));
+                    }
+                }
+            }
+            if (isVertex) {
+                const Eigen::Vector3d position(values[x], values[y], values[z]);
+                if (!position.allFinite())
+                    throw FileError(file, "vertex " + std::to_string(item) + " has a NaN or infinite coordinate");
+                primitive.positions.push_back(position);
+                if (nx >= 0 && ny >= 0 && nz >= 0) primitive.normals.emplace_back(values[nx], values[ny], values[nz]);
+                if (s >= 0 && t >= 0) primitive.texcoords.emplace_back(values[s], 1 - values[t]);  // PLY's v points up
+                if (red >= 0 && green >= 0 && blue >= 0) {
+                    // Integer colours are 0..255; float colours are already 0..1.
+                    const double scale = element.properties[red].type == ScalarType::Float32 ||
+                                                 element.properties[red].type == ScalarType::Float64
+                                             ? 1.0
+                                             : 255.0;
+                    primitive.colors.emplace_back(values[red] / scale, values[green] / scale, values[blue] / scale,
+                                                  alpha >= 0 ? values[alpha] / scale : 1.0);
+                }
+            } else if (isFace) {
+                faces.push_back(std::move(face));
+            }
+        }
+    }
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& face = faces[f];
+        for (std::uint32_t index : face)
+            if (index >= primitive.positions.size())
+                throw FileError(file, "face " + std::to_string(f) + ": vertex index " + std::to_string(index) +
+                                          " out of range (" + std::to_string(primitive.positions.size()) + " vertices)");
+        if (face.size() == 3) {
+            primitive.triangles.push_back({face[0], face[1], face[2]});
+            continue;
+        }
+        std::vector<Eigen::Vector3d> corners;
+        for (std::uint32_t index : face) corners.push_back(primitive.positions[index]);
+        const auto triangles = triangulatePolygon(corners);
+        if (triangles.empty()) ++skippedPolygons;
+        for (const Triangle& local : triangles) primitive.triangles.push_back({face[local[0]], face[local[1]], face[local[2]]});
+    }
+    Scene scene;
+    auto dropIfNotFinite = [&](auto& attribute, const char* name) {
+        for (const auto& value : attribute)
+            if (!value.allFinite()) {
+                scene.warnings.push_back(file.filename().string() + ": " + name + " with NaN or infinite values dropped");
+                attribute.clear();
+                return;
+            }
+    };
+    dropIfNotFinite(primitive.normals, "normals");
+    dropIfNotFinite(primitive.texcoords, "texture coordinates");
+    dropIfNotFinite(primitive.colors, "colours");
+    if (skippedPolygons)
+        scene.warnings.push_back(file.filename().string() + ": " + std::to_string(skippedPolygons) +
+                                 " faces with fewer than 3 distinct corners or no area skipped");
+    if (otherElements)
+        scene.warnings.push_back(file.filename().string() + ": " + std::to_string(otherElements) +
+                                 " elements other than vertex and face ignored");
+    scene.meshes.push_back({file.stem().string(), {std::move(primitive)}});
+    Node node;
+    node.name = file.stem().string();
+    node.mesh = 0;
+    scene.nodes.push_back(node);
+    scene.roots.push_back(0);
+    return scene;
+}
+
+}  // namespace symcompress

@@ -1,0 +1,539 @@
+// X3D reader (XML encoding, X3D 3.x and 4.0). Keeps the node hierarchy with local transforms; a USE of
+// a Shape or geometry reuses the same symcompress Mesh, so that the file's instancing survives.
+#include "symcompress/atomic_file.hpp"
+#include "symcompress/io.hpp"
+#include "symcompress/triangulate_polygon.hpp"
+#include "x3d_fields.hpp"
+#include "x3d_primitives.hpp"
+
+#include <Eigen/Geometry>
+
+#include <zlib.h>
+
+#include <cstring>
+#include <map>
+#include <set>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+
+namespace {
+
+// X3D nodes that group children, with or without a transform of their own.
+const std::set<std::string> kGroupingNodes = {"Group", "Transform", "Switch", "LOD", "Collision", "Anchor",
+                                              "StaticGroup", "Billboard", "CADAssembly", "CADLayer", "CADPart",
+                                              "CADFace", "Scene", "LayerSet", "Layer"};
+// Geometry nodes that draw something we do not read: reported once per type.
+const std::set<std::string> kUnsupportedGeometry = {
+    "Extrusion", "ElevationGrid", "Text", "PointSet", "LineSet", "IndexedLineSet", "NurbsPatchSurface",
+    "NurbsTrimmedSurface", "NurbsCurve", "NurbsSweptSurface", "NurbsSwungSurface", "GeoElevationGrid",
+    "Arc2D", "ArcClose2D", "Circle2D", "Disk2D", "Polyline2D", "Polypoint2D", "Rectangle2D", "TriangleSet2D",
+    "QuadSet", "IndexedQuadSet", "IndexedTriangleFanSet", "IndexedTriangleStripSet", "TriangleFanSet",
+    "TriangleStripSet"};
+
+class X3dReader {
+public:
+    X3dReader(const fs::path& file, Scene& scene, std::set<fs::path>& inlineStack)
+        : file_(file), scene_(scene), inlineStack_(inlineStack) {}
+
+    // Reads the file's Scene element into new nodes; returns the root nodes.
+    std::vector<int> read();
+
+private:
+    [[noreturn]] void fail(const pugi::xml_node& node, const std::string& problem) const {
+        throw FileError(file_, "<" + std::string(node.name()) + (node.attribute("DEF") ? " DEF='" + std::string(node.attribute("DEF").value()) + "'" : "") +
+                                   ">: " + problem);
+    }
+    pugi::xml_node resolve(const pugi::xml_node& node) const;
+    std::vector<double> numbers(const pugi::xml_node& node, const char* field) const;
+    Eigen::Vector3d vector3(const pugi::xml_node& node, const char* field, const Eigen::Vector3d& fallback) const;
+    double scalar(const pugi::xml_node& node, const char* field, double fallback) const;
+    bool boolean(const pugi::xml_node& node, const char* field, bool fallback) const;
+    Eigen::Matrix4d transformOf(const pugi::xml_node& node) const;
+
+    void readChildren(const pugi::xml_node& parent, std::vector<int>& into, int depth);
+    int readNode(const pugi::xml_node& node, int depth);
+    int readShape(const pugi::xml_node& shape);
+    int readMaterial(const pugi::xml_node& appearance);
+    int readTexture(const pugi::xml_node& appearance);
+    bool readGeometry(const pugi::xml_node& geometry, Primitive& out);
+    void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces);
+    void readInline(const pugi::xml_node& node, std::vector<int>& into);
+
+    fs::path file_;
+    Scene& scene_;
+    std::set<fs::path>& inlineStack_;
+    pugi::xml_document document_;
+    std::map<std::string, pugi::xml_node> definitions_;
+    std::map<const void*, int> meshOfShape_, materialOfAppearance_, textureOfNode_;
+    std::map<std::string, int> skippedGeometry_;
+    std::set<std::string> useStack_;
+    std::set<std::string> notes_;
+};
+
+pugi::xml_node X3dReader::resolve(const pugi::xml_node& node) const {
+    const pugi::xml_attribute use = node.attribute("USE");
+    if (!use) return node;
+    auto found = definitions_.find(use.value());
+    if (found == definitions_.end())
+        throw FileError(file_, "USE='" + std::string(use.value()) + "' refers to no DEF before it");
+    return found->second;
+}
+
+std::vector<double> X3dReader::numbers(const pugi::xml_node& node, const char* field) const {
+    std::vector<double> values;
+    const pugi::xml_attribute attribute = node.attribute(field);
+    if (!attribute) return values;
+    if (!x3d::parseNumbers(attribute.value(), values)) fail(node, std::string("cannot read the numbers of ") + field);
+    for (double v : values)
+        if (!std::isfinite(v)) fail(node, std::string(field) + " contains NaN or infinite values");
+    return values;
+}
+
+Eigen::Vector3d X3dReader::vector3(const pugi::xml_node& node, const char* field, const Eigen::Vector3d& fallback) const {
+    const std::vector<double> values = numbers(node, field);
+    if (values.empty()) return fallback;
+    if (values.size() != 3) fail(node, std::string(field) + " needs 3 numbers");
+    return {values[0], values[1], values[2]};
+}
+
+double X3dReader::scalar(const pugi::xml_node& node, const char* field, double fallback) const {
+    const std::vector<double> values = numbers(node, field);
+    return values.empty() ? fallback : values[0];
+}
+
+bool X3dReader::boolean(const pugi::xml_node& node, const char* field, bool fallback) const {
+    const pugi::xml_attribute attribute = node.attribute(field);
+    if (!attribute) return fallback;
+    const std::string value = attribute.value();
+    return value == "true" || value == "TRUE";
+}
+
+Eigen::AngleAxisd rotationField(const std::vector<double>& values) {
+    if (values.size() != 4) return Eigen::AngleAxisd::Identity();
+    Eigen::Vector3d axis(values[0], values[1], values[2]);
+    if (axis.norm() == 0) return Eigen::AngleAxisd::Identity();
+    return Eigen::AngleAxisd(values[3], axis.normalized());
+}
+
+// X3D Transform (and CADPart): P' = T * C * R * SR * S * -SR * -C * P.
+Eigen::Matrix4d X3dReader::transformOf(const pugi::xml_node& node) const {
+    Eigen::Affine3d m = Eigen::Affine3d::Identity();
+    const Eigen::Vector3d translation = vector3(node, "translation", Eigen::Vector3d::Zero());
+    const Eigen::Vector3d center = vector3(node, "center", Eigen::Vector3d::Zero());
+    const Eigen::Vector3d scale = vector3(node, "scale", Eigen::Vector3d::Ones());
+    const Eigen::AngleAxisd rotation = rotationField(numbers(node, "rotation"));
+    const Eigen::AngleAxisd scaleOrientation = rotationField(numbers(node, "scaleOrientation"));
+    m.translate(translation).translate(center).rotate(rotation).rotate(scaleOrientation).scale(scale)
+        .rotate(scaleOrientation.inverse()).translate(-center);
+    return m.matrix();
+}
+
+std::vector<int> X3dReader::read() {
+    const std::vector<unsigned char> bytes = readFileBytes(file_);
+    if (bytes.empty()) throw FileError(file_, "the file is empty");
+    std::vector<unsigned char> text = bytes;
+    if (bytes.size() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b) {
+        // .x3dz: gzip-compressed XML.
+        z_stream stream{};
+        if (inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK) throw FileError(file_, "cannot start gzip decompression");
+        stream.next_in = const_cast<unsigned char*>(bytes.data());
+        stream.avail_in = static_cast<uInt>(bytes.size());
+        text.clear();
+        unsigned char buffer[1 << 16];
+        int status;
+        do {
+            stream.next_out = buffer;
+            stream.avail_out = sizeof buffer;
+            status = inflate(&stream, Z_NO_FLUSH);
+            if (status != Z_OK && status != Z_STREAM_END) {
+                inflateEnd(&stream);
+                throw FileError(file_, "broken gzip data");
+            }
+            text.insert(text.end(), buffer, buffer + (sizeof buffer - stream.avail_out));
+        } while (status != Z_STREAM_END);
+        inflateEnd(&stream);
+    }
+    const pugi::xml_parse_result parsed = document_.load_buffer(text.data(), text.size());
+    if (!parsed)
+        throw FileError(file_, std::string("malformed XML at byte ") + std::to_string(parsed.offset) + ": " +
+                                   parsed.description());
+    pugi::xml_node scene = document_.child("X3D").child("Scene");
+    if (!scene) throw FileError(file_, "no <X3D><Scene> element (only the XML encoding of X3D is read)");
+    std::vector<int> roots;
+    readChildren(scene, roots, 0);
+    const std::string name = file_.filename().string();
+    for (const auto& [type, count] : skippedGeometry_)
+        scene_.warnings.push_back(name + ": " + std::to_string(count) + " " + type + " node" + (count > 1 ? "s" : "") +
+                                  " skipped (not supported)");
+    for (const std::string& note : notes_) scene_.warnings.push_back(name + ": " + note);
+    return roots;
+}
+
+void X3dReader::readChildren(const pugi::xml_node& parent, std::vector<int>& into, int depth) {
+    for (pugi::xml_node child : parent.children()) {
+        if (child.type() != pugi::node_element) continue;
+        if (std::strcmp(child.name(), "Inline") == 0) {
+            readInline(child, into);
+            continue;
+        }
+        const int node = readNode(child, depth + 1);
+        if (node >= 0) into.push_back(node);
+    }
+}
+
+int X3dReader::readNode(const pugi::xml_node& source, int depth) {
+    if (depth > 256) fail(source, "nesting deeper than 256 levels");
+    if (const pugi::xml_attribute def = source.attribute("DEF")) definitions_[def.value()] = source;
+    const std::string use = source.attribute("USE").value();
+    if (!use.empty() && !useStack_.insert(use).second) fail(source, "USE of '" + use + "' inside itself");
+    const pugi::xml_node node = resolve(source);
+    struct PopUse {
+        std::set<std::string>& stack;
+        std::string name;
+        ~PopUse() {
+            if (!name.empty()) stack.erase(name);
+        }
+    } popUse{useStack_, use};
+    const std::string type = node.name();
+
+    if (type == "Shape") {
+        const int mesh = readShape(node);
+        if (mesh < 0) return -1;
+        Node out;
+        out.name = node.attribute("DEF").value();
+        out.mesh = mesh;
+        scene_.nodes.push_back(out);
+        return static_cast<int>(scene_.nodes.size()) - 1;
+    }
+    if (!kGroupingNodes.count(type)) {
+        if (kUnsupportedGeometry.count(type)) ++skippedGeometry_[type];
+        if (type == "ProtoInstance") ++skippedGeometry_["ProtoInstance (prototypes are not supported)"];
+        return -1;  // Viewpoint, lights, sensors, scripts, metadata, ...: nothing drawn
+    }
+    Node out;
+    out.name = node.attribute("DEF").value();
+    if (type == "Transform" || type == "CADPart") out.transform = transformOf(node);
+    if (type == "Billboard") notes_.insert("Billboard nodes read as groups (they turn towards the viewer in a browser)");
+    std::vector<int> children;
+    if (type == "Switch") {
+        const int choice = static_cast<int>(scalar(node, "whichChoice", -1));
+        int index = 0;
+        for (pugi::xml_node child : node.children()) {
+            if (child.type() != pugi::node_element || std::strncmp(child.name(), "Metadata", 8) == 0) continue;
+            if (index++ == choice) {
+                const int read = readNode(child, depth + 1);
+                if (read >= 0) children.push_back(read);
+            }
+        }
+    } else if (type == "LOD") {
+        // The most detailed level (the first child) is the one kept.
+        for (pugi::xml_node child : node.children()) {
+            if (child.type() != pugi::node_element || std::strncmp(child.name(), "Metadata", 8) == 0) continue;
+            const int read = readNode(child, depth + 1);
+            if (read >= 0) children.push_back(read);
+            notes_.insert("LOD nodes: only the first (most detailed) level is kept");
+            break;
+        }
+    } else {
+        readChildren(node, children, depth);
+    }
+    const int index = static_cast<int>(scene_.nodes.size());
+    out.children = children;
+    scene_.nodes.push_back(out);
+    return index;
+}
+
+void X3dReader::readInline(const pugi::xml_node& source, std::vector<int>& into) {
+    const pugi::xml_node node = resolve(source);
+    if (!boolean(node, "load", true)) return;
+    for (const std::string& url : x3d::parseStrings(node.attribute("url").value())) {
+        if (url.find("://") != std::string::npos) continue;  // only local files
+        const fs::path target = fs::weakly_canonical(file_.parent_path() / url);
+        std::error_code error;
+        if (!fs::is_regular_file(target, error)) continue;
+        if (inlineStack_.count(target)) fail(node, "Inline of '" + url + "' includes itself");
+        inlineStack_.insert(target);
+        X3dReader inlined(target, scene_, inlineStack_);
+        Node group;
+        group.name = node.attribute("DEF").value();
+        group.children = inlined.read();
+        inlineStack_.erase(target);
+        scene_.nodes.push_back(group);
+        into.push_back(static_cast<int>(scene_.nodes.size()) - 1);
+        return;
+    }
+    notes_.insert("an Inline whose url names no readable local file was skipped: " +
+                  std::string(node.attribute("url").value()));
+}
+
+int X3dReader::readTexture(const pugi::xml_node& appearance) {
+    pugi::xml_node texture = appearance.child("ImageTexture");
+    if (!texture) {
+        for (pugi::xml_node child : appearance.children())
+            if (std::strstr(child.name(), "Texture")) notes_.insert(std::string(child.name()) + " not carried through");
+        return -1;
+    }
+    if (const pugi::xml_attribute def = texture.attribute("DEF")) definitions_[def.value()] = texture;
+    texture = resolve(texture);
+    auto [entry, inserted] = textureOfNode_.try_emplace(texture.internal_object(), -1);
+    if (!inserted) return entry->second;
+    Texture out;
+    for (const std::string& url : x3d::parseStrings(texture.attribute("url").value())) {
+        if (out.uri.empty()) out.uri = url;
+        const fs::path image = file_.parent_path() / url;
+        std::error_code error;
+        if (url.find("://") == std::string::npos && fs::is_regular_file(image, error)) {
+            out.uri = url;
+            out.bytes = readFileBytes(image);
+            break;
+        }
+    }
+    if (out.uri.empty()) return -1;
+    if (out.bytes.empty()) notes_.insert("texture '" + out.uri + "' not found; materials using it are written without it");
+    const std::string extension = fs::path(out.uri).extension().string();
+    out.mimeType = extension == ".png" || extension == ".PNG" ? "image/png"
+                   : extension == ".jpg" || extension == ".jpeg" || extension == ".JPG" ? "image/jpeg"
+                                                                                         : "";
+    scene_.textures.push_back(std::move(out));
+    entry->second = static_cast<int>(scene_.textures.size()) - 1;
+    return entry->second;
+}
+
+int X3dReader::readMaterial(const pugi::xml_node& shape) {
+    pugi::xml_node appearance = shape.child("Appearance");
+    if (!appearance) return -1;
+    if (const pugi::xml_attribute def = appearance.attribute("DEF")) definitions_[def.value()] = appearance;
+    appearance = resolve(appearance);
+    auto [entry, inserted] = materialOfAppearance_.try_emplace(appearance.internal_object(), -1);
+    if (!inserted) return entry->second;
+    Material material;
+    material.name = appearance.attribute("DEF").value();
+    pugi::xml_node phong = appearance.child("Material");
+    pugi::xml_node physical = appearance.child("PhysicalMaterial");
+    pugi::xml_node twoSided = appearance.child("TwoSidedMaterial");
+    if (twoSided) {
+        phong = twoSided;
+        material.doubleSided = true;
+    }
+    for (pugi::xml_node* node : {&phong, &physical})
+        if (*node) {
+            if (const pugi::xml_attribute def = node->attribute("DEF")) definitions_[def.value()] = *node;
+            *node = resolve(*node);
+        }
+    if (phong) {
+        PhongMaterial fields;
+        fields.diffuseColor = vector3(phong, "diffuseColor", fields.diffuseColor);
+        fields.specularColor = vector3(phong, "specularColor", fields.specularColor);
+        fields.emissiveColor = vector3(phong, "emissiveColor", fields.emissiveColor);
+        fields.ambientIntensity = scalar(phong, "ambientIntensity", fields.ambientIntensity);
+        fields.shininess = scalar(phong, "shininess", fields.shininess);
+        fields.transparency = scalar(phong, "transparency", fields.transparency);
+        material.baseColorFactor << fields.diffuseColor, 1 - fields.transparency;
+        material.emissiveFactor = fields.emissiveColor;
+        material.metallicFactor = 0;
+        material.roughnessFactor = 1 - fields.shininess;
+        material.phong = fields;
+        if (material.name.empty()) material.name = phong.attribute("DEF").value();
+    } else if (physical) {
+        const double transparency = scalar(physical, "transparency", 0);
+        material.baseColorFactor << vector3(physical, "baseColor", Eigen::Vector3d::Ones()), 1 - transparency;
+        material.metallicFactor = scalar(physical, "metallic", 1);
+        material.roughnessFactor = scalar(physical, "roughness", 1);
+        material.emissiveFactor = vector3(physical, "emissiveColor", Eigen::Vector3d::Zero());
+        if (material.name.empty()) material.name = physical.attribute("DEF").value();
+    } else {
+        // An Appearance without a material is unlit white in X3D.
+        material.metallicFactor = 0;
+    }
+    if (material.baseColorFactor[3] < 1) material.alphaMode = Material::AlphaMode::Blend;
+    material.baseColorTexture = readTexture(appearance);
+    scene_.materials.push_back(material);
+    entry->second = static_cast<int>(scene_.materials.size()) - 1;
+    return entry->second;
+}
+
+int X3dReader::readShape(const pugi::xml_node& shape) {
+    auto [entry, inserted] = meshOfShape_.try_emplace(shape.internal_object(), -1);
+    if (!inserted) return entry->second;
+    const int material = readMaterial(shape);
+    pugi::xml_node geometry;
+    for (pugi::xml_node child : shape.children()) {
+        if (child.type() != pugi::node_element) continue;
+        const std::string name = child.name();
+        if (name != "Appearance" && name.rfind("Metadata", 0) != 0) {
+            geometry = child;
+            break;
+        }
+    }
+    if (!geometry) return -1;
+    if (const pugi::xml_attribute def = geometry.attribute("DEF")) definitions_[def.value()] = geometry;
+    geometry = resolve(geometry);
+    Primitive primitive;
+    if (!readGeometry(geometry, primitive)) return -1;
+    primitive.material = material;
+    if (material >= 0 && !boolean(geometry, "solid", true)) scene_.materials[material].doubleSided = true;
+    Mesh mesh;
+    mesh.name = shape.attribute("DEF").value();
+    mesh.primitives.push_back(std::move(primitive));
+    scene_.meshes.push_back(std::move(mesh));
+    entry->second = static_cast<int>(scene_.meshes.size()) - 1;
+    return entry->second;
+}
+
+bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out) {
+    const std::string type = geometry.name();
+    if (type == "IndexedFaceSet") {
+        readFaceSet(geometry, out, true);
+    } else if (type == "IndexedTriangleSet" || type == "TriangleSet") {
+        readFaceSet(geometry, out, false);
+    } else if (type == "Box") {
+        out = x3d::tessellateBox(vector3(geometry, "size", Eigen::Vector3d(2, 2, 2)));
+    } else if (type == "Sphere") {
+        out = x3d::tessellateSphere(scalar(geometry, "radius", 1));
+    } else if (type == "Cylinder") {
+        const double radius = scalar(geometry, "radius", 1);
+        out = x3d::tessellateCylinder(radius, radius, scalar(geometry, "height", 2), boolean(geometry, "side", true),
+                                      boolean(geometry, "bottom", true), boolean(geometry, "top", true));
+    } else if (type == "Cone") {
+        out = x3d::tessellateCylinder(scalar(geometry, "bottomRadius", 1), 0, scalar(geometry, "height", 2),
+                                      boolean(geometry, "side", true), boolean(geometry, "bottom", true), false);
+    } else {
+        ++skippedGeometry_[type];
+        return false;
+    }
+    return true;
+}
+
+void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces) {
+    auto child = [&](std::initializer_list<const char*> types) -> pugi::xml_node {
+        for (const char* type : types)
+            if (pugi::xml_node node = geometry.child(type)) {
+                if (const pugi::xml_attribute def = node.attribute("DEF")) definitions_[def.value()] = node;
+                return resolve(node);
+            }
+        return {};
+    };
+    const pugi::xml_node coordinate = child({"Coordinate", "CoordinateDouble"});
+    if (!coordinate) fail(geometry, "no Coordinate");
+    const std::vector<double> points = numbers(coordinate, "point");
+    if (points.size() % 3) fail(coordinate, "the number of point values is not a multiple of 3");
+    const std::size_t pointCount = points.size() / 3;
+    const pugi::xml_node normalNode = child({"Normal"});
+    const pugi::xml_node colorNode = child({"Color", "ColorRGBA"});
+    const pugi::xml_node texcoordNode = child({"TextureCoordinate"});
+    const std::vector<double> normalValues = normalNode ? numbers(normalNode, "vector") : std::vector<double>();
+    const std::vector<double> colorValues = colorNode ? numbers(colorNode, "color") : std::vector<double>();
+    const int colorComponents = colorNode && std::strcmp(colorNode.name(), "ColorRGBA") == 0 ? 4 : 3;
+    const std::vector<double> texcoordValues = texcoordNode ? numbers(texcoordNode, "point") : std::vector<double>();
+    const bool ccw = boolean(geometry, "ccw", true);
+    const bool normalPerVertex = boolean(geometry, "normalPerVertex", true);
+    const bool colorPerVertex = boolean(geometry, "colorPerVertex", true);
+
+    // Faces as lists of corner positions in the Coordinate node.
+    std::vector<std::vector<std::int64_t>> faces;
+    if (indexedFaces) {
+        std::vector<std::int64_t> face;
+        for (double value : numbers(geometry, "coordIndex")) {
+            if (value < 0) {
+                if (!face.empty()) faces.push_back(face);
+                face.clear();
+            } else {
+                face.push_back(static_cast<std::int64_t>(value));
+            }
+        }
+        if (!face.empty()) faces.push_back(face);  // the last -1 is optional
+    } else if (std::strcmp(geometry.name(), "IndexedTriangleSet") == 0) {
+        const std::vector<double> index = numbers(geometry, "index");
+        for (std::size_t i = 0; i + 2 < index.size(); i += 3)
+            faces.push_back({static_cast<std::int64_t>(index[i]), static_cast<std::int64_t>(index[i + 1]),
+                             static_cast<std::int64_t>(index[i + 2])});
+    } else {
+        for (std::size_t i = 0; i + 2 < pointCount; i += 3)
+            faces.push_back({static_cast<std::int64_t>(i), static_cast<std::int64_t>(i + 1), static_cast<std::int64_t>(i + 2)});
+    }
+
+    // Which entry of an attribute a corner uses: IndexedFaceSet has optional per-corner or per-face index
+    // lists; the triangle sets index attributes like the coordinates.
+    auto indexList = [&](const char* field) { return indexedFaces ? numbers(geometry, field) : std::vector<double>(); };
+    const std::vector<double> normalIndex = indexList("normalIndex"), colorIndex = indexList("colorIndex"),
+                              texcoordIndex = indexList("texCoordIndex"), coordIndex = indexList("coordIndex");
+    auto attributeIndex = [&](const std::vector<double>& ownIndex, bool perVertex, std::size_t face,
+                              std::size_t cornerInCoordIndex, std::int64_t point) -> std::int64_t {
+        if (!indexedFaces) return perVertex ? point : static_cast<std::int64_t>(face);
+        if (perVertex) {
+            if (!ownIndex.empty())
+                return cornerInCoordIndex < ownIndex.size() ? static_cast<std::int64_t>(ownIndex[cornerInCoordIndex]) : -1;
+            return point;
+        }
+        if (!ownIndex.empty()) return face < ownIndex.size() ? static_cast<std::int64_t>(ownIndex[face]) : -1;
+        return static_cast<std::int64_t>(face);
+    };
+
+    struct CornerKey {
+        std::int64_t point, normal, color, texcoord;
+        bool operator<(const CornerKey& o) const {
+            return std::tie(point, normal, color, texcoord) < std::tie(o.point, o.normal, o.color, o.texcoord);
+        }
+    };
+    std::map<CornerKey, std::uint32_t> vertexOf;
+    const bool hasNormals = !normalValues.empty(), hasColors = !colorValues.empty(), hasTexcoords = !texcoordValues.empty();
+    std::size_t cornerInCoordIndex = 0, degenerate = 0;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& face = faces[f];
+        std::vector<std::uint32_t> local;
+        std::vector<Eigen::Vector3d> polygon;
+        for (std::size_t k = 0; k < face.size(); ++k, ++cornerInCoordIndex) {
+            const std::int64_t point = face[k];
+            if (point < 0 || static_cast<std::size_t>(point) >= pointCount)
+                fail(geometry, "coordinate index " + std::to_string(point) + " out of range (" + std::to_string(pointCount) +
+                                   " points)");
+            CornerKey key{point, -1, -1, -1};
+            if (hasNormals) key.normal = attributeIndex(normalIndex, normalPerVertex, f, cornerInCoordIndex, point);
+            if (hasColors) key.color = attributeIndex(colorIndex, colorPerVertex, f, cornerInCoordIndex, point);
+            if (hasTexcoords) key.texcoord = attributeIndex(texcoordIndex, true, f, cornerInCoordIndex, point);
+            auto check = [&](std::int64_t index, std::size_t available, const char* what) {
+                if (index < 0 || static_cast<std::size_t>(index) >= available)
+                    fail(geometry, std::string(what) + " index " + std::to_string(index) + " out of range");
+            };
+            if (hasNormals) check(key.normal, normalValues.size() / 3, "normal");
+            if (hasColors) check(key.color, colorValues.size() / colorComponents, "colour");
+            if (hasTexcoords) check(key.texcoord, texcoordValues.size() / 2, "texture coordinate");
+            auto [entry, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(out.positions.size()));
+            if (inserted) {
+                out.positions.emplace_back(points[3 * point], points[3 * point + 1], points[3 * point + 2]);
+                if (hasNormals)
+                    out.normals.emplace_back(normalValues[3 * key.normal], normalValues[3 * key.normal + 1],
+                                             normalValues[3 * key.normal + 2]);
+                if (hasColors) {
+                    Eigen::Vector4d color(1, 1, 1, 1);
+                    for (int c = 0; c < colorComponents; ++c) color[c] = colorValues[colorComponents * key.color + c];
+                    out.colors.push_back(color);
+                }
+                if (hasTexcoords)  // X3D's v points up, glTF's down
+                    out.texcoords.emplace_back(texcoordValues[2 * key.texcoord], 1 - texcoordValues[2 * key.texcoord + 1]);
+            }
+            local.push_back(entry->second);
+            polygon.push_back(out.positions[entry->second]);
+        }
+        ++cornerInCoordIndex;  // the -1 that ended the face
+        const auto triangles = triangulatePolygon(polygon);
+        if (triangles.empty()) ++degenerate;
+        for (const Triangle& t : triangles)
+            out.triangles.push_back(ccw ? Triangle{local[t[0]], local[t[1]], local[t[2]]}
+                                        : Triangle{local[t[0]], local[t[2]], local[t[1]]});
+    }
+    if (degenerate) notes_.insert("faces with fewer than 3 distinct corners or no area skipped");
+}
+
+}  // namespace
+
+Scene readX3d(const fs::path& file) {
+    Scene scene;
+    std::set<fs::path> inlineStack = {fs::weakly_canonical(file)};
+    X3dReader reader(file, scene, inlineStack);
+    scene.roots = reader.read();
+    return scene;
+}
+
+}  // namespace symcompress

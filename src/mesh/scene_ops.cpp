@@ -1,0 +1,186 @@
+#include "symcompress/scene_ops.hpp"
+
+#include <Eigen/LU>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace symcompress {
+
+namespace {
+
+template <typename Vector>
+bool allFinite(const std::vector<Vector>& values) {
+    for (const auto& value : values)
+        if (!value.allFinite()) return false;
+    return true;
+}
+
+void validatePrimitive(const Primitive& primitive, const std::string& where, std::size_t materialCount) {
+    const std::size_t n = primitive.positions.size();
+    auto checkSize = [&](std::size_t size, const char* attribute) {
+        if (size != 0 && size != n)
+            throw std::invalid_argument(where + ": " + attribute + " has " + std::to_string(size) + " entries for " +
+                                        std::to_string(n) + " vertices");
+    };
+    checkSize(primitive.normals.size(), "NORMAL");
+    checkSize(primitive.texcoords.size(), "TEXCOORD_0");
+    checkSize(primitive.colors.size(), "COLOR_0");
+    if (!allFinite(primitive.positions) || !allFinite(primitive.normals) || !allFinite(primitive.texcoords) ||
+        !allFinite(primitive.colors))
+        throw std::invalid_argument(where + ": a coordinate or attribute is NaN or infinite");
+    for (const Triangle& triangle : primitive.triangles)
+        for (std::uint32_t index : triangle)
+            if (index >= n)
+                throw std::invalid_argument(where + ": triangle index " + std::to_string(index) + " out of range (" +
+                                            std::to_string(n) + " vertices)");
+    if (primitive.material < -1 || primitive.material >= static_cast<int>(materialCount))
+        throw std::invalid_argument(where + ": material " + std::to_string(primitive.material) + " out of range");
+}
+
+// Depth-first over the node forest; `visit(node, world)` is called for every reachable node.
+template <typename Visit>
+void traverse(const Scene& scene, Visit&& visit) {
+    struct Pending {
+        int node;
+        Eigen::Matrix4d parent;
+    };
+    std::vector<Pending> stack;
+    for (auto root = scene.roots.rbegin(); root != scene.roots.rend(); ++root)
+        stack.push_back({*root, Eigen::Matrix4d::Identity()});
+    while (!stack.empty()) {
+        Pending pending = stack.back();
+        stack.pop_back();
+        const Node& node = scene.nodes[pending.node];
+        const Eigen::Matrix4d world = pending.parent * node.transform;
+        visit(pending.node, world);
+        for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+            stack.push_back({*child, world});
+    }
+}
+
+Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& world) {
+    Primitive out = local;
+    const Eigen::Matrix3d linear = world.topLeftCorner<3, 3>();
+    const Eigen::Vector3d translation = world.topRightCorner<3, 1>();
+    for (Eigen::Vector3d& p : out.positions) p = linear * p + translation;
+    // Normals transform by the inverse transpose, so that they stay perpendicular to sheared surfaces.
+    const Eigen::Matrix3d normalMatrix = linear.inverse().transpose();
+    for (Eigen::Vector3d& normal : out.normals) {
+        normal = normalMatrix * normal;
+        const double length = normal.norm();
+        if (length > 0) normal /= length;
+    }
+    // A mirroring transform turns counter-clockwise triangles clockwise: flip them back.
+    if (linear.determinant() < 0)
+        for (Triangle& triangle : out.triangles) std::swap(triangle[1], triangle[2]);
+    return out;
+}
+
+}  // namespace
+
+void validateScene(const Scene& scene) {
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        const int texture = scene.materials[m].baseColorTexture;
+        if (texture < -1 || texture >= static_cast<int>(scene.textures.size()))
+            throw std::invalid_argument("material " + std::to_string(m) + ": texture index out of range");
+    }
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        for (std::size_t p = 0; p < scene.meshes[m].primitives.size(); ++p)
+            validatePrimitive(scene.meshes[m].primitives[p],
+                              "mesh " + std::to_string(m) + " primitive " + std::to_string(p), scene.materials.size());
+    const int nodeCount = static_cast<int>(scene.nodes.size());
+    std::vector<int> parents(scene.nodes.size(), 0);
+    for (int n = 0; n < nodeCount; ++n) {
+        const Node& node = scene.nodes[n];
+        if (node.mesh < -1 || node.mesh >= static_cast<int>(scene.meshes.size()))
+            throw std::invalid_argument("node " + std::to_string(n) + ": mesh index out of range");
+        if (!node.transform.allFinite())
+            throw std::invalid_argument("node " + std::to_string(n) + ": transform is NaN or infinite");
+        for (int child : node.children) {
+            if (child < 0 || child >= nodeCount)
+                throw std::invalid_argument("node " + std::to_string(n) + ": child index out of range");
+            if (++parents[child] > 1)
+                throw std::invalid_argument("node " + std::to_string(child) + " has more than one parent");
+        }
+    }
+    for (int root : scene.roots) {
+        if (root < 0 || root >= nodeCount) throw std::invalid_argument("root node index out of range");
+        if (parents[root] != 0) throw std::invalid_argument("root node " + std::to_string(root) + " has a parent");
+    }
+    // With one parent at most per node, a cycle is a set of nodes never reached from a parentless node.
+    std::vector<char> reached(scene.nodes.size(), 0);
+    std::vector<int> stack;
+    for (int n = 0; n < nodeCount; ++n)
+        if (parents[n] == 0) stack.push_back(n);
+    while (!stack.empty()) {
+        int n = stack.back();
+        stack.pop_back();
+        reached[n] = 1;
+        for (int child : scene.nodes[n].children) stack.push_back(child);
+    }
+    for (int n = 0; n < nodeCount; ++n)
+        if (!reached[n]) throw std::invalid_argument("node " + std::to_string(n) + " is part of a cycle");
+}
+
+std::vector<Eigen::Matrix4d> worldTransforms(const Scene& scene) {
+    std::vector<Eigen::Matrix4d> world(scene.nodes.size(), Eigen::Matrix4d::Identity());
+    traverse(scene, [&](int node, const Eigen::Matrix4d& transform) { world[node] = transform; });
+    return world;
+}
+
+std::vector<WorldPrimitive> flattenScene(const Scene& scene) {
+    std::vector<WorldPrimitive> out;
+    traverse(scene, [&](int node, const Eigen::Matrix4d& world) {
+        const int mesh = scene.nodes[node].mesh;
+        if (mesh < 0) return;
+        for (const Primitive& primitive : scene.meshes[mesh].primitives)
+            out.push_back({transformPrimitive(primitive, world), node, mesh});
+    });
+    return out;
+}
+
+Scene expandInstances(const Scene& scene) {
+    Scene flat;
+    flat.textures = scene.textures;
+    flat.materials = scene.materials;
+    flat.warnings = scene.warnings;
+    Mesh mesh;
+    mesh.name = "expanded";
+    for (WorldPrimitive& world : flattenScene(scene)) mesh.primitives.push_back(std::move(world.primitive));
+    flat.meshes.push_back(std::move(mesh));
+    Node root;
+    root.name = "expanded";
+    root.mesh = 0;
+    flat.nodes.push_back(root);
+    flat.roots.push_back(0);
+    return flat;
+}
+
+SceneStatistics sceneStatistics(const Scene& scene) {
+    SceneStatistics statistics;
+    statistics.nodes = scene.nodes.size();
+    statistics.meshes = scene.meshes.size();
+    statistics.materials = scene.materials.size();
+    for (const Mesh& mesh : scene.meshes)
+        for (const Primitive& primitive : mesh.primitives) statistics.trianglesStored += primitive.triangles.size();
+    traverse(scene, [&](int node, const Eigen::Matrix4d& world) {
+        const int mesh = scene.nodes[node].mesh;
+        if (mesh < 0) return;
+        for (const Primitive& primitive : scene.meshes[mesh].primitives) {
+            statistics.trianglesDrawn += primitive.triangles.size();
+            // Only vertices used by a triangle count towards the bounding box.
+            std::vector<char> used(primitive.positions.size(), 0);
+            for (const Triangle& triangle : primitive.triangles)
+                for (std::uint32_t index : triangle) used[index] = 1;
+            for (std::size_t v = 0; v < primitive.positions.size(); ++v)
+                if (used[v])
+                    statistics.bounds.extend(
+                        (world * primitive.positions[v].homogeneous()).head<3>());
+        }
+    });
+    return statistics;
+}
+
+}  // namespace symcompress

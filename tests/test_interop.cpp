@@ -1,0 +1,135 @@
+// Our output checked by independent implementations: the Khronos glTF validator, glTF Transform's
+// Draco decoder (../shared/bench/decode_check.mjs) and the X_ITE X3D browser (x3d_count.js).
+// Skipped (with a note) when Node.js or the peers are not installed, or SYMCOMPRESS_SKIP_INTEROP is set.
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+using namespace symcompress::testing;
+
+namespace {
+
+const std::string kSymcompress = SYMCOMPRESS_CLI;
+
+nlohmann::json runJson(const std::string& commandLine) {
+    const CommandResult result = runCommand(commandLine);
+    INFO(commandLine << "\n" << result.output);
+    REQUIRE(result.status == 0);
+    // The tools may print warnings first; the JSON object is the last line.
+    const auto start = result.output.rfind("\n{");
+    return nlohmann::json::parse(start == std::string::npos ? result.output : result.output.substr(start + 1));
+}
+
+void convert(const std::filesystem::path& input, const std::filesystem::path& output, const std::string& options = "") {
+    const CommandResult result =
+        runCommand(kSymcompress + " convert -q " + options + " " + quoted(input) + " -o " + quoted(output));
+    INFO(result.output);
+    REQUIRE(result.status == 0);
+}
+
+nlohmann::json decodeCheck(const std::filesystem::path& file, const std::filesystem::path& reference) {
+    return runJson("node " + quoted(sharedDir() / "bench/decode_check.mjs") + " " + quoted(file) + " --ref " +
+                   quoted(reference) + " --json");
+}
+
+// The validator's errors, except the missing image files that the input itself refers to without having
+// them (several models in ../shared come without their textures; the output keeps the references).
+std::vector<std::string> validatorErrors(const std::filesystem::path& file) {
+    const CommandResult result = runCommand("node " + quoted(sharedDir() / "bench/validate.js") + " --json " + quoted(file));
+    INFO(result.output);
+    const auto report = nlohmann::json::parse(result.output.substr(result.output.find('{')));
+    std::vector<std::string> errors;
+    for (const auto& message : report["issues"]["messages"]) {
+        if (message["severity"] != 0) continue;
+        const std::string pointer = message["pointer"], code = message["code"], text = message["message"];
+        if (code == "IO_ERROR" && pointer.rfind("/images/", 0) == 0 && text.find("ENOENT") != std::string::npos) continue;
+        errors.push_back(code + " " + pointer + " " + text);
+    }
+    return errors;
+}
+
+nlohmann::json x3dCount(const std::filesystem::path& file) {
+    return runJson("node " + quoted(sharedDir() / "bench/x3d_count.js") + " " + quoted(file) + " --json");
+}
+
+}  // namespace
+
+TEST_CASE("GLB output passes the Khronos validator and decodes to the same triangles", "[interop][gltf]") {
+    if (!interopAvailable()) {
+        WARN("skipped: Node.js >= 20 and ../shared/bench/node are needed (scripts/install-deps.sh installs them)");
+        return;
+    }
+    TemporaryFolder folder;
+    const std::vector<std::string> models = {
+        "cesium_milk_truck/CesiumMilkTruck.gltf", "vulkan_subpass_scene/subpass_scene_opaque.gltf",
+        "kenney_racing_forest/decoration-forest.glb", "cge_sterile_room/sterile_room.gltf",
+        "khronos_lantern/Lantern.gltf", "vulkan_torusknot/torusknot.gltf", "assimp_spider/spider.obj",
+        "savage_chevy_tahoe/ChevyTahoe.x3d", "menger_sponge/Menger_sponge-Binary.stl"};
+    for (const std::string& model : models) {
+        for (const std::string& options : {std::string(), std::string("--no-draco")}) {
+            INFO(model << " " << options);
+            const auto output = folder / "out.glb";
+            convert(modelPath(model), output, options);
+            CHECK(validatorErrors(output).empty());
+            // Compare with our own uncompressed reading of the input (decode_check reads only glTF).
+            const auto reference = folder / "reference.glb";
+            convert(modelPath(model), reference, "--no-draco");
+            const auto decoded = decodeCheck(output, reference);
+            CHECK(decoded["tris"] == decoded["ref_tris"]);
+            CHECK(decoded["dev_rel"].get<double>() < 2e-4);  // 14-bit quantization: about 1e-4 of the extent at most
+            const double volume = decoded["volume"], referenceVolume = decoded["ref_volume"];
+            CHECK(std::abs(volume - referenceVolume) <= 1e-3 * std::abs(referenceVolume) + 1e-9);
+        }
+    }
+}
+
+TEST_CASE("glTF input read by us equals the independent decoder's reading", "[interop][gltf]") {
+    if (!interopAvailable()) {
+        WARN("skipped: the peers in ../shared/bench are not installed");
+        return;
+    }
+    TemporaryFolder folder;
+    for (const std::string& model :
+         {"cesium_milk_truck/CesiumMilkTruck.gltf", "vulkan_subpass_scene/subpass_scene_opaque.gltf",
+          "vianney_house_2/scene.gltf", "cge_sterile_room/sterile_room.gltf"}) {
+        INFO(model);
+        const auto output = folder / "plain.glb";
+        convert(modelPath(model), output, "--no-draco");
+        const auto decoded = decodeCheck(output, modelPath(model));
+        CHECK(decoded["tris"] == decoded["ref_tris"]);
+        CHECK(decoded["dev_rel"].get<double>() < 1e-6);
+        CHECK(decoded["volume"].get<double>() == Approx(decoded["ref_volume"].get<double>()).epsilon(1e-6));
+    }
+}
+
+TEST_CASE("X3D output loads in X_ITE with the same triangles and volume", "[interop][x3d]") {
+    if (!x3dInteropAvailable()) {
+        WARN("skipped: Node.js >= 20 and ../shared/bench/x3d are needed (scripts/install-deps.sh installs them)");
+        return;
+    }
+    TemporaryFolder folder;
+    // X_ITE does not draw CAD component nodes (it counts 0 triangles in xj3d_cad_teapot), so the teapot is left out.
+    for (const std::string& model : {"savage_chevy_tahoe/ChevyTahoe.x3d", "xj3d_coffee_cup/coffeeCup.x3d",
+                                     "cge_cat_x3d/scene.x3d", "cge_grass_flowers/grass_flowers.x3d"}) {
+        INFO(model);
+        const auto output = folder / "out.x3d";
+        convert(modelPath(model), output);
+        const auto before = x3dCount(modelPath(model));
+        const auto after = x3dCount(output);
+        CHECK(after["tris"] == before["tris"]);
+        CHECK(after["volume"].get<double>() ==
+              Approx(before["volume"].get<double>()).epsilon(1e-5).margin(1e-9));
+    }
+    SECTION("glTF with mirrored instances to X3D keeps the orientation") {
+        const auto model = modelPath("vulkan_subpass_scene/subpass_scene_opaque.gltf");
+        const auto output = folder / "subpass.x3d";
+        convert(model, output);
+        const auto reference = runJson("node " + quoted(sharedDir() / "bench/decode_check.mjs") + " " + quoted(model) +
+                                       " --json");
+        const auto after = x3dCount(output);
+        CHECK(after["tris"] == reference["tris"]);
+        CHECK(after["volume"].get<double>() == Approx(reference["volume"].get<double>()).epsilon(1e-5));
+        CHECK(after["distinct"].get<int>() < after["shapes"].get<int>());  // shared meshes stay shared (DEF/USE)
+    }
+}

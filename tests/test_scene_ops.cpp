@@ -1,0 +1,130 @@
+#include "symcompress/scene_ops.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+
+using namespace symcompress;
+
+namespace {
+
+// One triangle in the z = 0 plane, normal +z, counter-clockwise seen from +z.
+Primitive unitTriangle() {
+    Primitive primitive;
+    primitive.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    primitive.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    primitive.triangles = {{0, 1, 2}};
+    return primitive;
+}
+
+Scene sceneWithOneMesh(const Primitive& primitive) {
+    Scene scene;
+    scene.meshes.push_back({"m", {primitive}});
+    return scene;
+}
+
+Eigen::Vector3d faceNormal(const Primitive& primitive, const Triangle& t) {
+    return (primitive.positions[t[1]] - primitive.positions[t[0]])
+        .cross(primitive.positions[t[2]] - primitive.positions[t[0]])
+        .normalized();
+}
+
+}  // namespace
+
+TEST_CASE("flattenScene composes parent and child transforms", "[scene]") {
+    Scene scene = sceneWithOneMesh(unitTriangle());
+    Node parent, child;
+    parent.transform.topRightCorner<3, 1>() = Eigen::Vector3d(10, 0, 0);
+    child.transform.topLeftCorner<3, 3>() = Eigen::AngleAxisd(EIGEN_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    child.mesh = 0;
+    parent.children = {1};
+    scene.nodes = {parent, child};
+    scene.roots = {0};
+    validateScene(scene);
+    const auto world = flattenScene(scene);
+    REQUIRE(world.size() == 1);
+    // (1,0,0) turned a quarter about z is (0,1,0), then moved by 10 along x.
+    CHECK((world[0].primitive.positions[1] - Eigen::Vector3d(10, 1, 0)).norm() < 1e-12);
+    CHECK(world[0].node == 1);
+}
+
+TEST_CASE("flattenScene flips the winding under a mirror and keeps normals outward", "[scene]") {
+    Scene scene = sceneWithOneMesh(unitTriangle());
+    Node mirror;
+    mirror.transform.diagonal() << 1, 1, -1, 1;  // z -> -z
+    mirror.mesh = 0;
+    scene.nodes = {mirror};
+    scene.roots = {0};
+    const Primitive flat = flattenScene(scene)[0].primitive;
+    // The mirrored triangle lies in the same plane, but its surface normal must follow the mirrored vertex normal.
+    CHECK((flat.normals[0] - Eigen::Vector3d(0, 0, -1)).norm() < 1e-12);
+    CHECK(faceNormal(flat, flat.triangles[0]).dot(flat.normals[0]) > 0.999);
+}
+
+TEST_CASE("flattenScene transforms normals by the inverse transpose", "[scene]") {
+    // A slanted triangle under a non-uniform scale: the transformed normal must stay perpendicular.
+    Primitive primitive;
+    primitive.positions = {{0, 0, 0}, {1, 0, 1}, {0, 1, 0}};
+    const Eigen::Vector3d normal = Eigen::Vector3d(-1, 0, 1).normalized();
+    primitive.normals = {normal, normal, normal};
+    primitive.triangles = {{0, 1, 2}};
+    Scene scene = sceneWithOneMesh(primitive);
+    Node node;
+    node.transform.diagonal() << 3, 1, 0.5, 1;
+    node.mesh = 0;
+    scene.nodes = {node};
+    scene.roots = {0};
+    const Primitive flat = flattenScene(scene)[0].primitive;
+    CHECK(std::abs(flat.normals[0].norm() - 1) < 1e-12);
+    CHECK(faceNormal(flat, flat.triangles[0]).dot(flat.normals[0]) == Approx(1).epsilon(1e-12));
+}
+
+TEST_CASE("sceneStatistics counts instances and bounds what is drawn", "[scene]") {
+    Scene scene = sceneWithOneMesh(unitTriangle());
+    scene.meshes[0].primitives[0].positions.push_back({100, 100, 100});  // unreferenced: not drawn
+    for (int i = 0; i < 3; ++i) {
+        Node node;
+        node.mesh = 0;
+        node.transform(0, 3) = 2.0 * i;
+        scene.nodes.push_back(node);
+        scene.roots.push_back(i);
+    }
+    const SceneStatistics statistics = sceneStatistics(scene);
+    CHECK(statistics.trianglesStored == 1);
+    CHECK(statistics.trianglesDrawn == 3);
+    CHECK(statistics.bounds.min().isApprox(Eigen::Vector3d(0, 0, 0)));
+    CHECK(statistics.bounds.max().isApprox(Eigen::Vector3d(5, 1, 0)));
+    const Scene flat = expandInstances(scene);
+    CHECK(sceneStatistics(flat).trianglesDrawn == 3);
+    CHECK(sceneStatistics(flat).trianglesStored == 3);
+}
+
+TEST_CASE("validateScene names each broken invariant", "[scene]") {
+    Scene scene = sceneWithOneMesh(unitTriangle());
+    Node node;
+    node.mesh = 0;
+    scene.nodes = {node};
+    scene.roots = {0};
+    REQUIRE_NOTHROW(validateScene(scene));
+
+    SECTION("index out of range") {
+        scene.meshes[0].primitives[0].triangles[0][2] = 7;
+        CHECK_THROWS_WITH(validateScene(scene), Catch::Contains("out of range"));
+    }
+    SECTION("NaN coordinate") {
+        scene.meshes[0].primitives[0].positions[1].x() = std::nan("");
+        CHECK_THROWS_WITH(validateScene(scene), Catch::Contains("NaN"));
+    }
+    SECTION("attribute count") {
+        scene.meshes[0].primitives[0].normals.pop_back();
+        CHECK_THROWS_WITH(validateScene(scene), Catch::Contains("NORMAL"));
+    }
+    SECTION("cycle") {
+        scene.nodes[0].children = {0};
+        CHECK_THROWS(validateScene(scene));
+    }
+    SECTION("material") {
+        scene.meshes[0].primitives[0].material = 3;
+        CHECK_THROWS_WITH(validateScene(scene), Catch::Contains("material"));
+    }
+}
