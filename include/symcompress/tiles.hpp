@@ -1,0 +1,43 @@
+// Tiles (paper 6.5.2): the maximal edge-connected sets of triangles of a polygon soup, per material.
+#pragma once
+
+#include "symcompress/scene_ops.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace symcompress {
+
+// Where a tile's triangle came from: the primitive (index into the flattened scene) and its triangle.
+struct TriangleSource {
+    std::uint32_t primitive;
+    std::uint32_t triangle;
+};
+
+// Invariant: mesh.triangles[i] is the welded copy of sources[i]; every position of mesh is used by a
+// triangle; all triangles share one material.
+struct Tile {
+    int material = -1;
+    TriangleMesh mesh;
+    std::vector<TriangleSource> sources;
+};
+
+struct TileOptions {
+    // Positions closer than this, relative to the soup's bounding-box diagonal, are one vertex.
+    double weldTolerance = 1e-6;
+};
+
+// Welds positions within the tolerance, then groups triangles that share an edge (two welded vertices),
+// never across materials. Tiles come in order of their first triangle.
+std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const TileOptions& options = {});
+
+// The tile's triangles with their original (unwelded) vertices and attributes, taken from the soup:
+// what a writer stores for the tile. Vertices shared by several of its triangles in the source stay shared.
+Primitive tilePrimitive(const Tile& tile, const std::vector<WorldPrimitive>& soup);
+
+// Representative index of every position after welding within `tolerance` (absolute): points closer than
+// the tolerance to an earlier representative take its index. Order-dependent for chains of points each
+// within the tolerance of the next, which is harmless for the tiny tolerances used for welding.
+std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& positions, double tolerance);
+
+}  // namespace symcompress

@@ -1,0 +1,60 @@
+#include "symcompress/tiles.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <unordered_map>
+
+namespace symcompress {
+
+namespace {
+
+using Cell = Eigen::Array<long long, 3, 1>;
+
+struct CellHash {
+    std::size_t operator()(const Cell& cell) const {
+        // Large odd multipliers spread neighbouring cells over the table.
+        return static_cast<std::size_t>(cell.x() * 73856093LL ^ cell.y() * 19349663LL ^ cell.z() * 83492791LL);
+    }
+};
+struct CellEqual {
+    bool operator()(const Cell& a, const Cell& b) const { return (a == b).all(); }
+};
+
+}  // namespace
+
+std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& positions, double tolerance) {
+    std::vector<std::uint32_t> representative(positions.size());
+    if (positions.empty()) return representative;
+    Eigen::AlignedBox3d bounds;
+    for (const Eigen::Vector3d& p : positions) bounds.extend(p);
+    // A grid of cells as large as the tolerance: a point's partners lie in its cell or the 26 around it.
+    // Exact welding (tolerance 0) uses a fine grid and exact equality. Cells count from the box's corner
+    // in 64-bit integers, so that tiny tolerances on large scenes cannot overflow.
+    const double extent = std::max(bounds.diagonal().maxCoeff(), 1e-300);
+    const double cellSize = std::max(tolerance, extent * 1e-12);
+    const double toleranceSquared = tolerance > 0 ? tolerance * tolerance : 0.0;
+    std::unordered_map<Cell, std::vector<std::uint32_t>, CellHash, CellEqual> grid;
+    grid.reserve(positions.size());
+    for (std::uint32_t i = 0; i < positions.size(); ++i) {
+        const Eigen::Vector3d& p = positions[i];
+        const Cell cell = ((p - bounds.min()).array() / cellSize).floor().cast<long long>();
+        std::uint32_t found = i;
+        for (int dx = -1; dx <= 1 && found == i; ++dx)
+            for (int dy = -1; dy <= 1 && found == i; ++dy)
+                for (int dz = -1; dz <= 1 && found == i; ++dz) {
+                    auto bucket = grid.find(cell + Cell(dx, dy, dz));
+                    if (bucket == grid.end()) continue;
+                    for (std::uint32_t candidate : bucket->second)
+                        if ((positions[candidate] - p).squaredNorm() <= toleranceSquared) {
+                            found = candidate;
+                            break;
+                        }
+                }
+        representative[i] = found;
+        if (found == i) grid[cell].push_back(i);
+    }
+    return representative;
+}
+
+}  // namespace symcompress
