@@ -5,6 +5,7 @@
 #include "symcompress/triangulate_polygon.hpp"
 #include "text_scanner.hpp"
 
+#include <algorithm>
 #include <map>
 #include <unordered_map>
 
@@ -79,6 +80,7 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
             std::string name = rest(line);
             const std::size_t space = name.find_last_of(" \t");
             if (space != std::string::npos && name[0] == '-') name = name.substr(space + 1);
+            std::replace(name.begin(), name.end(), '\\', '/');  // paths written on Windows
             auto [entry, inserted] = textureOfFile.try_emplace(name, static_cast<int>(scene.textures.size()));
             if (inserted) {
                 Texture texture;

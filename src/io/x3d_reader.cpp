@@ -69,6 +69,7 @@ private:
     std::map<std::string, int> skippedGeometry_;
     std::set<std::string> useStack_;
     std::set<std::string> notes_;
+    std::size_t degenerateFaces_ = 0;  // faces with fewer than 3 distinct corners or no area
 };
 
 pugi::xml_node X3dReader::resolve(const pugi::xml_node& node) const {
@@ -167,6 +168,9 @@ std::vector<int> X3dReader::read() {
         scene_.warnings.push_back(name + ": " + std::to_string(count) + " " + type + " node" + (count > 1 ? "s" : "") +
                                   " skipped (not supported)");
     for (const std::string& note : notes_) scene_.warnings.push_back(name + ": " + note);
+    if (degenerateFaces_)
+        scene_.warnings.push_back(name + ": " + std::to_string(degenerateFaces_) +
+                                  " faces with fewer than 3 distinct corners or no area skipped");
     return roots;
 }
 
@@ -478,7 +482,7 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
     };
     std::map<CornerKey, std::uint32_t> vertexOf;
     const bool hasNormals = !normalValues.empty(), hasColors = !colorValues.empty(), hasTexcoords = !texcoordValues.empty();
-    std::size_t cornerInCoordIndex = 0, degenerate = 0;
+    std::size_t cornerInCoordIndex = 0;
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
         std::vector<std::uint32_t> local;
@@ -518,12 +522,11 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
         }
         ++cornerInCoordIndex;  // the -1 that ended the face
         const auto triangles = triangulatePolygon(polygon);
-        if (triangles.empty()) ++degenerate;
+        if (triangles.empty()) ++degenerateFaces_;
         for (const Triangle& t : triangles)
             out.triangles.push_back(ccw ? Triangle{local[t[0]], local[t[1]], local[t[2]]}
                                         : Triangle{local[t[0]], local[t[2]], local[t[1]]});
     }
-    if (degenerate) notes_.insert("faces with fewer than 3 distinct corners or no area skipped");
 }
 
 }  // namespace
