@@ -1,0 +1,47 @@
+#include "moment_basis.hpp"
+
+#include "symcompress/moments.hpp"
+
+namespace symcompress {
+
+MomentFunction::MomentFunction(const MomentCoefficients& coefficients, int order) : polynomial_(order) {
+    checkMomentOrder(order);
+    if (order > coefficients.maxOrder) throw std::invalid_argument("moment order above the computed maximum");
+    const MomentBasis& basis = momentBasis(coefficients.maxOrder);
+    const auto& bands = coefficients.bands[order / 2 - 1];
+    for (std::size_t l = 0; l < bands.size(); ++l) {
+        for (int i = 0; i < bands[l].size(); ++i) {
+            HomogeneousPolynomial term = basis.harmonics[order / 2 - 1][l][i];
+            term *= bands[l][i];
+            polynomial_ += term;
+        }
+        (l == 0 ? bandZeroNorm_ : otherBandsNorm_) += bands[l].squaredNorm();
+    }
+    bandZeroNorm_ = std::sqrt(bandZeroNorm_);
+    otherBandsNorm_ = std::sqrt(otherBandsNorm_);
+    for (int a = 0; a < 3; ++a) {
+        gradient_[a] = polynomial_.derivative(a);
+        for (int b = 0; b < 3; ++b) hessian_[a][b] = gradient_[a].derivative(b);
+    }
+}
+
+Eigen::Vector3d MomentFunction::tangentialGradient(const Eigen::Vector3d& w) const {
+    const Eigen::Vector3d gradient(gradient_[0](w), gradient_[1](w), gradient_[2](w));
+    return gradient - gradient.dot(w) * w;
+}
+
+Eigen::Matrix3d MomentFunction::tangentialHessian(const Eigen::Vector3d& w) const {
+    // Riemannian Hessian on the unit sphere: P (D^2 G - (w . grad G) I) P, P = I - w w^T.
+    Eigen::Matrix3d hessian;
+    for (int a = 0; a < 3; ++a)
+        for (int b = a; b < 3; ++b) hessian(a, b) = hessian(b, a) = hessian_[a][b](w);
+    const Eigen::Vector3d gradient(gradient_[0](w), gradient_[1](w), gradient_[2](w));
+    const Eigen::Matrix3d projector = Eigen::Matrix3d::Identity() - w * w.transpose();
+    return projector * (hessian - gradient.dot(w) * Eigen::Matrix3d::Identity()) * projector;
+}
+
+bool MomentFunction::isConstant(double relativeTolerance) const {
+    return otherBandsNorm_ <= relativeTolerance * bandZeroNorm_;
+}
+
+}  // namespace symcompress

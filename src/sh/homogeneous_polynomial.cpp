@@ -1,0 +1,81 @@
+#include "symcompress/homogeneous_polynomial.hpp"
+
+#include <stdexcept>
+
+namespace symcompress {
+
+HomogeneousPolynomial::HomogeneousPolynomial(int degree) : degree_(degree), coefficients_(monomialCount(degree), 0.0) {
+    if (degree < 0) throw std::invalid_argument("a polynomial degree must not be negative");
+}
+
+double HomogeneousPolynomial::operator()(const Eigen::Vector3d& point) const {
+    // Powers of each coordinate, then one pass over the monomials.
+    std::vector<double> xs(degree_ + 1, 1.0), ys(degree_ + 1, 1.0), zs(degree_ + 1, 1.0);
+    for (int e = 1; e <= degree_; ++e) {
+        xs[e] = xs[e - 1] * point.x();
+        ys[e] = ys[e - 1] * point.y();
+        zs[e] = zs[e - 1] * point.z();
+    }
+    double sum = 0;
+    int index = 0;
+    for (int k = 0; k <= degree_; ++k) {
+        double row = 0;
+        for (int j = 0; j <= degree_ - k; ++j) row += coefficients_[index++] * xs[degree_ - j - k] * ys[j];
+        sum += row * zs[k];
+    }
+    return sum;
+}
+
+HomogeneousPolynomial HomogeneousPolynomial::derivative(int axis) const {
+    if (degree_ == 0) return HomogeneousPolynomial(0);
+    HomogeneousPolynomial result(degree_ - 1);
+    for (int k = 0; k <= degree_; ++k)
+        for (int j = 0; j <= degree_ - k; ++j) {
+            const int i = degree_ - j - k;
+            const double c = coefficient(j, k);
+            if (axis == 0 && i > 0) result.coefficient(j, k) += i * c;
+            if (axis == 1 && j > 0) result.coefficient(j - 1, k) += j * c;
+            if (axis == 2 && k > 0) result.coefficient(j, k - 1) += k * c;
+        }
+    return result;
+}
+
+HomogeneousPolynomial& HomogeneousPolynomial::operator+=(const HomogeneousPolynomial& other) {
+    if (other.degree_ != degree_) throw std::invalid_argument("adding homogeneous polynomials of different degrees");
+    for (std::size_t i = 0; i < coefficients_.size(); ++i) coefficients_[i] += other.coefficients_[i];
+    return *this;
+}
+
+HomogeneousPolynomial& HomogeneousPolynomial::operator*=(double factor) {
+    for (double& c : coefficients_) c *= factor;
+    return *this;
+}
+
+HomogeneousPolynomial operator*(const HomogeneousPolynomial& a, const HomogeneousPolynomial& b) {
+    HomogeneousPolynomial product(a.degree_ + b.degree_);
+    for (int ka = 0; ka <= a.degree_; ++ka)
+        for (int ja = 0; ja <= a.degree_ - ka; ++ja) {
+            const double ca = a.coefficient(ja, ka);
+            if (ca == 0) continue;
+            for (int kb = 0; kb <= b.degree_; ++kb)
+                for (int jb = 0; jb <= b.degree_ - kb; ++jb) product.coefficient(ja + jb, ka + kb) += ca * b.coefficient(jb, kb);
+        }
+    return product;
+}
+
+HomogeneousPolynomial HomogeneousPolynomial::coordinate(int axis) {
+    HomogeneousPolynomial p(1);
+    p.coefficient(axis == 1 ? 1 : 0, axis == 2 ? 1 : 0) = 1;
+    return p;
+}
+
+HomogeneousPolynomial HomogeneousPolynomial::squaredNormPower(int power) {
+    HomogeneousPolynomial squaredNorm(2);
+    squaredNorm.coefficient(0, 0) = squaredNorm.coefficient(2, 0) = squaredNorm.coefficient(0, 2) = 1;
+    HomogeneousPolynomial result(0);
+    result.coefficient(0, 0) = 1;
+    for (int e = 0; e < power; ++e) result = result * squaredNorm;
+    return result;
+}
+
+}  // namespace symcompress
