@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdint>
 #include <unordered_map>
 
 namespace symcompress {
@@ -13,8 +14,9 @@ using Cell = Eigen::Array<long long, 3, 1>;
 
 struct CellHash {
     std::size_t operator()(const Cell& cell) const {
-        // Large odd multipliers spread neighbouring cells over the table.
-        return static_cast<std::size_t>(cell.x() * 73856093LL ^ cell.y() * 19349663LL ^ cell.z() * 83492791LL);
+        // Large odd multipliers spread neighbouring cells over the table (unsigned: wrapping is intended).
+        auto word = [](long long v) { return static_cast<std::uint64_t>(v); };
+        return static_cast<std::size_t>(word(cell.x()) * 73856093ULL ^ word(cell.y()) * 19349663ULL ^ word(cell.z()) * 83492791ULL);
     }
 };
 struct CellEqual {
