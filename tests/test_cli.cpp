@@ -2,6 +2,8 @@
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
+
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
@@ -26,6 +28,34 @@ TEST_CASE("symcompress info --json has the documented keys", "[cli]") {
     CHECK(json["bbox"]["min"].size() == 3);
     CHECK(json["bbox"]["max"].size() == 3);
     CHECK(json["warnings"].is_array());
+}
+
+TEST_CASE("symcompress detect --json lists the whole group", "[cli][symmetry]") {
+    const auto model = modelPath("menger_sponge/Menger_sponge-Binary.stl");
+    const CommandResult result = runCommand(kSymcompress + " detect --json " + quoted(model));
+    REQUIRE(result.status == 0);
+    const auto json = nlohmann::json::parse(result.output);
+    CHECK(json["group"] == "Oh");
+    CHECK(json["order"] == 48);
+    CHECK(json["centroid"].size() == 3);
+    REQUIRE(json["symmetries"].size() == 47);  // every element but the identity
+    std::map<std::string, int> kinds;
+    for (const auto& s : json["symmetries"]) {
+        kinds[s["type"]]++;
+        CHECK(s["deviation"].get<double>() <= 1e-5);
+        if (s["type"] == "rotation") CHECK(s["fold"].get<int>() >= 2);
+        if (s["type"] == "mirror") CHECK(s["normal"].size() == 3);
+    }
+    // Oh: 9 + 8 + 6 rotations, 9 mirrors, 14 rotoreflections (6 S4 + 8 S6), the inversion.
+    CHECK(kinds["rotation"] == 23);
+    CHECK(kinds["mirror"] == 9);
+    CHECK(kinds["rotoreflection"] == 14);
+    CHECK(kinds["inversion"] == 1);
+
+    const CommandResult human = runCommand(kSymcompress + " detect " + quoted(model));
+    CHECK(human.status == 0);
+    CHECK_THAT(human.output, Catch::Contains("group Oh, order 48"));
+    CHECK(runCommand(kSymcompress + " detect --tolerance -1 " + quoted(model)).status == 2);
 }
 
 TEST_CASE("symcompress info prints a readable summary", "[cli]") {

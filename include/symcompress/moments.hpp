@@ -76,6 +76,8 @@ public:
     // Whether the function is constant on the sphere (every band above 0 negligible against band 0):
     // such an order tells nothing about axes (e.g. M_2 of a cube).
     bool isConstant(double relativeTolerance = 1e-9) const;
+    // The root-mean-square variation of the function over the sphere relative to its mean.
+    double relativeVariation() const { return otherBandsNorm_ / bandZeroNorm_; }
 
 private:
     HomogeneousPolynomial polynomial_;

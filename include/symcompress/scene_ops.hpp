@@ -28,6 +28,10 @@ std::size_t repairNormals(Scene& scene);
 // Every drawn primitive in world space, in traversal order of Scene::roots.
 std::vector<WorldPrimitive> flattenScene(const Scene& scene);
 
+// Every drawn triangle in world space as one mesh (positions not welded, attributes dropped): the whole
+// scene taken as one shape.
+TriangleMesh worldMesh(const Scene& scene);
+
 // The same drawing as one mesh under one root node with the identity transform: every instance
 // expanded, materials and textures kept.
 Scene expandInstances(const Scene& scene);

@@ -14,6 +14,10 @@ struct Polyhedron {
     std::vector<std::vector<std::uint32_t>> faces;
 };
 
+// The convex hull of points in convex position (every point a vertex), moved so that the mean of the
+// points is at the origin.
+Polyhedron makeConvexPolyhedron(std::vector<Eigen::Vector3d> vertices);
+
 Polyhedron makeTetrahedron();   // Td, 24
 Polyhedron makeCube();          // Oh, 48
 Polyhedron makeOctahedron();    // Oh, 48

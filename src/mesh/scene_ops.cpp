@@ -183,4 +183,14 @@ SceneStatistics sceneStatistics(const Scene& scene) {
     return statistics;
 }
 
+TriangleMesh worldMesh(const Scene& scene) {
+    TriangleMesh mesh;
+    for (const WorldPrimitive& placed : flattenScene(scene)) {
+        const auto offset = static_cast<std::uint32_t>(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), placed.primitive.positions.begin(), placed.primitive.positions.end());
+        for (const Triangle& t : placed.primitive.triangles) mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    }
+    return mesh;
+}
+
 }  // namespace symcompress

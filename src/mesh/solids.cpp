@@ -13,9 +13,11 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The faces of the convex hull of points in convex position (every point a vertex), found as the planes
-// through three points with all points on one side. Cubic in the vertex count: meant for small solids.
-Polyhedron convexPolyhedron(std::vector<Eigen::Vector3d> vertices) {
+}  // namespace
+
+// Faces are found as the planes through three points with all points on one side: cubic in the vertex
+// count, meant for small solids.
+Polyhedron makeConvexPolyhedron(std::vector<Eigen::Vector3d> vertices) {
     Eigen::Vector3d center = Eigen::Vector3d::Zero();
     for (const auto& v : vertices) center += v;
     center /= double(vertices.size());
@@ -60,6 +62,8 @@ Polyhedron convexPolyhedron(std::vector<Eigen::Vector3d> vertices) {
     return result;
 }
 
+namespace {
+
 std::vector<Eigen::Vector3d> ring(int n, double z, double phase) {
     std::vector<Eigen::Vector3d> points;
     for (int i = 0; i < n; ++i) {
@@ -76,17 +80,17 @@ void requireSides(int n, const char* what) {
 }  // namespace
 
 Polyhedron makeTetrahedron() {
-    return convexPolyhedron({{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}});
+    return makeConvexPolyhedron({{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}});
 }
 
 Polyhedron makeCube() {
     std::vector<Eigen::Vector3d> v;
     for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
-    return convexPolyhedron(v);
+    return makeConvexPolyhedron(v);
 }
 
 Polyhedron makeOctahedron() {
-    return convexPolyhedron({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+    return makeConvexPolyhedron({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
 }
 
 Polyhedron makeIcosahedron() {
@@ -98,7 +102,7 @@ Polyhedron makeIcosahedron() {
             v.emplace_back(s, t, 0);
             v.emplace_back(t, 0, s);
         }
-    return convexPolyhedron(v);
+    return makeConvexPolyhedron(v);
 }
 
 Polyhedron makeDodecahedron() {
@@ -111,28 +115,28 @@ Polyhedron makeDodecahedron() {
             v.emplace_back(s, t, 0);
             v.emplace_back(t, 0, s);
         }
-    return convexPolyhedron(v);
+    return makeConvexPolyhedron(v);
 }
 
 Polyhedron makePrism(int n, double height) {
     requireSides(n, "a prism");
     auto v = ring(n, -height / 2, 0);
     for (const auto& p : ring(n, height / 2, 0)) v.push_back(p);
-    return convexPolyhedron(v);
+    return makeConvexPolyhedron(v);
 }
 
 Polyhedron makeAntiprism(int n, double height) {
     requireSides(n, "an antiprism");
     auto v = ring(n, -height / 2, 0);
     for (const auto& p : ring(n, height / 2, kPi / n)) v.push_back(p);
-    return convexPolyhedron(v);
+    return makeConvexPolyhedron(v);
 }
 
 Polyhedron makePyramid(int n, double height) {
     requireSides(n, "a pyramid");
     auto v = ring(n, 0, 0);
     v.emplace_back(0, 0, height);
-    return convexPolyhedron(v);
+    return makeConvexPolyhedron(v);
 }
 
 TriangleMesh triangulateFaces(const Polyhedron& polyhedron) {

@@ -1,6 +1,7 @@
 // symcompress: command-line front end. Thin: parses arguments, calls the library, prints.
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "symcompress/symmetry.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -71,6 +72,65 @@ int runConvert(const fs::path& input, const fs::path& output, const WriteOptions
     return 0;
 }
 
+nlohmann::json symmetryJson(const Symmetry& s) {
+    nlohmann::json out{{"type", kindName(s.kind)}};
+    switch (s.kind) {
+    case Symmetry::Kind::Rotation:
+        out["axis"] = vectorJson(s.axis);
+        out["angle"] = s.angle;
+        out["fold"] = s.fold;
+        break;
+    case Symmetry::Kind::Mirror: out["normal"] = vectorJson(s.axis); break;
+    case Symmetry::Kind::Rotoreflection:
+        out["axis"] = vectorJson(s.axis);
+        out["angle"] = s.angle;
+        break;
+    default: break;
+    }
+    out["deviation"] = s.deviation;
+    return out;
+}
+
+int runDetect(const fs::path& file, const SymmetryOptions& options, bool json) {
+    const Scene scene = readScene(file);
+    const SymmetryGroup group = detectSymmetries(worldMesh(scene), options);
+    std::vector<std::string> warnings = scene.warnings;
+    warnings.insert(warnings.end(), group.warnings.begin(), group.warnings.end());
+    if (json) {
+        nlohmann::json out{{"file", file.string()}, {"group", group.name}, {"order", group.order()},
+                           {"centroid", vectorJson(group.centroid)}, {"tolerance", options.tolerance},
+                           {"symmetries", nlohmann::json::array()}, {"warnings", warnings}};
+        for (const Symmetry& s : group.elements)
+            if (s.kind != Symmetry::Kind::Identity) out["symmetries"].push_back(symmetryJson(s));
+        std::cout << out.dump(2) << '\n';
+        return 0;
+    }
+    std::printf("%s: group %s, order %d (tolerance %g of the diagonal %g)\n", file.string().c_str(), group.name.c_str(),
+                group.order(), options.tolerance, group.diagonal);
+    std::printf("  centroid [%.9g %.9g %.9g]\n", group.centroid.x(), group.centroid.y(), group.centroid.z());
+    for (const Symmetry& s : group.elements) {
+        const Eigen::Vector3d& a = s.axis;
+        switch (s.kind) {
+        case Symmetry::Kind::Identity: continue;
+        case Symmetry::Kind::Rotation:
+            std::printf("  rotation        %3d-fold axis [% .9f % .9f % .9f] by %8.4f deg", s.fold, a.x(), a.y(), a.z(),
+                        s.angle * 180 / 3.14159265358979323846);
+            break;
+        case Symmetry::Kind::Mirror:
+            std::printf("  mirror          normal [% .9f % .9f % .9f]                  ", a.x(), a.y(), a.z());
+            break;
+        case Symmetry::Kind::Rotoreflection:
+            std::printf("  rotoreflection  axis   [% .9f % .9f % .9f] by %8.4f deg", a.x(), a.y(), a.z(),
+                        s.angle * 180 / 3.14159265358979323846);
+            break;
+        case Symmetry::Kind::Inversion: std::printf("  inversion                                                        "); break;
+        }
+        std::printf("  deviation %.2e\n", s.deviation);
+    }
+    for (const std::string& warning : warnings) std::printf("  warning: %s\n", warning.c_str());
+    return 0;
+}
+
 void addWriteOptions(CLI::App& command, WriteOptions& options) {
     command.add_flag("--no-draco", [&options](std::int64_t) { options.draco = false; },
                      "glTF: write plain accessors instead of KHR_draco_mesh_compression");
@@ -100,6 +160,20 @@ int main(int argc, char** argv) {
     convert->add_flag("-q,--quiet", quiet, "print nothing but errors");
     addWriteOptions(*convert, writeOptions);
 
+    fs::path detectFile;
+    SymmetryOptions symmetryOptions;
+    CLI::App* detect = app.add_subcommand("detect", "Find the symmetries of the whole scene taken as one shape");
+    detect->add_option("FILE", detectFile, "scene file")->required();
+    detect->add_flag("--json", json, "print one JSON object");
+    detect->add_option("--tolerance", symmetryOptions.tolerance,
+                       "largest deviation accepted, relative to the bounding-box diagonal")
+        ->check(CLI::Range(1e-9, 0.5))
+        ->capture_default_str();
+    detect->add_option("--max-order", symmetryOptions.maxOrder, "highest moment order used for candidate axes")
+        ->check(CLI::Range(4, 16))
+        ->capture_default_str();
+    detect->add_option("--threads", symmetryOptions.threads, "threads (0: all cores)")->capture_default_str();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
@@ -110,6 +184,7 @@ int main(int argc, char** argv) {
     try {
         if (*info) return runInfo(infoFile, json);
         if (*convert) return runConvert(input, output, writeOptions, quiet);
+        if (*detect) return runDetect(detectFile, symmetryOptions, json);
     } catch (const FileError& error) {
         std::fprintf(stderr, "symcompress: %s\n", error.what());
         return kExitBadInput;

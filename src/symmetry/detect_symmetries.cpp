@@ -1,0 +1,316 @@
+// The single-shape detector (paper section 5): candidate axes, the maps each axis allows by the moments
+// (ALGORITHM.md 4), verification on the shape, refinement, and the group they generate.
+#include "symcompress/symmetry.hpp"
+
+#include "candidate_axes.hpp"
+#include "point_group_closure.hpp"
+#include "shape_verifier.hpp"
+
+#include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <mutex>
+#include <numeric>
+
+namespace symcompress {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRingAngles[] = {0.35, 0.8, 1.2};  // polar angles of the sample rings about an axis
+// A moment function whose variation over the sphere is below this, relative to its mean, is constant up
+// to the rounding of float32 data (M_2 of a cube) and has no axes to offer; above it even a nearly round
+// shape's functions point at its axes.
+constexpr double kNoiseVariation = 1e-5;
+// How much, relative to its mean, a moment function of a shape symmetric within the tolerance tol may
+// differ from symmetric: kMomentSlack * tol, but never more than kVariationShare of the function's own
+// variation (else a nearly round shape's moments would allow every map).
+constexpr double kMomentSlack = 20;
+constexpr double kVariationShare = 0.3;
+// Beyond this many folds passing the preliminary bound about one axis, none is refined (see below).
+constexpr std::size_t kMaxRefinedFolds = 8;
+// A turn (in turns) that is no multiple of 1/n for any small n: 1 - 1/golden ratio.
+constexpr double kGenericTurn = 0.3819660112501051;
+// How far, relative to the diagonal, a candidate from the moments may be from a symmetry before refinement.
+constexpr double kPreliminaryMargin = 2e-4;
+
+Eigen::Matrix3d mirrorWithNormal(const Eigen::Vector3d& n) { return Eigen::Matrix3d::Identity() - 2 * n * n.transpose(); }
+Eigen::Matrix3d rotationAbout(const Eigen::Vector3d& axis, double angle) {
+    return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+}
+
+// The moment functions seen from one axis a: values on rings of constant angle to a, which tell which
+// rotations about a, mirrors with normal a and rotoreflections about a leave every function unchanged:
+// a cheap filter before the shape is asked. Changes are measured relative to each function's largest
+// value and compared with that function's own tolerance, so that 1 means "at the tolerance".
+class AxisView {
+public:
+    AxisView(const std::vector<MomentFunction>& functions, const std::vector<double>& tolerances,
+             const Eigen::Vector3d& axis, int azimuths)
+        : functions_(functions), tolerances_(tolerances), axis_(axis), azimuths_(azimuths) {
+        const Eigen::Vector3d helper = std::abs(axis.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+        u_ = axis.cross(helper).normalized();
+        v_ = axis.cross(u_);
+    }
+
+    Eigen::Vector3d direction(double theta, double phi) const {
+        return std::sin(theta) * (std::cos(phi) * u_ + std::sin(phi) * v_) + std::cos(theta) * axis_;
+    }
+
+    // For each Fourier mode m about the axis (1 <= m < azimuths / 2), its largest relative amplitude over
+    // functions and rings, in units of the functions' tolerances.
+    std::vector<double> modeAmplitudes() const {
+        std::vector<double> amplitude(azimuths_ / 2, 0.0);
+        for (std::size_t i = 0; i < functions_.size(); ++i)
+            for (double theta : kRingAngles)
+                for (double ring : {theta, kPi - theta}) {
+                    std::vector<double> values(azimuths_);
+                    double energy = 0;
+                    for (int k = 0; k < azimuths_; ++k) {
+                        values[k] = functions_[i].value(direction(ring, 2 * kPi * k / azimuths_));
+                        energy += values[k] * values[k];
+                    }
+                    for (int m = 1; m < azimuths_ / 2; ++m) {
+                        std::complex<double> mode = 0;
+                        for (int k = 0; k < azimuths_; ++k) mode += values[k] * std::polar(1.0, -2 * kPi * m * k / azimuths_);
+                        // Parseval: the pair (m, -m) carries 2 |mode|^2 / K of the ring's energy.
+                        const double relative = std::sqrt(2 * std::norm(mode) / (azimuths_ * energy));
+                        amplitude[m] = std::max(amplitude[m], relative / tolerances_[i]);
+                    }
+                }
+        return amplitude;
+    }
+
+    // The largest change of the functions under w -> linear w at the ring points, in units of their tolerances.
+    double change(const Eigen::Matrix3d& linear) const {
+        double largest = 0;
+        for (std::size_t i = 0; i < functions_.size(); ++i) {
+            double difference = 0, scale = 0;
+            for (double theta : kRingAngles)
+                for (double ring : {theta, kPi - theta})
+                    for (int k = 0; k < azimuths_; ++k) {
+                        const Eigen::Vector3d w = direction(ring, 2 * kPi * (k + 0.37) / azimuths_);
+                        const double value = functions_[i].value(w);
+                        difference = std::max(difference, std::abs(functions_[i].value(linear * w) - value));
+                        scale = std::max(scale, std::abs(value));
+                    }
+            largest = std::max(largest, difference / scale / tolerances_[i]);
+        }
+        return largest;
+    }
+
+private:
+    const std::vector<MomentFunction>& functions_;
+    const std::vector<double>& tolerances_;
+    Eigen::Vector3d axis_, u_, v_;
+    int azimuths_;
+};
+
+std::vector<int> divisorsDescending(int n) {
+    std::vector<int> divisors;
+    for (int d = n; d >= 2; --d)
+        if (n % d == 0) divisors.push_back(d);
+    return divisors;
+}
+
+template <typename Body>
+void withThreads(int threads, Body body) {
+    if (threads <= 0) return body();
+    tbb::task_arena arena(threads);
+    arena.execute(body);
+}
+
+}  // namespace
+
+SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& options) {
+    SymmetryGroup group;
+    group.elements.push_back(Symmetry{});
+    if (mesh.triangles.empty()) {
+        group.warnings.push_back("the shape has no triangles: only the identity");
+        return group;
+    }
+    Eigen::AlignedBox3d box;
+    for (const Triangle& t : mesh.triangles)
+        for (auto v : t) box.extend(mesh.positions[v]);
+    group.diagonal = box.diagonal().norm();
+
+    MomentOptions momentOptions;
+    momentOptions.maxOrder = options.maxOrder;
+    momentOptions.threads = options.threads;
+    MomentCoefficients coefficients = computeMomentCoefficients(mesh, momentOptions);
+    group.centroid = coefficients.centroid;
+    if (!(coefficients.area > 0) || !(group.diagonal > 0)) {
+        group.warnings.push_back("the shape has no area (all its points are collinear): only the identity");
+        return group;
+    }
+    const double tolerance = options.tolerance * group.diagonal;
+    // How far the moments of a shape symmetric within the tolerance may be from symmetric, relatively.
+
+    // The informative moment functions; orders whose function is constant say nothing about axes.
+    auto informative = [&](const MomentCoefficients& c) {
+        std::vector<MomentFunction> functions;
+        for (int order = 2; order <= c.maxOrder; order += 2) {
+            MomentFunction f(c, order);
+            if (f.relativeVariation() > kNoiseVariation) functions.push_back(std::move(f));
+        }
+        return functions;
+    };
+    std::vector<MomentFunction> functions = informative(coefficients);
+    if (functions.empty() && options.maxOrder < 16) {
+        momentOptions.maxOrder = 16;
+        coefficients = computeMomentCoefficients(mesh, momentOptions);
+        functions = informative(coefficients);
+    }
+    const int maxOrder = coefficients.maxOrder;
+    if (functions.empty())
+        group.warnings.push_back("the shape is round: no moment function up to order " + std::to_string(maxOrder) +
+                                 " varies over the sphere, so there are no candidate axes");
+    std::vector<double> momentTolerances;
+    for (const MomentFunction& f : functions)
+        momentTolerances.push_back(std::min(kMomentSlack * options.tolerance, kVariationShare * f.relativeVariation()));
+    const std::vector<Eigen::Vector3d> axes = findCandidateAxes(functions, std::max(1e-4, options.tolerance));
+    const ShapeVerifier verifier(mesh, group.centroid);
+    // Candidates come from the moments, whose critical points the data's rounding moves a little: a map is
+    // first taken within a looser bound, then refined on the data, made exact again (same kind and angle
+    // about the refined axis) and kept only within the tolerance.
+    const double preliminary = std::max(2 * tolerance, tolerance + kPreliminaryMargin * group.diagonal);
+    auto refined = [&](const Eigen::Matrix3d& map) -> Eigen::Matrix3d {
+        const Symmetry before = describeOrthogonal(map);
+        if (before.kind == Symmetry::Kind::Inversion) return map;
+        // Only the refined axis is kept (a refined mirror may come out as a rotoreflection by a tiny angle).
+        const Symmetry after = describeOrthogonal(verifier.refine(map));
+        if (after.kind == Symmetry::Kind::Identity || after.kind == Symmetry::Kind::Inversion ||
+            std::abs(after.axis.dot(before.axis)) < 0.99)
+            return map;
+        const Eigen::Vector3d axis = after.axis.dot(before.axis) < 0 ? Eigen::Vector3d(-after.axis) : after.axis;
+        if (before.kind == Symmetry::Kind::Mirror) return mirrorWithNormal(axis);
+        if (before.kind == Symmetry::Kind::Rotation) return rotationAbout(axis, before.angle);
+        return rotationAbout(axis, before.angle) * mirrorWithNormal(axis);
+    };
+    std::vector<Eigen::Matrix3d> generators;
+    std::vector<Eigen::Vector3d> revolutionAxes;
+    std::mutex generatorsMutex;
+    auto tryAccept = [&](const Eigen::Matrix3d& map) {
+        if (verifier.deviation(map, preliminary) > preliminary) return false;
+        Eigen::Matrix3d best = refined(map);
+        if (verifier.deviation(best, tolerance) > tolerance) {
+            if (verifier.deviation(map, tolerance) > tolerance) return false;
+            best = map;
+        }
+        std::lock_guard<std::mutex> lock(generatorsMutex);
+        generators.push_back(best);
+        return true;
+    };
+
+    // Every map the moments allow about each axis, tested on the shape; the largest fold per axis.
+    const int azimuths = 2 * maxOrder + 2;
+    withThreads(options.threads, [&] {
+        tbb::parallel_for(std::size_t(0), axes.size(), [&](std::size_t i) {
+            const Eigen::Vector3d& axis = axes[i];
+            const AxisView view(functions, momentTolerances, axis, azimuths);
+            const std::vector<double> amplitude = view.modeAmplitudes();
+            int modes = 0;  // gcd of the modes present: the moments allow n-fold rotations for n dividing it
+            for (int m = 1; m < int(amplitude.size()); ++m)
+                if (amplitude[m] > 1) modes = std::gcd(modes, m);
+            std::vector<int> folds;
+            if (modes == 0) {  // invariant under every rotation about the axis: find n on the shape
+                // Unless the shape itself is, within the tolerance, invariant under a rotation by an angle
+                // that belongs to no small fold: a surface of revolution has no finite fold to report.
+                if (verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), tolerance) <= tolerance) {
+                    std::lock_guard<std::mutex> lock(generatorsMutex);
+                    revolutionAxes.push_back(axis);
+                    return;
+                }
+                for (int n = options.maxFold; n >= 2; --n) folds.push_back(n);
+            } else {
+                folds = divisorsDescending(modes);
+            }
+            if (modes == 0) {
+                // Folds the moments cannot tell: keep those within the preliminary bound; when that leaves
+                // many (a nearly round shape at a loose tolerance), refining each would cost too much, so
+                // they must pass as they are.
+                // A generic turn within the preliminary bound says the same at once.
+                const bool nearlyRound =
+                    verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), preliminary) <= preliminary;
+                std::vector<int> plausible;
+                if (!nearlyRound)
+                    for (int n : folds)
+                        if (verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary) <= preliminary)
+                            plausible.push_back(n);
+                if (nearlyRound || plausible.size() > kMaxRefinedFolds) {
+                    if (nearlyRound) plausible = folds;
+                    plausible.erase(std::remove_if(plausible.begin(), plausible.end(), [&](int n) {
+                        return verifier.deviation(rotationAbout(axis, 2 * kPi / n), tolerance) > tolerance;
+                    }), plausible.end());
+                }
+                folds = plausible;
+            }
+            int fold = 1;
+            for (int n : folds) {
+                const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi / n);
+                if ((modes == 0 || view.change(rotation) <= 1) && tryAccept(rotation)) {
+                    fold = n;
+                    break;
+                }
+            }
+            const Eigen::Matrix3d mirror = mirrorWithNormal(axis);
+            if (view.change(mirror) <= 1) tryAccept(mirror);
+            // A rotoreflection by pi / k squares to the rotation by 2 pi / k: k divides the fold.
+            for (int k : divisorsDescending(fold)) {
+                const Eigen::Matrix3d rotoreflection = rotationAbout(axis, kPi / k) * mirror;
+                if (view.change(rotoreflection) <= 1 && tryAccept(rotoreflection)) break;
+            }
+            // Moments invariant about the axis cannot point at the 2-fold axes and mirror normals across
+            // it (all directions across are alike to them): try the directions through the farthest
+            // point from the axis, and between them, at steps of pi / (2 fold).
+            if (modes == 0 && fold > 1) {
+                const Eigen::Vector3d across = verifier.farthestFromAxis(axis);
+                for (int k = 0; k < 2 * fold; ++k) {
+                    const Eigen::Vector3d d = rotationAbout(axis, k * kPi / (2 * fold)) * across;
+                    tryAccept(rotationAbout(d, kPi));
+                    tryAccept(mirrorWithNormal(d));
+                }
+            }
+        });
+    });
+    tryAccept(-Eigen::Matrix3d::Identity());
+    if (!revolutionAxes.empty())
+        group.warnings.push_back("at this tolerance the shape is a surface of revolution about " +
+                                 std::to_string(revolutionAxes.size()) +
+                                 " axis(es): rotations by every angle fit, so no finite fold is reported for them");
+    std::sort(generators.begin(), generators.end(), [](const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+        return a.determinant() > b.determinant();  // rotations first: a stable, readable order
+    });
+
+    const std::size_t limit = 4 * std::size_t(options.maxFold) + 8;
+    std::vector<Eigen::Matrix3d> elements = closeGroup(generators, limit);
+    if (elements.size() > limit) {
+        group.warnings.push_back("the maps accepted at this tolerance do not form a finite group; only the identity is reported "
+                                 "(try a tighter --tolerance)");
+        elements.resize(1);
+    }
+    group.name = pointGroupName(elements);
+
+    // Every element with its deviation, and the fold of each rotation axis.
+    group.elements.assign(elements.size(), Symmetry{});
+    withThreads(options.threads, [&] {
+        tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t i) {
+            Symmetry s = describeOrthogonal(elements[i]);
+            if (s.kind != Symmetry::Kind::Identity)
+                s.deviation = verifier.deviation(elements[i], std::numeric_limits<double>::infinity()) / group.diagonal;
+            group.elements[i] = s;
+        });
+    });
+    for (Symmetry& s : group.elements) {
+        if (s.kind != Symmetry::Kind::Rotation) continue;
+        s.fold = 1;
+        for (const Symmetry& other : group.elements)
+            if (other.kind == Symmetry::Kind::Rotation && std::abs(std::abs(other.axis.dot(s.axis)) - 1) < 1e-6) ++s.fold;
+    }
+    return group;
+}
+
+}  // namespace symcompress

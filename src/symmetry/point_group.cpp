@@ -1,0 +1,181 @@
+// Classifying orthogonal maps and naming finite groups of them (Schoenflies notation).
+#include "symcompress/symmetry.hpp"
+
+#include "point_group_closure.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace symcompress {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Frobenius distance below which two group elements are one: far below the distance between distinct
+// elements of any group with folds up to 360 (about 0.025), far above what refined data leaves.
+constexpr double kSameElement = 5e-3;
+// Axes of elements refined one by one on approximate data agree to about the tolerance: two axes within
+// 0.005 rad are one, and an axis within 0.005 rad of perpendicular is perpendicular.
+constexpr double kSameAxis = 1.25e-5;  // 1 - |cos| at 0.005 rad
+constexpr double kPerpendicular = 0.005;
+
+// The rotation axis of a proper rotation R by angle in (0, pi].
+Eigen::Vector3d rotationAxis(const Eigen::Matrix3d& r, double angle) {
+    if (angle < kPi - 1e-4) return Eigen::Vector3d(r(2, 1) - r(1, 2), r(0, 2) - r(2, 0), r(1, 0) - r(0, 1)).normalized();
+    // Near a half turn R + I = 2 a a^T: take its largest column.
+    const Eigen::Matrix3d s = r + Eigen::Matrix3d::Identity();
+    int column;
+    s.colwise().norm().maxCoeff(&column);
+    Eigen::Vector3d axis = s.col(column).normalized();
+    // Polish with the antisymmetric part's sign when the angle is a little below pi.
+    const Eigen::Vector3d antisymmetric(r(2, 1) - r(1, 2), r(0, 2) - r(2, 0), r(1, 0) - r(0, 1));
+    if (antisymmetric.dot(axis) < 0) axis = -axis;
+    return axis;
+}
+
+// atan2 rather than acos of the trace: acos loses half the digits near 0 and pi, where mirrors and the
+// identity are.
+double rotationAngle(const Eigen::Matrix3d& r) {
+    const Eigen::Vector3d antisymmetric(r(2, 1) - r(1, 2), r(0, 2) - r(2, 0), r(1, 0) - r(0, 1));
+    return std::atan2(antisymmetric.norm() / 2, (r.trace() - 1) / 2);
+}
+
+bool sameAxis(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return 1 - std::abs(a.dot(b)) < kSameAxis; }
+
+// The smallest k >= 1 with m^k = I.
+int elementOrder(const Eigen::Matrix3d& m, int limit) {
+    Eigen::Matrix3d power = m;
+    for (int k = 1; k <= limit; ++k) {
+        if ((power - Eigen::Matrix3d::Identity()).norm() < 1e-4) return k;
+        power = power * m;
+    }
+    return 0;
+}
+
+}  // namespace
+
+const char* kindName(Symmetry::Kind kind) {
+    switch (kind) {
+    case Symmetry::Kind::Identity: return "identity";
+    case Symmetry::Kind::Rotation: return "rotation";
+    case Symmetry::Kind::Mirror: return "mirror";
+    case Symmetry::Kind::Rotoreflection: return "rotoreflection";
+    case Symmetry::Kind::Inversion: return "inversion";
+    }
+    return "?";
+}
+
+Symmetry describeOrthogonal(const Eigen::Matrix3d& linear) {
+    Symmetry s;
+    s.linear = linear;
+    if (linear.determinant() > 0) {
+        const double angle = rotationAngle(linear);
+        if (angle < 1e-9) return s;  // identity
+        s.kind = Symmetry::Kind::Rotation;
+        s.angle = angle;
+        s.axis = rotationAxis(linear, angle);
+        return s;
+    }
+    // linear = -R with R proper; -R_theta(a) is the mirror z -> -z about a composed with R_(theta + pi)(a).
+    const Eigen::Matrix3d r = -linear;
+    const double theta = rotationAngle(r);
+    if (theta < 1e-9) {
+        s.kind = Symmetry::Kind::Inversion;
+        s.angle = kPi;
+        return s;
+    }
+    const Eigen::Vector3d axis = rotationAxis(r, theta);
+    if (theta > kPi - 1e-9) {
+        s.kind = Symmetry::Kind::Mirror;
+        s.axis = axis;
+        return s;
+    }
+    s.kind = Symmetry::Kind::Rotoreflection;
+    const double alpha = theta + kPi;  // in (pi, 2 pi): the same map is about -axis by 2 pi - alpha
+    s.angle = 2 * kPi - alpha;
+    s.axis = -axis;
+    return s;
+}
+
+std::vector<Eigen::Matrix3d> closeGroup(std::vector<Eigen::Matrix3d> generators, std::size_t limit) {
+    std::vector<Eigen::Matrix3d> group{Eigen::Matrix3d::Identity()};
+    auto contains = [&](const Eigen::Matrix3d& m) {
+        return std::any_of(group.begin(), group.end(), [&](const Eigen::Matrix3d& g) { return (g - m).norm() < kSameElement; });
+    };
+    for (const auto& g : generators)
+        if (!contains(g)) group.push_back(g);
+    // Products of everything with the generators until nothing new appears.
+    for (std::size_t i = 0; i < group.size() && group.size() <= limit; ++i)
+        for (const auto& g : generators) {
+            const Eigen::Matrix3d product = group[i] * g;
+            if (!contains(product)) group.push_back(product);
+            if (group.size() > limit) break;
+        }
+    return group;
+}
+
+std::string pointGroupName(const std::vector<Eigen::Matrix3d>& group) {
+    struct Axis {
+        Eigen::Vector3d direction;
+        int fold;
+    };
+    std::vector<Axis> axes;  // proper rotation axes with their order
+    std::vector<Eigen::Vector3d> mirrors, rotoreflectionAxes;
+    bool inversion = false;
+    const int limit = int(group.size());
+    for (const auto& m : group) {
+        const Symmetry s = describeOrthogonal(m);
+        switch (s.kind) {
+        case Symmetry::Kind::Identity: break;
+        case Symmetry::Kind::Inversion: inversion = true; break;
+        case Symmetry::Kind::Mirror: mirrors.push_back(s.axis); break;
+        case Symmetry::Kind::Rotoreflection: rotoreflectionAxes.push_back(s.axis); break;
+        case Symmetry::Kind::Rotation: {
+            const int order = elementOrder(m, limit);
+            auto found = std::find_if(axes.begin(), axes.end(), [&](const Axis& a) { return sameAxis(a.direction, s.axis); });
+            if (found == axes.end()) axes.push_back({s.axis, order});
+            else found->fold = std::max(found->fold, order);
+            break;
+        }
+        }
+    }
+    const std::string n = axes.empty() ? "" : std::to_string(std::max_element(axes.begin(), axes.end(), [](const Axis& a, const Axis& b) {
+                                                                 return a.fold < b.fold;
+                                                             })->fold);
+    const auto highAxes = std::count_if(axes.begin(), axes.end(), [](const Axis& a) { return a.fold >= 3; });
+    if (highAxes >= 2) {  // polyhedral groups
+        const int top = std::stoi(n);
+        const std::string base = top == 5 ? "I" : top == 4 ? "O" : "T";
+        if (inversion) return base + "h";
+        if (base == "T" && !mirrors.empty()) return "Td";
+        return base;
+    }
+    if (axes.empty()) return !mirrors.empty() ? "Cs" : inversion ? "Ci" : "C1";
+
+    // The principal axis: of highest order; among several 2-fold axes, one with a rotoreflection about it
+    // (D2d), else the first.
+    const int fold = std::stoi(n);
+    const Axis* principal = nullptr;
+    for (const auto& a : axes)
+        if (a.fold == fold && !principal) principal = &a;
+    if (fold == 2)
+        for (const auto& a : axes)
+            for (const auto& r : rotoreflectionAxes)
+                if (a.fold == 2 && sameAxis(a.direction, r)) principal = &a;
+    const Eigen::Vector3d z = principal->direction;
+    const bool perpendicularTwoFold = std::any_of(axes.begin(), axes.end(), [&](const Axis& a) {
+        return a.fold >= 2 && std::abs(a.direction.dot(z)) < kPerpendicular;
+    });
+    const bool horizontalMirror = std::any_of(mirrors.begin(), mirrors.end(), [&](const Eigen::Vector3d& m) { return sameAxis(m, z); });
+    const bool verticalMirror =
+        std::any_of(mirrors.begin(), mirrors.end(), [&](const Eigen::Vector3d& m) { return std::abs(m.dot(z)) < kPerpendicular; });
+    if (perpendicularTwoFold) return "D" + n + (horizontalMirror ? "h" : verticalMirror ? "d" : "");
+    if (horizontalMirror) return "C" + n + "h";
+    if (verticalMirror) return "C" + n + "v";
+    if (std::any_of(rotoreflectionAxes.begin(), rotoreflectionAxes.end(), [&](const Eigen::Vector3d& r) { return sameAxis(r, z); }))
+        return "S" + std::to_string(2 * fold);
+    return "C" + n;
+}
+
+}  // namespace symcompress

@@ -1,0 +1,97 @@
+#include "shape_verifier.hpp"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace symcompress {
+
+ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& center) : mesh_(mesh), bvh_(mesh), center_(center) {
+    std::vector<Eigen::Vector3d> points;
+    std::vector<char> used(mesh.positions.size(), 0);
+    for (const Triangle& t : mesh.triangles) {
+        for (auto v : t)
+            if (!used[v]) {
+                used[v] = 1;
+                points.push_back(mesh.positions[v] - center);
+            }
+        points.push_back((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3 - center);
+    }
+    // A fixed stride through the points (coprime with their count) visits the whole shape early, so that
+    // a wrong map is rejected after a few queries.
+    const std::size_t n = points.size();
+    std::size_t stride = std::max<std::size_t>(1, std::size_t(double(n) * 0.618));
+    while (n > 1 && std::gcd(stride, n) != 1) ++stride;
+    samples_.reserve(n);
+    for (std::size_t i = 0, at = 0; i < n; ++i, at = (at + stride) % n) samples_.push_back(points[at]);
+}
+
+double ShapeVerifier::farthest(const Eigen::Matrix3d& linear, double reject) const {
+    double worst = 0;
+    const double rejectSquared = reject * reject;
+    for (const Eigen::Vector3d& p : samples_) {
+        // No need to search beyond the rejection distance: anything farther rejects the map.
+        const double bound = 2 * rejectSquared + 1e-300;
+        const double d = bvh_.squaredDistance(center_ + linear * p, bound);
+        worst = std::max(worst, d);
+        if (d > rejectSquared) break;
+    }
+    return std::sqrt(worst);
+}
+
+double ShapeVerifier::deviation(const Eigen::Matrix3d& linear, double reject) const {
+    const double forward = farthest(linear, reject);
+    if (forward > reject) return forward;
+    return std::max(forward, farthest(linear.transpose(), reject));
+}
+
+Eigen::Vector3d ShapeVerifier::farthestFromAxis(const Eigen::Vector3d& axis) const {
+    Eigen::Vector3d best = axis.unitOrthogonal();
+    double bestDistance = 0;
+    for (const Eigen::Vector3d& p : samples_) {
+        const Eigen::Vector3d across = p - p.dot(axis) * axis;
+        if (across.squaredNorm() > bestDistance) {
+            bestDistance = across.squaredNorm();
+            best = across;
+        }
+    }
+    return best.normalized();
+}
+
+Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, int steps) const {
+    Eigen::Matrix3d current = linear;
+    // At most this many sample points, spread over the shape (the samples' order does that).
+    constexpr std::size_t kMaxPoints = 20000;
+    const std::size_t used = std::min(samples_.size(), kMaxPoints);
+    for (int step = 0; step < steps; ++step) {
+        // Residual n.(x - q) of x = current p against the plane of its closest triangle; a small rotation w
+        // applied after current changes it by w.(x cross n).
+        Eigen::Matrix3d normalMatrix = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d rightSide = Eigen::Vector3d::Zero();
+        for (std::size_t i = 0; i < used; ++i) {
+            const Eigen::Vector3d x = current * samples_[i];
+            Eigen::Vector3d closest;
+            std::uint32_t triangle = 0;
+            if (!std::isfinite(bvh_.squaredDistance(center_ + x, std::numeric_limits<double>::infinity(), &closest, &triangle)))
+                return current;
+            const Triangle& t = mesh_.triangles[triangle];
+            const Eigen::Vector3d normal =
+                (mesh_.positions[t[1]] - mesh_.positions[t[0]]).cross(mesh_.positions[t[2]] - mesh_.positions[t[0]]).normalized();
+            if (!normal.allFinite()) continue;
+            const Eigen::Vector3d jacobian = x.cross(normal);
+            const double residual = normal.dot(center_ + x - closest);
+            normalMatrix += jacobian * jacobian.transpose();
+            rightSide -= jacobian * residual;
+        }
+        const Eigen::Vector3d w = normalMatrix.ldlt().solve(rightSide);
+        if (!w.allFinite()) return current;
+        const double angle = w.norm();
+        if (angle > 0) current = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() * current;
+        if (angle < 1e-14) break;
+    }
+    return current;
+}
+
+}  // namespace symcompress
