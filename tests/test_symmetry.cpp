@@ -158,8 +158,9 @@ TEST_CASE("Shared models: the symmetries the manifest describes, and none in the
     SECTION("geosphere: D5d, not Ih") {
         // The manifest expects Ih, but this tessellation is not icosahedral: the rotations about its other
         // 5-fold and 3-fold axes move vertices 1.2e-3 of the diagonal off the surface, as far as rotations
-        // about arbitrary axes do; the D5d elements hold to 1e-7. So D5d at every tolerance.
-        for (double tolerance : {1e-5, 1e-3}) {
+        // about arbitrary axes do; the D5d elements hold to 1e-7. So D5d, at any tolerance where the
+        // moments still tell axes apart (their variation is 1e-4 of their mean).
+        for (double tolerance : {1e-5, 1e-4}) {
             const SymmetryGroup g = detect("vulkan_geosphere/geosphere.gltf", tolerance);
             CHECK(g.name == "D5d");
             CHECK(g.order() == 20);

@@ -44,6 +44,11 @@ struct SymmetryGroup {
     double diagonal = 0;                // of the bounding box, the unit of the tolerance and deviations
     std::vector<Symmetry> elements;     // the whole group, identity first
     std::vector<std::string> warnings;  // e.g. a shape with no area
+    struct {
+        double moments = 0;       // the moment coefficients
+        double axes = 0;          // critical points of the moment functions
+        double verification = 0;  // per-axis moment tests, shape tests, refinement, the group's deviations
+    } seconds;
     int order() const { return int(elements.size()); }
 };
 

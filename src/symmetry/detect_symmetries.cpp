@@ -11,6 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <complex>
 #include <mutex>
@@ -29,7 +30,16 @@ constexpr double kNoiseVariation = 1e-5;
 // differ from symmetric: kMomentSlack * tol, but never more than kVariationShare of the function's own
 // variation (else a nearly round shape's moments would allow every map).
 constexpr double kMomentSlack = 20;
+// A function whose variation is below kInformative * tol could be all asymmetry: it tests nothing.
+constexpr double kInformative = 0.1;
 constexpr double kVariationShare = 0.3;
+// The group's deviations are measured up to this many tolerances (beyond, the first distance found is reported).
+constexpr double kDeviationSearch = 10;
+// Maps closer than this (Frobenius norm) to an element found already are that element: far below the
+// distance between distinct elements, far above the error of a candidate from the moments.
+constexpr double kKnownElement = 2e-3;
+// Sample points a candidate map is screened on before it is refined.
+constexpr std::size_t kScreeningPoints = 2000;
 // Beyond this many folds passing the preliminary bound about one axis, none is refined (see below).
 constexpr std::size_t kMaxRefinedFolds = 8;
 // A turn (in turns) that is no multiple of 1/n for any small n: 1 - 1/golden ratio.
@@ -140,6 +150,9 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     MomentOptions momentOptions;
     momentOptions.maxOrder = options.maxOrder;
     momentOptions.threads = options.threads;
+    using Clock = std::chrono::steady_clock;
+    auto since = [](Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    Clock::time_point start = Clock::now();
     MomentCoefficients coefficients = computeMomentCoefficients(mesh, momentOptions);
     group.centroid = coefficients.centroid;
     if (!(coefficients.area > 0) || !(group.diagonal > 0)) {
@@ -165,13 +178,26 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         functions = informative(coefficients);
     }
     const int maxOrder = coefficients.maxOrder;
-    if (functions.empty())
-        group.warnings.push_back("the shape is round: no moment function up to order " + std::to_string(maxOrder) +
-                                 " varies over the sphere, so there are no candidate axes");
+    // The functions whose variation exceeds what asymmetry within the tolerance (noise, say) could make
+    // test the maps about each axis, each with its own tolerance.
+    std::vector<MomentFunction> tests;
     std::vector<double> momentTolerances;
     for (const MomentFunction& f : functions)
-        momentTolerances.push_back(std::min(kMomentSlack * options.tolerance, kVariationShare * f.relativeVariation()));
+        if (f.relativeVariation() > kInformative * options.tolerance) {
+            tests.push_back(f);
+            momentTolerances.push_back(std::min(kMomentSlack * options.tolerance, kVariationShare * f.relativeVariation()));
+        }
+    if (tests.empty()) {
+        group.warnings.push_back("the shape is nearly round at this tolerance: no moment function up to order " +
+                                 std::to_string(maxOrder) + " varies more than the tolerance allows, so no axis can "
+                                 "be told apart (try a tighter --tolerance)");
+        functions.clear();
+    }
+    group.seconds.moments = since(start);
+    start = Clock::now();
     const std::vector<Eigen::Vector3d> axes = findCandidateAxes(functions, std::max(1e-4, options.tolerance));
+    group.seconds.axes = since(start);
+    start = Clock::now();
     const ShapeVerifier verifier(mesh, group.centroid);
     // Candidates come from the moments, whose critical points the data's rounding moves a little: a map is
     // first taken within a looser bound, then refined on the data, made exact again (same kind and angle
@@ -181,7 +207,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         const Symmetry before = describeOrthogonal(map);
         if (before.kind == Symmetry::Kind::Inversion) return map;
         // Only the refined axis is kept (a refined mirror may come out as a rotoreflection by a tiny angle).
-        const Symmetry after = describeOrthogonal(verifier.refine(map));
+        const Symmetry after = describeOrthogonal(verifier.refine(map, 2 * preliminary));
         if (after.kind == Symmetry::Kind::Identity || after.kind == Symmetry::Kind::Inversion ||
             std::abs(after.axis.dot(before.axis)) < 0.99)
             return map;
@@ -193,8 +219,16 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     std::vector<Eigen::Matrix3d> generators;
     std::vector<Eigen::Vector3d> revolutionAxes;
     std::mutex generatorsMutex;
+    std::vector<Eigen::Matrix3d> known{Eigen::Matrix3d::Identity()};  // the group the generators so far make
+    auto isKnown = [&](const Eigen::Matrix3d& map) {
+        std::lock_guard<std::mutex> lock(generatorsMutex);
+        return std::any_of(known.begin(), known.end(), [&](const Eigen::Matrix3d& g) { return (g - map).norm() < kKnownElement; });
+    };
+    // A map already in the group found so far needs no test (several axes lead to the same elements); a
+    // new one is screened on a few sample points, refined, and verified on all of them.
     auto tryAccept = [&](const Eigen::Matrix3d& map) {
-        if (verifier.deviation(map, preliminary) > preliminary) return false;
+        if (isKnown(map)) return true;
+        if (verifier.deviation(map, preliminary, kScreeningPoints) > preliminary) return false;
         Eigen::Matrix3d best = refined(map);
         if (verifier.deviation(best, tolerance) > tolerance) {
             if (verifier.deviation(map, tolerance) > tolerance) return false;
@@ -202,6 +236,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         }
         std::lock_guard<std::mutex> lock(generatorsMutex);
         generators.push_back(best);
+        known = closeGroup(generators, 4 * std::size_t(options.maxFold) + 8);
         return true;
     };
 
@@ -210,7 +245,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     withThreads(options.threads, [&] {
         tbb::parallel_for(std::size_t(0), axes.size(), [&](std::size_t i) {
             const Eigen::Vector3d& axis = axes[i];
-            const AxisView view(functions, momentTolerances, axis, azimuths);
+            const AxisView view(tests, momentTolerances, axis, azimuths);
             const std::vector<double> amplitude = view.modeAmplitudes();
             int modes = 0;  // gcd of the modes present: the moments allow n-fold rotations for n dividing it
             for (int m = 1; m < int(amplitude.size()); ++m)
@@ -296,20 +331,31 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
 
     // Every element with its deviation, and the fold of each rotation axis.
     group.elements.assign(elements.size(), Symmetry{});
+    // d_A of g and of its inverse are the same number: measure one of each pair. Products of accepted maps
+    // stay within a few tolerances; searching only that far keeps each query short.
+    std::vector<std::size_t> inverse(elements.size());
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+        inverse[i] = i;
+        for (std::size_t j = 0; j < elements.size(); ++j)
+            if ((elements[j] - elements[i].transpose()).norm() < 1e-6) inverse[i] = j;
+    }
+    const double searchRadius = kDeviationSearch * tolerance;
     withThreads(options.threads, [&] {
         tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t i) {
-            Symmetry s = describeOrthogonal(elements[i]);
-            if (s.kind != Symmetry::Kind::Identity)
-                s.deviation = verifier.deviation(elements[i], std::numeric_limits<double>::infinity()) / group.diagonal;
-            group.elements[i] = s;
+            group.elements[i] = describeOrthogonal(elements[i]);
+            if (group.elements[i].kind != Symmetry::Kind::Identity && inverse[i] >= i)
+                group.elements[i].deviation = verifier.deviation(elements[i], searchRadius) / group.diagonal;
         });
     });
+    for (std::size_t i = 0; i < elements.size(); ++i)
+        if (inverse[i] < i) group.elements[i].deviation = group.elements[inverse[i]].deviation;
     for (Symmetry& s : group.elements) {
         if (s.kind != Symmetry::Kind::Rotation) continue;
         s.fold = 1;
         for (const Symmetry& other : group.elements)
             if (other.kind == Symmetry::Kind::Rotation && std::abs(std::abs(other.axis.dot(s.axis)) - 1) < 1e-6) ++s.fold;
     }
+    group.seconds.verification = since(start);
     return group;
 }
 

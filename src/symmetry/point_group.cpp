@@ -19,6 +19,9 @@ constexpr double kSameElement = 5e-3;
 // 0.005 rad are one, and an axis within 0.005 rad of perpendicular is perpendicular.
 constexpr double kSameAxis = 1.25e-5;  // 1 - |cos| at 0.005 rad
 constexpr double kPerpendicular = 0.005;
+// Angles this close to 0 or pi are 0 or pi: products of maps refined on noisy data carry errors of about
+// the data's, and no element of a group with folds up to 360 comes near (2 pi / 360 = 0.017).
+constexpr double kSnapAngle = 2e-3;
 
 // The rotation axis of a proper rotation R by angle in (0, pi].
 Eigen::Vector3d rotationAxis(const Eigen::Matrix3d& r, double angle) {
@@ -71,7 +74,7 @@ Symmetry describeOrthogonal(const Eigen::Matrix3d& linear) {
     s.linear = linear;
     if (linear.determinant() > 0) {
         const double angle = rotationAngle(linear);
-        if (angle < 1e-9) return s;  // identity
+        if (angle < kSnapAngle) return s;  // identity
         s.kind = Symmetry::Kind::Rotation;
         s.angle = angle;
         s.axis = rotationAxis(linear, angle);
@@ -80,13 +83,13 @@ Symmetry describeOrthogonal(const Eigen::Matrix3d& linear) {
     // linear = -R with R proper; -R_theta(a) is the mirror z -> -z about a composed with R_(theta + pi)(a).
     const Eigen::Matrix3d r = -linear;
     const double theta = rotationAngle(r);
-    if (theta < 1e-9) {
+    if (theta < kSnapAngle) {
         s.kind = Symmetry::Kind::Inversion;
         s.angle = kPi;
         return s;
     }
     const Eigen::Vector3d axis = rotationAxis(r, theta);
-    if (theta > kPi - 1e-9) {
+    if (theta > kPi - kSnapAngle) {
         s.kind = Symmetry::Kind::Mirror;
         s.axis = axis;
         return s;

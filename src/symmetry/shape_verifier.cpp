@@ -7,6 +7,10 @@
 #include <numeric>
 
 namespace symcompress {
+namespace {
+// Cells of the sample-point hash, relative to the diagonal: a few times the rounding of float32 data.
+constexpr double kSnapCell = 1e-6;
+}  // namespace
 
 ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& center) : mesh_(mesh), bvh_(mesh), center_(center) {
     std::vector<Eigen::Vector3d> points;
@@ -17,7 +21,8 @@ ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& ce
                 used[v] = 1;
                 points.push_back(mesh.positions[v] - center);
             }
-        points.push_back((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3 - center);
+        if (mesh.triangles.size() <= kCentroidSamplesUpTo)
+            points.push_back((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3 - center);
     }
     // A fixed stride through the points (coprime with their count) visits the whole shape early, so that
     // a wrong map is rejected after a few queries.
@@ -26,25 +31,52 @@ ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& ce
     while (n > 1 && std::gcd(stride, n) != 1) ++stride;
     samples_.reserve(n);
     for (std::size_t i = 0, at = 0; i < n; ++i, at = (at + stride) % n) samples_.push_back(points[at]);
+
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& p : samples_) box.extend(p);
+    cellSize_ = std::max(kSnapCell * box.diagonal().norm(), 1e-300);
+    sampleInCell_.reserve(samples_.size());
+    for (std::size_t i = 0; i < samples_.size(); ++i) sampleInCell_.emplace(cellKey(samples_[i]), std::uint32_t(i));
 }
 
-double ShapeVerifier::farthest(const Eigen::Matrix3d& linear, double reject) const {
+std::uint64_t ShapeVerifier::cellKey(const Eigen::Vector3d& p) const {
+    std::uint64_t key = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto cell = static_cast<std::int64_t>(std::floor(p[axis] / cellSize_));
+        key = key * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(cell);
+    }
+    return key;
+}
+
+double ShapeVerifier::squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound) const {
+    const auto found = sampleInCell_.find(cellKey(p));
+    if (found != sampleInCell_.end()) {
+        const double d = (samples_[found->second] - p).squaredNorm();  // the sample point is on the surface
+        if (d <= accept) return d;
+    }
+    return bvh_.squaredDistance(center_ + p, bound);
+}
+
+double ShapeVerifier::farthest(const Eigen::Matrix3d& linear, double reject, std::size_t points) const {
     double worst = 0;
     const double rejectSquared = reject * reject;
-    for (const Eigen::Vector3d& p : samples_) {
+    const std::size_t count = std::min(points, samples_.size());
+    for (std::size_t i = 0; i < count; ++i) {
+        const Eigen::Vector3d& p = samples_[i];
         // No need to search beyond the rejection distance: anything farther rejects the map.
         const double bound = 2 * rejectSquared + 1e-300;
-        const double d = bvh_.squaredDistance(center_ + linear * p, bound);
+        const double d = squaredDistanceToSurface(linear * p, rejectSquared, bound);
         worst = std::max(worst, d);
         if (d > rejectSquared) break;
     }
     return std::sqrt(worst);
 }
 
-double ShapeVerifier::deviation(const Eigen::Matrix3d& linear, double reject) const {
-    const double forward = farthest(linear, reject);
-    if (forward > reject) return forward;
-    return std::max(forward, farthest(linear.transpose(), reject));
+double ShapeVerifier::deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points) const {
+    const double forward = farthest(linear, reject, points);
+    // An involution (mirror, half turn, inversion) is its own inverse: one direction measures both.
+    if (forward > reject || (linear - linear.transpose()).norm() < 1e-12) return forward;
+    return std::max(forward, farthest(linear.transpose(), reject, points));
 }
 
 Eigen::Vector3d ShapeVerifier::farthestFromAxis(const Eigen::Vector3d& axis) const {
@@ -60,10 +92,11 @@ Eigen::Vector3d ShapeVerifier::farthestFromAxis(const Eigen::Vector3d& axis) con
     return best.normalized();
 }
 
-Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, int steps) const {
+Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, double searchRadius, int steps) const {
+    const double searchSquared = searchRadius * searchRadius;
     Eigen::Matrix3d current = linear;
     // At most this many sample points, spread over the shape (the samples' order does that).
-    constexpr std::size_t kMaxPoints = 20000;
+    constexpr std::size_t kMaxPoints = 5000;
     const std::size_t used = std::min(samples_.size(), kMaxPoints);
     for (int step = 0; step < steps; ++step) {
         // Residual n.(x - q) of x = current p against the plane of its closest triangle; a small rotation w
@@ -74,8 +107,8 @@ Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, int steps) 
             const Eigen::Vector3d x = current * samples_[i];
             Eigen::Vector3d closest;
             std::uint32_t triangle = 0;
-            if (!std::isfinite(bvh_.squaredDistance(center_ + x, std::numeric_limits<double>::infinity(), &closest, &triangle)))
-                return current;
+            // Points with nothing near (a hole, or a wrong map) say nothing about the fit.
+            if (!(bvh_.squaredDistance(center_ + x, searchSquared, &closest, &triangle) < searchSquared)) continue;
             const Triangle& t = mesh_.triangles[triangle];
             const Eigen::Vector3d normal =
                 (mesh_.positions[t[1]] - mesh_.positions[t[0]]).cross(mesh_.positions[t[2]] - mesh_.positions[t[0]]).normalized();

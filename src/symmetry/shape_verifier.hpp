@@ -1,6 +1,7 @@
 // Verification of a candidate symmetry on the shape itself (paper 5.3, ALGORITHM.md 5):
 //   d_A(S) = max(d_M(S, A S), d_M(A S, S)),  d_M(S, R) = max over sample points p of S of dist(p, R),
-// with the vertices and triangle centroids of S as sample points, and a refinement of accepted maps by
+// with the vertices of S as sample points (and the triangle centroids too for meshes of up to
+// kCentroidSamplesUpTo triangles, which catches differently split quads), and a refinement of accepted maps by
 // least squares on closest-point correspondences.
 #pragma once
 
@@ -8,34 +9,48 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace symcompress {
+
+constexpr std::size_t kCentroidSamplesUpTo = 100000;
 
 class ShapeVerifier {
 public:
     // The mesh must outlive the verifier; maps are taken about `center`.
     ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& center);
 
-    // d_A of x -> center + linear (x - center) (linear orthogonal). Stops at the first sample point
-    // farther than `reject` and returns that point's distance (> reject).
-    double deviation(const Eigen::Matrix3d& linear, double reject) const;
+    // d_A of x -> center + linear (x - center) (linear orthogonal), over the first `points` sample points
+    // (all by default; the order spreads them over the shape). Stops at the first sample point farther
+    // than `reject` and returns that point's distance (> reject).
+    double deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points = SIZE_MAX) const;
 
     // The map near `linear` (same determinant) that best fits the data: Gauss-Newton on the point-to-plane
     // distances of the mapped sample points to their closest triangles, which converges in a few steps
-    // where point-to-point correspondences would only creep along the surface.
-    Eigen::Matrix3d refine(const Eigen::Matrix3d& linear, int steps = 6) const;
+    // where point-to-point correspondences would only creep along the surface. Points with no triangle
+    // within searchRadius are left out.
+    Eigen::Matrix3d refine(const Eigen::Matrix3d& linear, double searchRadius, int steps = 6) const;
 
     // The unit direction across `axis` (through the center) of the sample point farthest from it.
     Eigen::Vector3d farthestFromAxis(const Eigen::Vector3d& axis) const;
 
 private:
-    double farthest(const Eigen::Matrix3d& linear, double reject) const;
+    double farthest(const Eigen::Matrix3d& linear, double reject, std::size_t points) const;
+
+    // Squared distance from p (about center_) to the surface (searched up to `bound`), or an upper bound
+    // of it no larger than `accept` when p is that close to a sample point: a map that is a symmetry of
+    // the tessellation takes sample points onto sample points, found by one hash lookup, not a search.
+    double squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound) const;
+    std::uint64_t cellKey(const Eigen::Vector3d& p) const;
 
     const TriangleMesh& mesh_;
     TriangleBvh bvh_;
     Eigen::Vector3d center_;
     std::vector<Eigen::Vector3d> samples_;  // about center_, in an order that spreads over the shape early
+    double cellSize_ = 1;
+    std::unordered_map<std::uint64_t, std::uint32_t> sampleInCell_;  // a sample point of each occupied cell
 };
 
 }  // namespace symcompress
