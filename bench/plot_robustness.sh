@@ -9,7 +9,6 @@ data="$(mktemp)"
 trap 'rm -f "$data"' EXIT
 "$build/bench_symmetry" robustness "$here/../shared/models" "$data"
 gnuplot <<PLOT
-set terminal pngcairo size 1100,450 font "sans,10" 2>/dev/null
 set terminal png size 1100,450
 set output "$here/bench/robustness.png"
 set multiplot layout 1,2 title "Angular error of the detected axis (degrees), tolerance 3% of the diagonal"
