@@ -45,6 +45,10 @@ struct PhongMaterial {
     double ambientIntensity = 0.2;
     double shininess = 0.2;
     double transparency = 0;
+    bool operator==(const PhongMaterial& o) const {
+        return diffuseColor == o.diffuseColor && specularColor == o.specularColor && emissiveColor == o.emissiveColor &&
+               ambientIntensity == o.ambientIntensity && shininess == o.shininess && transparency == o.transparency;
+    }
 };
 
 // glTF's metallic-roughness material; X3D materials are mapped onto it (diffuseColor -> baseColor,
@@ -60,6 +64,12 @@ struct Material {
     bool doubleSided = false;
     int baseColorTexture = -1;  // index into Scene::textures
     std::optional<PhongMaterial> phong;
+    bool operator==(const Material& o) const {
+        return name == o.name && baseColorFactor == o.baseColorFactor && metallicFactor == o.metallicFactor &&
+               roughnessFactor == o.roughnessFactor && emissiveFactor == o.emissiveFactor && alphaMode == o.alphaMode &&
+               alphaCutoff == o.alphaCutoff && doubleSided == o.doubleSided && baseColorTexture == o.baseColorTexture &&
+               phong == o.phong;
+    }
 };
 
 // Triangles of one material with their per-vertex attributes.

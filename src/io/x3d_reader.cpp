@@ -11,6 +11,7 @@
 #include <zlib.h>
 
 #include <cstring>
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -352,6 +353,15 @@ int X3dReader::readMaterial(const pugi::xml_node& shape) {
     }
     if (material.baseColorFactor[3] < 1) material.alphaMode = Material::AlphaMode::Blend;
     material.baseColorTexture = readTexture(appearance);
+    // Appearances written out one per Shape, with the same Material and texture USEd in each, are one
+    // material (else every Shape would look like its own part). Double-sidedness comes from the geometry
+    // (solid="false" makes the material double-sided, below in readShape), so it is not compared.
+    const auto same = std::find_if(scene_.materials.begin(), scene_.materials.end(), [&](const Material& existing) {
+        Material candidate = material;
+        candidate.doubleSided = existing.doubleSided;
+        return candidate == existing;
+    });
+    if (same != scene_.materials.end()) return entry->second = static_cast<int>(same - scene_.materials.begin());
     scene_.materials.push_back(material);
     entry->second = static_cast<int>(scene_.materials.size()) - 1;
     return entry->second;

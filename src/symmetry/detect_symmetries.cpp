@@ -11,9 +11,12 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <limits>
+#include <map>
 #include <mutex>
 #include <numeric>
 
@@ -40,6 +43,8 @@ constexpr double kDeviationSearch = 10;
 constexpr double kKnownElement = 2e-3;
 // Sample points a candidate map is screened on before it is refined.
 constexpr std::size_t kScreeningPoints = 2000;
+// Folds whose rotation fits within this factor of the best-fitting fold's are preferred (see above).
+constexpr double kGoodFitFactor = 10;
 // Beyond this many folds passing the preliminary bound about one axis, none is refined (see below).
 constexpr std::size_t kMaxRefinedFolds = 8;
 // A turn (in turns) that is no multiple of 1/n for any small n: 1 - 1/golden ratio.
@@ -226,7 +231,10 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     };
     // A map already in the group found so far needs no test (several axes lead to the same elements); a
     // new one is screened on a few sample points, refined, and verified on all of them.
+    const std::size_t limit = 4 * std::size_t(options.maxFold) + 8;
+    std::atomic<bool> overflow{false};  // the accepted maps make no finite group: stop looking
     auto tryAccept = [&](const Eigen::Matrix3d& map) {
+        if (overflow) return false;
         if (isKnown(map)) return true;
         if (verifier.deviation(map, preliminary, kScreeningPoints) > preliminary) return false;
         Eigen::Matrix3d best = refined(map);
@@ -236,7 +244,8 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         }
         std::lock_guard<std::mutex> lock(generatorsMutex);
         generators.push_back(best);
-        known = closeGroup(generators, 4 * std::size_t(options.maxFold) + 8);
+        known = closeGroup(generators, limit);
+        if (known.size() > limit) overflow = true;
         return true;
     };
 
@@ -271,16 +280,29 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 const bool nearlyRound =
                     verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), preliminary) <= preliminary;
                 std::vector<int> plausible;
+                std::map<int, double> fit;  // deviation of the rotation by 2 pi / n, for the plausible n
                 if (!nearlyRound)
-                    for (int n : folds)
-                        if (verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary) <= preliminary)
-                            plausible.push_back(n);
+                    for (int n : folds) {
+                        const double d = verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary);
+                        if (d <= preliminary) plausible.push_back(n), fit[n] = d;
+                    }
                 if (nearlyRound || plausible.size() > kMaxRefinedFolds) {
                     if (nearlyRound) plausible = folds;
                     plausible.erase(std::remove_if(plausible.begin(), plausible.end(), [&](int n) {
-                        return verifier.deviation(rotationAbout(axis, 2 * kPi / n), tolerance) > tolerance;
+                        const double d = verifier.deviation(rotationAbout(axis, 2 * kPi / n), tolerance);
+                        fit[n] = d;
+                        return d > tolerance;
                     }), plausible.end());
                 }
+                // A 24-sided part is within a loose tolerance of 360-fold too: the folds that fit best
+                // (within a factor of the best fit) come first, the largest of them first.
+                double bestFit = std::numeric_limits<double>::infinity();
+                for (int n : plausible) bestFit = std::min(bestFit, fit[n]);
+                const double good = std::max(kGoodFitFactor * bestFit, 1e-12 * group.diagonal);
+                std::stable_sort(plausible.begin(), plausible.end(), [&](int a, int b) {
+                    const bool aGood = fit[a] <= good, bGood = fit[b] <= good;
+                    return aGood != bGood ? aGood : a > b;
+                });
                 folds = plausible;
             }
             int fold = 1;
@@ -320,7 +342,6 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         return a.determinant() > b.determinant();  // rotations first: a stable, readable order
     });
 
-    const std::size_t limit = 4 * std::size_t(options.maxFold) + 8;
     std::vector<Eigen::Matrix3d> elements = closeGroup(generators, limit);
     if (elements.size() > limit) {
         group.warnings.push_back("the maps accepted at this tolerance do not form a finite group; only the identity is reported "

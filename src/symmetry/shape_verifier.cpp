@@ -57,7 +57,8 @@ double ShapeVerifier::squaredDistanceToSurface(const Eigen::Vector3d& p, double 
     return bvh_.squaredDistance(center_ + p, bound);
 }
 
-double ShapeVerifier::farthest(const Eigen::Matrix3d& linear, double reject, std::size_t points) const {
+double ShapeVerifier::farthestOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double reject,
+                                   std::size_t points) const {
     double worst = 0;
     const double rejectSquared = reject * reject;
     const std::size_t count = std::min(points, samples_.size());
@@ -65,7 +66,7 @@ double ShapeVerifier::farthest(const Eigen::Matrix3d& linear, double reject, std
         const Eigen::Vector3d& p = samples_[i];
         // No need to search beyond the rejection distance: anything farther rejects the map.
         const double bound = 2 * rejectSquared + 1e-300;
-        const double d = squaredDistanceToSurface(linear * p, rejectSquared, bound);
+        const double d = target.squaredDistanceToSurface(linear * p, rejectSquared, bound);
         worst = std::max(worst, d);
         if (d > rejectSquared) break;
     }
@@ -73,10 +74,10 @@ double ShapeVerifier::farthest(const Eigen::Matrix3d& linear, double reject, std
 }
 
 double ShapeVerifier::deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points) const {
-    const double forward = farthest(linear, reject, points);
+    const double forward = farthestOnto(*this, linear, reject, points);
     // An involution (mirror, half turn, inversion) is its own inverse: one direction measures both.
     if (forward > reject || (linear - linear.transpose()).norm() < 1e-12) return forward;
-    return std::max(forward, farthest(linear.transpose(), reject, points));
+    return std::max(forward, farthestOnto(*this, linear.transpose(), reject, points));
 }
 
 Eigen::Vector3d ShapeVerifier::farthestFromAxis(const Eigen::Vector3d& axis) const {
@@ -92,7 +93,18 @@ Eigen::Vector3d ShapeVerifier::farthestFromAxis(const Eigen::Vector3d& axis) con
     return best.normalized();
 }
 
+double deviationBetween(const ShapeVerifier& from, const ShapeVerifier& to, const Eigen::Matrix3d& linear, double reject) {
+    const double forward = from.farthestOnto(to, linear, reject);
+    if (forward > reject) return forward;
+    return std::max(forward, to.farthestOnto(from, linear.transpose(), reject));
+}
+
 Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, double searchRadius, int steps) const {
+    return refineOnto(*this, linear, searchRadius, steps);
+}
+
+Eigen::Matrix3d ShapeVerifier::refineOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double searchRadius,
+                                          int steps) const {
     const double searchSquared = searchRadius * searchRadius;
     Eigen::Matrix3d current = linear;
     // At most this many sample points, spread over the shape (the samples' order does that).
@@ -108,13 +120,13 @@ Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, double sear
             Eigen::Vector3d closest;
             std::uint32_t triangle = 0;
             // Points with nothing near (a hole, or a wrong map) say nothing about the fit.
-            if (!(bvh_.squaredDistance(center_ + x, searchSquared, &closest, &triangle) < searchSquared)) continue;
-            const Triangle& t = mesh_.triangles[triangle];
-            const Eigen::Vector3d normal =
-                (mesh_.positions[t[1]] - mesh_.positions[t[0]]).cross(mesh_.positions[t[2]] - mesh_.positions[t[0]]).normalized();
+            if (!(target.bvh_.squaredDistance(target.center_ + x, searchSquared, &closest, &triangle) < searchSquared)) continue;
+            const auto& positions = target.mesh_.positions;
+            const Triangle& t = target.mesh_.triangles[triangle];
+            const Eigen::Vector3d normal = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).normalized();
             if (!normal.allFinite()) continue;
             const Eigen::Vector3d jacobian = x.cross(normal);
-            const double residual = normal.dot(center_ + x - closest);
+            const double residual = normal.dot(target.center_ + x - closest);
             normalMatrix += jacobian * jacobian.transpose();
             rightSide -= jacobian * residual;
         }

@@ -33,12 +33,23 @@ public:
     // within searchRadius are left out.
     Eigen::Matrix3d refine(const Eigen::Matrix3d& linear, double searchRadius, int steps = 6) const;
 
+    // The same between two shapes: the map best taking this shape's sample points onto target's surface,
+    // maps taken from this shape's center to target's.
+    Eigen::Matrix3d refineOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double searchRadius,
+                               int steps = 6) const;
+
+    // The largest distance from target's surface of this shape's sample points mapped by
+    // x -> target center + linear (x - center), over the first `points` of them; stops at the first point
+    // farther than `reject` and returns its distance.
+    double farthestOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double reject,
+                        std::size_t points = SIZE_MAX) const;
+
+    const Eigen::Vector3d& center() const { return center_; }
+
     // The unit direction across `axis` (through the center) of the sample point farthest from it.
     Eigen::Vector3d farthestFromAxis(const Eigen::Vector3d& axis) const;
 
 private:
-    double farthest(const Eigen::Matrix3d& linear, double reject, std::size_t points) const;
-
     // Squared distance from p (about center_) to the surface (searched up to `bound`), or an upper bound
     // of it no larger than `accept` when p is that close to a sample point: a map that is a symmetry of
     // the tessellation takes sample points onto sample points, found by one hash lookup, not a search.
@@ -52,5 +63,8 @@ private:
     double cellSize_ = 1;
     std::unordered_map<std::uint64_t, std::uint32_t> sampleInCell_;  // a sample point of each occupied cell
 };
+
+// d_A between two shapes under x -> to.center() + linear (x - from.center()): both ways, with early rejection.
+double deviationBetween(const ShapeVerifier& from, const ShapeVerifier& to, const Eigen::Matrix3d& linear, double reject);
 
 }  // namespace symcompress

@@ -1,4 +1,5 @@
 // symcompress: command-line front end. Thin: parses arguments, calls the library, prints.
+#include "symcompress/congruence.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "symcompress/symmetry.hpp"
@@ -91,17 +92,73 @@ nlohmann::json symmetryJson(const Symmetry& s) {
     return out;
 }
 
+nlohmann::json groupJson(const SymmetryGroup& group) {
+    nlohmann::json out{{"group", group.name}, {"order", group.order()}, {"centroid", vectorJson(group.centroid)},
+                       {"symmetries", nlohmann::json::array()}};
+    for (const Symmetry& s : group.elements)
+        if (s.kind != Symmetry::Kind::Identity) out["symmetries"].push_back(symmetryJson(s));
+    return out;
+}
+
+// detect --tiles: tiles, congruence classes with the placement of every member, and the assembly's group.
+int runDetectTiles(const fs::path& file, const SymmetryOptions& options, bool json) {
+    const Scene scene = readScene(file);
+    const auto soup = flattenScene(scene);
+    const std::vector<Tile> tiles = splitIntoTiles(soup);
+    CongruenceOptions congruenceOptions;
+    congruenceOptions.tolerance = options.tolerance;
+    congruenceOptions.threads = options.threads;
+    const TileClassification classification = classifyTiles(tiles, congruenceOptions);
+    const SymmetryGroup assembly = detectSymmetries(worldMesh(scene), options);
+    std::vector<std::string> warnings = scene.warnings;
+    warnings.insert(warnings.end(), assembly.warnings.begin(), assembly.warnings.end());
+    if (json) {
+        nlohmann::json out{{"file", file.string()}, {"tiles", tiles.size()}, {"classes", nlohmann::json::array()},
+                           {"tolerance", options.tolerance}, {"warnings", warnings}};
+        for (const CongruenceClass& c : classification.classes) {
+            const TileShape& prototype = classification.shapes[c.prototype];
+            nlohmann::json entry{{"prototype", c.prototype}, {"members", c.members.size()}, {"triangles", prototype.triangles},
+                                 {"group", prototype.symmetry.name}, {"instances", nlohmann::json::array()}};
+            for (std::size_t i = 0; i < c.members.size(); ++i) {
+                const Eigen::Matrix4d m = c.placements[i].matrix();
+                entry["instances"].push_back({{"tile", c.members[i]},
+                                              {"matrix", std::vector<double>(m.data(), m.data() + 16)},
+                                              {"mirror", c.placements[i].mirrors()},
+                                              {"deviation", c.deviations[i]}});
+            }
+            out["classes"].push_back(entry);
+        }
+        out["assembly"] = groupJson(assembly);
+        out["assembly"]["method"] = "the single-shape detector on the whole scene";
+        std::cout << out.dump(2) << '\n';
+        return 0;
+    }
+    std::size_t repeated = 0;
+    for (const CongruenceClass& c : classification.classes) repeated += c.members.size() > 1 ? c.members.size() : 0;
+    std::printf("%s: %zu tiles in %zu classes (%zu tiles in classes of 2 or more), tolerance %g\n", file.string().c_str(),
+                tiles.size(), classification.classes.size(), repeated, options.tolerance);
+    for (std::size_t k = 0; k < classification.classes.size(); ++k) {
+        const CongruenceClass& c = classification.classes[k];
+        const TileShape& prototype = classification.shapes[c.prototype];
+        const auto mirrored = std::count_if(c.placements.begin(), c.placements.end(), [](const Isometry& j) { return j.mirrors(); });
+        std::printf("  class %zu: %zu x tile %zu (%zu triangles, group %s), %td mirrored\n", k, c.members.size(), c.prototype,
+                    prototype.triangles, prototype.symmetry.name.c_str(), mirrored);
+    }
+    std::printf("  assembly: group %s, order %d\n", assembly.name.c_str(), assembly.order());
+    for (const std::string& warning : warnings) std::printf("  warning: %s\n", warning.c_str());
+    return 0;
+}
+
 int runDetect(const fs::path& file, const SymmetryOptions& options, bool json) {
     const Scene scene = readScene(file);
     const SymmetryGroup group = detectSymmetries(worldMesh(scene), options);
     std::vector<std::string> warnings = scene.warnings;
     warnings.insert(warnings.end(), group.warnings.begin(), group.warnings.end());
     if (json) {
-        nlohmann::json out{{"file", file.string()}, {"group", group.name}, {"order", group.order()},
-                           {"centroid", vectorJson(group.centroid)}, {"tolerance", options.tolerance},
-                           {"symmetries", nlohmann::json::array()}, {"warnings", warnings}};
-        for (const Symmetry& s : group.elements)
-            if (s.kind != Symmetry::Kind::Identity) out["symmetries"].push_back(symmetryJson(s));
+        nlohmann::json out = groupJson(group);
+        out["file"] = file.string();
+        out["tolerance"] = options.tolerance;
+        out["warnings"] = warnings;
         std::cout << out.dump(2) << '\n';
         return 0;
     }
@@ -173,6 +230,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(4, 16))
         ->capture_default_str();
     detect->add_option("--threads", symmetryOptions.threads, "threads (0: all cores)")->capture_default_str();
+    bool tiles = false;
+    detect->add_flag("--tiles", tiles, "split into tiles: congruence classes, placements, the assembly's group");
 
     try {
         app.parse(argc, argv);
@@ -184,7 +243,7 @@ int main(int argc, char** argv) {
     try {
         if (*info) return runInfo(infoFile, json);
         if (*convert) return runConvert(input, output, writeOptions, quiet);
-        if (*detect) return runDetect(detectFile, symmetryOptions, json);
+        if (*detect) return tiles ? runDetectTiles(detectFile, symmetryOptions, json) : runDetect(detectFile, symmetryOptions, json);
     } catch (const FileError& error) {
         std::fprintf(stderr, "symcompress: %s\n", error.what());
         return kExitBadInput;

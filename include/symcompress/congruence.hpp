@@ -1,0 +1,63 @@
+// Congruence classes of tiles (paper 6.2 and 6.3.3, ALGORITHM.md 6): tiles that are the same shape up
+// to a rotation or a reflection, found by descriptor, symmetry group and a geometric check, with the
+// isometry that places the class prototype onto each member.
+#pragma once
+
+#include "symcompress/congruence_descriptor.hpp"
+#include "symcompress/symmetry.hpp"
+#include "symcompress/tiles.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace symcompress {
+
+// x -> linear x + translation, linear orthogonal.
+struct Isometry {
+    Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+    bool mirrors() const { return linear.determinant() < 0; }
+    Eigen::Matrix4d matrix() const;
+};
+
+// What the classification needs of one tile.
+struct TileShape {
+    int material = -1;
+    std::size_t triangles = 0;
+    double diagonal = 0;  // of the tile's bounding box
+    MomentCoefficients moments;
+    CongruenceDescriptor descriptor;
+    Eigen::Matrix3d secondMoments = Eigen::Matrix3d::Zero();  // integral of s s^T about the centroid
+    SymmetryGroup symmetry;
+};
+
+// Invariant: members[0] == prototype; placements[i] takes the prototype onto members[i] (identity for
+// the prototype itself) within the tolerance; every member has the prototype's material and group.
+struct CongruenceClass {
+    std::size_t prototype = 0;
+    std::vector<std::size_t> members;
+    std::vector<Isometry> placements;
+    std::vector<double> deviations;  // d_A of each placement, relative to the scene's diagonal
+};
+
+struct CongruenceOptions {
+    double tolerance = 1e-5;  // relative to the scene's bounding-box diagonal (d_A of placements and symmetries)
+    int maxOrder = 8;         // moment orders in the descriptor
+    bool symmetries = true;   // find each tile's symmetry group (and require equal groups in a class)
+    int threads = 0;
+};
+
+struct TileClassification {
+    std::vector<TileShape> shapes;  // one per tile
+    std::vector<CongruenceClass> classes;
+    double sceneDiagonal = 0;
+    std::size_t descriptorMatches = 0;  // pairs that passed descriptor and group and went to the geometric check
+    std::size_t verifiedMatches = 0;    // of those, the congruent ones
+};
+
+// Every tile in exactly one class. Tiles are grouped by area (a sorted index, never all pairs), then
+// descriptor, material and symmetry group, then checked geometrically.
+TileClassification classifyTiles(const std::vector<Tile>& tiles, const CongruenceOptions& options = {});
+
+}  // namespace symcompress

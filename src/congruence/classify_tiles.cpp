@@ -1,0 +1,139 @@
+// Congruence classes (paper 6.2): per-tile shapes in parallel, then candidates by area through a sorted
+// index, descriptor, material and group, then the geometric check.
+#include "symcompress/congruence.hpp"
+
+#include "find_isometry.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numeric>
+
+namespace symcompress {
+namespace {
+
+// The descriptor tolerance: a floor for the rounding of float32 tiles, and room for the geometric
+// tolerance (the geometric check decides; this only has to keep congruent tiles together).
+constexpr double kDescriptorFloor = 1e-3;
+constexpr double kDescriptorPerTolerance = 50;
+// Per-tile symmetry tolerance, relative to the tile: at most this, however small the tile.
+constexpr double kMaxTileTolerance = 1e-3;
+
+Eigen::Matrix3d secondMomentsOf(const SurfaceMoments& moments) {
+    const auto& m = moments.monomialIntegrals[0];
+    auto at = [&](int j, int k) { return m[HomogeneousPolynomial::monomialIndex(2, j, k)]; };
+    Eigen::Matrix3d s;
+    s << at(0, 0), at(1, 0), at(0, 1),  //
+        at(1, 0), at(2, 0), at(1, 1),   //
+        at(0, 1), at(1, 1), at(0, 2);
+    return s;
+}
+
+template <typename Body>
+void withThreads(int threads, Body body) {
+    if (threads <= 0) return body();
+    tbb::task_arena arena(threads);
+    arena.execute(body);
+}
+
+}  // namespace
+
+Eigen::Matrix4d Isometry::matrix() const {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    m.topLeftCorner<3, 3>() = linear;
+    m.topRightCorner<3, 1>() = translation;
+    return m;
+}
+
+TileClassification classifyTiles(const std::vector<Tile>& tiles, const CongruenceOptions& options) {
+    TileClassification result;
+    Eigen::AlignedBox3d sceneBox;
+    for (const Tile& tile : tiles)
+        for (const auto& p : tile.mesh.positions) sceneBox.extend(p);
+    result.sceneDiagonal = sceneBox.isEmpty() ? 0 : sceneBox.diagonal().norm();
+    const double tolerance = options.tolerance * result.sceneDiagonal;  // absolute
+
+    // Per tile, in parallel: moments, descriptor, second moments, symmetry group.
+    result.shapes.resize(tiles.size());
+    withThreads(options.threads, [&] {
+        tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t i) {
+            const Tile& tile = tiles[i];
+            TileShape& shape = result.shapes[i];
+            shape.material = tile.material;
+            shape.triangles = tile.mesh.triangles.size();
+            Eigen::AlignedBox3d box;
+            for (const auto& p : tile.mesh.positions) box.extend(p);
+            shape.diagonal = box.isEmpty() ? 0 : box.diagonal().norm();
+            MomentOptions momentOptions;
+            momentOptions.maxOrder = options.maxOrder;
+            momentOptions.threads = 1;
+            const SurfaceMoments surface = computeSurfaceMoments(tile.mesh, momentOptions);
+            shape.moments = momentCoefficients(surface);
+            shape.descriptor = computeCongruenceDescriptor(shape.moments);
+            shape.secondMoments = secondMomentsOf(surface);
+            if (options.symmetries && shape.diagonal > 0) {
+                SymmetryOptions symmetryOptions;
+                symmetryOptions.tolerance =
+                    std::min(kMaxTileTolerance, std::max(options.tolerance, tolerance / shape.diagonal));
+                symmetryOptions.threads = 1;
+                shape.symmetry = detectSymmetries(tile.mesh, symmetryOptions);
+            }
+        });
+    });
+
+    // Largest tiles first, so that prototypes are found early; classes indexed by prototype area.
+    std::vector<std::size_t> order(tiles.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return result.shapes[a].descriptor.area > result.shapes[b].descriptor.area;
+    });
+    std::multimap<double, std::size_t> classByArea;
+    std::vector<std::unique_ptr<ShapeVerifier>> prototypeVerifiers;
+    for (std::size_t tile : order) {
+        const TileShape& shape = result.shapes[tile];
+        const double area = shape.descriptor.area;
+        const double epsilon =
+            std::max(kDescriptorFloor, kDescriptorPerTolerance * tolerance / std::max(shape.diagonal, 1e-300));
+        std::unique_ptr<ShapeVerifier> verifier;
+        bool placed = false;
+        for (auto it = classByArea.lower_bound(area * (1 - epsilon)); it != classByArea.end() && it->first <= area * (1 + epsilon);
+             ++it) {
+            CongruenceClass& candidate = result.classes[it->second];
+            const TileShape& prototype = result.shapes[candidate.prototype];
+            if (prototype.material != shape.material || prototype.symmetry.name != shape.symmetry.name ||
+                prototype.symmetry.order() != shape.symmetry.order() ||
+                descriptorDifference(prototype.descriptor, shape.descriptor) > epsilon)
+                continue;
+            ++result.descriptorMatches;
+            if (!verifier) verifier = std::make_unique<ShapeVerifier>(tiles[tile].mesh, shape.moments.centroid);
+            const auto found = findIsometry(prototype, *prototypeVerifiers[it->second], shape, *verifier, tolerance);
+            if (!found) continue;
+            ++result.verifiedMatches;
+            Isometry placement;
+            placement.linear = found->linear;
+            placement.translation = shape.moments.centroid - found->linear * prototype.moments.centroid;
+            candidate.members.push_back(tile);
+            candidate.placements.push_back(placement);
+            candidate.deviations.push_back(found->deviation / result.sceneDiagonal);
+            placed = true;
+            break;
+        }
+        if (placed) continue;
+        CongruenceClass created;
+        created.prototype = tile;
+        created.members.push_back(tile);
+        created.placements.emplace_back();
+        created.deviations.push_back(0);
+        classByArea.emplace(area, result.classes.size());
+        result.classes.push_back(std::move(created));
+        prototypeVerifiers.push_back(verifier ? std::move(verifier)
+                                              : std::make_unique<ShapeVerifier>(tiles[tile].mesh, shape.moments.centroid));
+    }
+    return result;
+}
+
+}  // namespace symcompress

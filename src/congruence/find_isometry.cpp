@@ -1,0 +1,106 @@
+#include "find_isometry.hpp"
+
+#include "../symmetry/candidate_axes.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace symcompress {
+namespace {
+
+constexpr double kDistinctEigenvalues = 1e-4;  // relative gap above which principal axes are a frame
+constexpr double kSameValue = 1e-3;            // relative agreement of moment values at matched directions
+constexpr double kNoiseVariation = 1e-5;       // as in the detector: flatter functions have no directions
+
+// The rotation whose columns are a, the part of b across a, and their cross product.
+Eigen::Matrix3d frameOf(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    Eigen::Matrix3d frame;
+    frame.col(0) = a.normalized();
+    frame.col(1) = (b - b.dot(frame.col(0)) * frame.col(0)).normalized();
+    frame.col(2) = frame.col(0).cross(frame.col(1));
+    return frame;
+}
+
+// Candidate maps from the principal axes: all 8 sign choices (4 rotations, 4 reflections).
+void principalCandidates(const Eigen::Matrix3d& from, const Eigen::Matrix3d& to, std::vector<Eigen::Matrix3d>& out) {
+    for (int signs = 0; signs < 8; ++signs) {
+        const Eigen::Vector3d s(signs & 1 ? -1 : 1, signs & 2 ? -1 : 1, signs & 4 ? -1 : 1);
+        out.push_back(to * s.asDiagonal() * from.transpose());
+    }
+}
+
+// Candidate maps from critical directions of one moment function: the two directions of `from` where it is
+// largest, matched to pairs of `to` with the same values and the same angle between them.
+void criticalCandidates(const MomentFunction& f, const MomentFunction& g, std::vector<Eigen::Matrix3d>& out) {
+    const auto fAxes = findCandidateAxes({f}, 1e-4), gAxes = findCandidateAxes({g}, 1e-4);
+    if (fAxes.size() < 2) return;
+    std::vector<Eigen::Vector3d> sorted = fAxes;
+    std::sort(sorted.begin(), sorted.end(), [&](const Eigen::Vector3d& x, const Eigen::Vector3d& y) { return f.value(x) > f.value(y); });
+    const Eigen::Vector3d a = sorted[0];
+    const auto second = std::find_if(sorted.begin() + 1, sorted.end(), [&](const Eigen::Vector3d& x) { return std::abs(x.dot(a)) < 0.999; });
+    if (second == sorted.end()) return;
+    const Eigen::Vector3d b = *second;
+    const Eigen::Matrix3d fromFrame = frameOf(a, b);
+    const double scale = std::abs(f.value(a));
+    const Eigen::Matrix3d flip = Eigen::Vector3d(1, 1, -1).asDiagonal();
+    for (const Eigen::Vector3d& a2 : gAxes) {
+        if (std::abs(g.value(a2) - f.value(a)) > kSameValue * scale) continue;
+        for (const Eigen::Vector3d& b2 : gAxes) {
+            if (std::abs(g.value(b2) - f.value(b)) > kSameValue * scale) continue;
+            if (std::abs(std::abs(a2.dot(b2)) - std::abs(a.dot(b))) > 1e-3 || std::abs(a2.dot(b2)) > 0.999) continue;
+            for (double sa : {1.0, -1.0})
+                for (double sb : {1.0, -1.0}) {
+                    const Eigen::Matrix3d toFrame = frameOf(sa * a2, sb * b2);
+                    out.push_back(toFrame * fromFrame.transpose());
+                    out.push_back(toFrame * flip * fromFrame.transpose());
+                }
+        }
+    }
+}
+
+}  // namespace
+
+std::optional<FoundIsometry> findIsometry(const TileShape& from, const ShapeVerifier& fromVerifier, const TileShape& to,
+                                          const ShapeVerifier& toVerifier, double tolerance) {
+    std::vector<Eigen::Matrix3d> candidates;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> fromAxes(from.secondMoments), toAxes(to.secondMoments);
+    const Eigen::Vector3d& values = fromAxes.eigenvalues();
+    const double gap = std::min(values[1] - values[0], values[2] - values[1]);
+    if (gap > kDistinctEigenvalues * values[2]) principalCandidates(fromAxes.eigenvectors(), toAxes.eigenvectors(), candidates);
+    // Every order: a low one may be invariant about an axis (M_4 of a 6-fold part), and its critical points
+    // then lie anywhere on circles.
+    for (int order = 4; order <= from.moments.maxOrder; order += 2) {
+        const MomentFunction f(from.moments, order), g(to.moments, order);
+        if (f.relativeVariation() > kNoiseVariation) criticalCandidates(f, g, candidates);
+    }
+    {
+        // Moments invariant about an axis (a part turned on a lathe, a high-order gear): the axis with the
+        // distinct eigenvalue, and the direction across it to the farthest point.
+        const int lone = values[1] - values[0] > values[2] - values[1] ? 0 : 2;
+        const Eigen::Vector3d axisFrom = fromAxes.eigenvectors().col(lone), axisTo = toAxes.eigenvectors().col(lone);
+        const Eigen::Matrix3d fromFrame = frameOf(axisFrom, fromVerifier.farthestFromAxis(axisFrom));
+        const Eigen::Matrix3d flip = Eigen::Vector3d(1, 1, -1).asDiagonal();
+        for (double sa : {1.0, -1.0}) {
+            const Eigen::Matrix3d toFrame = frameOf(sa * axisTo, toVerifier.farthestFromAxis(axisTo));
+            candidates.push_back(toFrame * fromFrame.transpose());
+            candidates.push_back(toFrame * flip * fromFrame.transpose());
+        }
+    }
+    const double screening = std::max(2 * tolerance, tolerance + 2e-4 * from.diagonal);
+    std::optional<FoundIsometry> best;
+    for (const Eigen::Matrix3d& candidate : candidates) {
+        if (fromVerifier.farthestOnto(toVerifier, candidate, screening, 2000) > screening) continue;
+        const Eigen::Matrix3d refined = fromVerifier.refineOnto(toVerifier, candidate, 2 * screening);
+        for (const Eigen::Matrix3d& linear : {refined, candidate}) {
+            const double d = deviationBetween(fromVerifier, toVerifier, linear, tolerance);
+            if (d <= tolerance && (!best || d < best->deviation)) best = FoundIsometry{linear, d};
+        }
+        if (best) break;
+    }
+    return best;
+}
+
+}  // namespace symcompress
