@@ -1,6 +1,7 @@
-// bolts.glb: 24 copies of one bolt baked into the vertices of a single mesh, each at a random position and
-// orientation, every third one mirrored. The bolt is one closed surface: a 12-sided shaft with a chamfered tip
-// under a hexagonal-star head, so its own group is C6v (order 12).
+// bolts.glb: 12 copies of one bolt baked into the vertices of a single mesh, each at a random position and
+// orientation, every third one mirrored. The bolt is one closed surface of 1248 triangles: a 24-sided shaft
+// with 10 thread ridges and a chamfered tip under a head of six lobes. Its group is C6 (order 6): the
+// lobes and rings have mirror planes, but the diagonals that split the chamfer's non-planar quads do not.
 #include "sample_scenes.hpp"
 
 #include <Eigen/Geometry>
@@ -12,7 +13,7 @@ namespace symcompress::samples {
 
 namespace {
 
-constexpr int kSides = 12;
+constexpr int kSides = 24;
 
 // One ring of the bolt's lathe: radius of even and odd corners at height z.
 struct Ring {
@@ -23,7 +24,7 @@ struct Ring {
 
 Eigen::Vector3d ringCorner(const Ring& ring, int k) {
     const double angle = 2 * M_PI * k / kSides;
-    const double radius = (k % 2 == 0) ? ring.evenRadius : ring.oddRadius;
+    const double radius = ((k / 2) % 2 == 0) ? ring.evenRadius : ring.oddRadius;  // six lobes of two corners
     return {radius * std::cos(angle), radius * std::sin(angle), ring.z};
 }
 
@@ -39,8 +40,14 @@ void addFlatTriangle(Primitive& out, const Eigen::Vector3d& a, const Eigen::Vect
 }
 
 Primitive makeBolt() {
-    const std::vector<Ring> rings = {{0.38, 0.38, 0.0}, {0.5, 0.5, 0.12}, {0.5, 0.5, 3.0},
-                                     {1.0, 0.87, 3.0}, {1.0, 0.87, 3.7}, {0.9, 0.78, 3.8}};
+    std::vector<Ring> rings = {{0.38, 0.38, 0.0}, {0.5, 0.5, 0.12}};
+    for (int ridge = 0; ridge < 10; ++ridge) {  // the thread, as rings (a helix would break the mirrors)
+        const double z = 0.2 + 0.26 * ridge;
+        rings.push_back({0.44, 0.44, z});
+        rings.push_back({0.5, 0.5, z + 0.13});
+    }
+    for (const Ring& ring : std::vector<Ring>{{0.5, 0.5, 3.0}, {1.0, 0.87, 3.0}, {1.0, 0.87, 3.7}, {0.9, 0.78, 3.8}})
+        rings.push_back(ring);
     Primitive bolt;
     for (std::size_t level = 0; level + 1 < rings.size(); ++level)
         for (int k = 0; k < kSides; ++k) {
@@ -106,7 +113,7 @@ Scene singleMeshScene(const std::string& name, Primitive primitive, const Eigen:
 }  // namespace
 
 Scene makeBoltsScene() {
-    return singleMeshScene("bolts", bakeCopies(makeBolt(), 24, 3, 12.0, 20261122u), {0.7, 0.7, 0.75, 1});
+    return singleMeshScene("bolts", bakeCopies(makeBolt(), 12, 3, 12.0, 20261122u), {0.7, 0.7, 0.75, 1});
 }
 
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds symcompress (Release) and runs it on the bundled sample.
+# Installs what is missing, builds symcompress (Release), compresses the bundled sample (printing the size
+# report) and rebuilds it with symdecompress, verifying it against the original.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
@@ -7,5 +8,5 @@ scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$(nproc)" --target symcompress_cli symdecompress
 mkdir -p out
-build/symcompress info samples/bolts.glb
-build/symcompress convert samples/bolts.glb -o out/bolts.glb
+build/symcompress samples/bolts.glb -o out/bolts.glb --report out/bolts-report.json
+build/symdecompress out/bolts.glb -o out/bolts-rebuilt.glb --verify samples/bolts.glb

@@ -12,15 +12,6 @@ namespace {
 
 const std::string kSymcompress = SYMCOMPRESS_CLI;
 
-nlohmann::json runJson(const std::string& commandLine) {
-    const CommandResult result = runCommand(commandLine);
-    INFO(commandLine << "\n" << result.output);
-    REQUIRE(result.status == 0);
-    // The tools may print warnings first; the JSON object is the last line.
-    const auto start = result.output.rfind("\n{");
-    return nlohmann::json::parse(start == std::string::npos ? result.output : result.output.substr(start + 1));
-}
-
 void convert(const std::filesystem::path& input, const std::filesystem::path& output, const std::string& options = "") {
     const CommandResult result =
         runCommand(kSymcompress + " convert -q " + options + " " + quoted(input) + " -o " + quoted(output));
@@ -31,22 +22,6 @@ void convert(const std::filesystem::path& input, const std::filesystem::path& ou
 nlohmann::json decodeCheck(const std::filesystem::path& file, const std::filesystem::path& reference) {
     return runJson("node " + quoted(sharedDir() / "bench/decode_check.mjs") + " " + quoted(file) + " --ref " +
                    quoted(reference) + " --json");
-}
-
-// The validator's errors, except the missing image files that the input itself refers to without having
-// them (several models in ../shared come without their textures; the output keeps the references).
-std::vector<std::string> validatorErrors(const std::filesystem::path& file) {
-    const CommandResult result = runCommand("node " + quoted(sharedDir() / "bench/validate.js") + " --json " + quoted(file));
-    INFO(result.output);
-    const auto report = nlohmann::json::parse(result.output.substr(result.output.find('{')));
-    std::vector<std::string> errors;
-    for (const auto& message : report["issues"]["messages"]) {
-        if (message["severity"] != 0) continue;
-        const std::string pointer = message["pointer"], code = message["code"], text = message["message"];
-        if (code == "IO_ERROR" && pointer.rfind("/images/", 0) == 0 && text.find("ENOENT") != std::string::npos) continue;
-        errors.push_back(code + " " + pointer + " " + text);
-    }
-    return errors;
 }
 
 nlohmann::json x3dCount(const std::filesystem::path& file) {

@@ -1,6 +1,9 @@
 // Shared helpers for the tests: temporary folders, the shared models, running the tools.
 #pragma once
 
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -75,6 +78,32 @@ inline bool x3dInteropAvailable() {
     if (std::getenv("SYMCOMPRESS_SKIP_INTEROP")) return false;
     return std::filesystem::exists(sharedDir() / "bench/x3d/node_modules/x_ite-node") &&
            runCommand("node --version").status == 0;
+}
+
+// Runs a command that prints a JSON object (after any warnings) and returns the object.
+inline nlohmann::json runJson(const std::string& commandLine) {
+    const CommandResult result = runCommand(commandLine);
+    INFO(commandLine << "\n" << result.output);
+    REQUIRE(result.status == 0);
+    // The tools may print warnings first; the JSON object is the last line.
+    const auto start = result.output.rfind("\n{");
+    return nlohmann::json::parse(start == std::string::npos ? result.output : result.output.substr(start + 1));
+}
+
+// The validator's errors, except the missing image files that the input itself refers to without having
+// them (several models in ../shared come without their textures; the output keeps the references).
+inline std::vector<std::string> validatorErrors(const std::filesystem::path& file) {
+    const CommandResult result = runCommand("node " + quoted(sharedDir() / "bench/validate.js") + " --json " + quoted(file));
+    INFO(result.output);
+    const auto report = nlohmann::json::parse(result.output.substr(result.output.find('{')));
+    std::vector<std::string> errors;
+    for (const auto& message : report["issues"]["messages"]) {
+        if (message["severity"] != 0) continue;
+        const std::string pointer = message["pointer"], code = message["code"], text = message["message"];
+        if (code == "IO_ERROR" && pointer.rfind("/images/", 0) == 0 && text.find("ENOENT") != std::string::npos) continue;
+        errors.push_back(code + " " + pointer + " " + text);
+    }
+    return errors;
 }
 
 }  // namespace symcompress::testing

@@ -101,6 +101,7 @@ struct Scene {
     std::vector<Node> nodes;
     std::vector<int> roots;             // the nodes drawn, in order
     std::vector<std::string> warnings;  // what the reader could not carry through, one line each
+    std::string extrasJson;             // glTF asset.extras as read (where symcompress keeps its digest)
 };
 
 }  // namespace symcompress

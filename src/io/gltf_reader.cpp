@@ -529,6 +529,7 @@ Scene readGltf(const fs::path& file) {
 
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keepImageBytes, nullptr);
+    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // asset.extras carries symcompress's digest
     tinygltf::Model model;
     std::string error, warning;
     const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
@@ -547,6 +548,7 @@ Scene readGltf(const fs::path& file) {
         if (!understoodExtension(required))
             throw FileError(file, "requires the extension " + required + ", which symcompress cannot read");
     Scene scene = GltfReader(file, model).read();
+    scene.extrasJson = model.asset.extras_json_string;
     for (const std::string& used : model.extensionsUsed)
         if (!understoodExtension(used))
             scene.warnings.push_back(file.filename().string() + ": extension " + used + " ignored");

@@ -13,6 +13,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace symcompress {
@@ -206,7 +208,13 @@ Json writeNode(const Node& node, const std::vector<int>& meshIndex) {
     if (!node.name.empty()) out["name"] = node.name;
     if (!node.transform.isIdentity(0)) {
         std::vector<double> matrix(16);
-        for (int i = 0; i < 16; ++i) matrix[i] = node.transform(i % 4, i / 4);
+        // 9 significant digits (beyond float32, which viewers use) print in about half the bytes of 17:
+        // a node per instance makes this count.
+        for (int i = 0; i < 16; ++i) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.9g", node.transform(i % 4, i / 4));
+            matrix[i] = std::strtod(text, nullptr);
+        }
         matrix[3] = matrix[7] = matrix[11] = 0;  // glTF requires an affine matrix
         matrix[15] = 1;
         out["matrix"] = matrix;

@@ -1,4 +1,5 @@
 // symcompress: command-line front end. Thin: parses arguments, calls the library, prints.
+#include "symcompress/compress.hpp"
 #include "symcompress/congruence.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
@@ -7,8 +8,12 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
+#include <set>
+#include <algorithm>
 
 namespace fs = std::filesystem;
 using namespace symcompress;
@@ -188,6 +193,120 @@ int runDetect(const fs::path& file, const SymmetryOptions& options, bool json) {
     return 0;
 }
 
+// The bytes of a scene on disk: the file, and for .gltf the buffers and images it names by relative path.
+std::uintmax_t sceneBytes(const fs::path& file) {
+    std::error_code error;
+    std::uintmax_t total = fs::file_size(file, error);
+    if (error) return 0;
+    if (formatFromExtension(file) != FileFormat::Gltf) return total;
+    std::ifstream in(file);
+    const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+    if (json.is_discarded()) return total;
+    for (const char* key : {"buffers", "images"})
+        if (json.contains(key) && json[key].is_array())
+            for (const auto& item : json[key])
+                if (item.contains("uri") && item["uri"].is_string()) {
+                    const std::string uri = item["uri"];
+                    if (uri.rfind("data:", 0) == 0 || uri.find("://") != std::string::npos) continue;
+                    const std::uintmax_t size = fs::file_size(file.parent_path() / uri, error);
+                    if (!error) total += size;
+                }
+    return total;
+}
+
+struct CompressRequest {
+    fs::path input, output, report;
+    CompressOptions options;
+    WriteOptions write;
+    bool quiet = false;
+};
+
+int runCompress(const CompressRequest& request) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    const Scene scene = readScene(request.input);
+    const double readSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+    if (!request.quiet)
+        for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    const CompressedScene compressed = compressScene(scene, request.options);
+    WriteOptions write = request.write;
+    write.extrasJson = compressed.digest.json();
+    const auto writeStart = Clock::now();
+    writeScene(compressed.scene, request.output, write, {request.input});
+    const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
+
+    // Ablation: the same scene with every tile stored as it is (Draco alone, no instancing).
+    std::uintmax_t dracoAlone = 0;
+    if (request.options.instancing) {
+        CompressOptions plain = request.options;
+        plain.instancing = false;
+        const fs::path temporary = request.output.parent_path() / (".symcompress-ablation-" + request.output.filename().string());
+        writeScene(compressScene(scene, plain).scene, temporary, write, {request.input});
+        std::error_code error;
+        dracoAlone = fs::file_size(temporary, error);
+        fs::remove(temporary, error);
+    }
+    const CompressionStats& stats = compressed.stats;
+    std::uintmax_t inputBytes = sceneBytes(request.input);
+    const std::uintmax_t outputBytes = sceneBytes(request.output);
+    // OBJ, PLY, STL and X3D name their images by path: those files are part of the input too.
+    const FileFormat inputFormat = formatFromExtension(request.input);
+    if (inputFormat != FileFormat::Gltf && inputFormat != FileFormat::Glb)
+        for (const Texture& texture : scene.textures) inputBytes += texture.bytes.size();
+    const double ratio = outputBytes ? double(inputBytes) / double(outputBytes) : 0;
+    nlohmann::json report{{"input", request.input.string()},
+                          {"output", request.output.string()},
+                          {"input_bytes", inputBytes},
+                          {"output_bytes", outputBytes},
+                          {"ratio", ratio},
+                          {"triangles_in", stats.trianglesIn},
+                          {"triangles_stored", stats.trianglesStored},
+                          {"tiles", stats.tiles},
+                          {"classes", stats.classes},
+                          {"instanced_classes", stats.instancedClasses},
+                          {"instances", stats.instances},
+                          {"symmetric_classes", stats.symmetricClasses},
+                          {"attribute_mismatches", stats.attributeMismatches},
+                          {"not_worth_instancing", stats.notWorthInstancing},
+                          {"max_deviation", stats.maxDeviation},
+                          {"tolerance", request.options.tolerance},
+                          {"seconds",
+                           {{"read", readSeconds},
+                            {"tiles", stats.secondsTiles},
+                            {"classes", stats.secondsClasses},
+                            {"plan", stats.secondsPlan},
+                            {"write", writeSeconds}}},
+                          {"ablation",
+                           {{"draco_alone", request.options.instancing ? nlohmann::json(dracoAlone) : nlohmann::json(outputBytes)},
+                            {"instancing", request.options.instancing ? nlohmann::json(outputBytes) : nlohmann::json(nullptr)},
+                            {"instancing_and_regions", nullptr},
+                            {"final", outputBytes}}},
+                          {"warnings", scene.warnings}};
+    if (!request.report.empty()) {
+        std::ofstream out(request.report);
+        out << report.dump(2) << '\n';
+        if (!out) throw FileError(request.report, "cannot write the report");
+    }
+    if (request.quiet) return 0;
+    std::printf("%s -> %s\n", request.input.string().c_str(), request.output.string().c_str());
+    std::printf("  size            %ju -> %ju bytes, ratio %.2f\n", inputBytes, outputBytes, ratio);
+    std::printf("  triangles       %zu drawn, %zu stored\n", stats.trianglesIn, stats.trianglesStored);
+    std::printf("  tiles           %zu in %zu classes; %zu classes stored once for %zu instances\n", stats.tiles,
+                stats.classes, stats.instancedClasses, stats.instances);
+    std::printf("  symmetric       %zu classes (fundamental regions are not used yet)\n", stats.symmetricClasses);
+    if (stats.attributeMismatches)
+        std::printf("  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
+                    "(--geometry-only instances them anyway)\n", stats.attributeMismatches);
+    if (stats.notWorthInstancing)
+        std::printf("  stored apart    %zu tiles of classes too small for a node per copy to pay\n", stats.notWorthInstancing);
+    std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, request.options.tolerance);
+    if (request.options.instancing)
+        std::printf("  ablation        Draco alone %ju bytes, with instancing %ju bytes\n", dracoAlone, outputBytes);
+    std::printf("  seconds         read %.2f, tiles %.2f, classes %.2f, plan %.2f, write %.2f\n", readSeconds,
+                stats.secondsTiles, stats.secondsClasses, stats.secondsPlan, writeSeconds);
+    return 0;
+}
+
 void addWriteOptions(CLI::App& command, WriteOptions& options) {
     command.add_flag("--no-draco", [&options](std::int64_t) { options.draco = false; },
                      "glTF: write plain accessors instead of KHR_draco_mesh_compression");
@@ -233,8 +352,35 @@ int main(int argc, char** argv) {
     bool tiles = false;
     detect->add_flag("--tiles", tiles, "split into tiles: congruence classes, placements, the assembly's group");
 
+    CompressRequest compressRequest;
+    CLI::App* compress = app.add_subcommand(
+        "compress", "Store every repeated part once (the default command: symcompress IN -o OUT works too)");
+    compress->add_option("IN", compressRequest.input, "input scene file")->required();
+    compress->add_option("-o,--output", compressRequest.output, "output file (.glb .gltf .x3d)")->required();
+    compress->add_option("--tolerance", compressRequest.options.tolerance,
+                         "congruence and symmetry tolerance, relative to the scene's bounding-box diagonal")
+        ->check(CLI::Range(1e-9, 0.5))
+        ->capture_default_str();
+    compress->add_flag("--no-instancing", [&](std::int64_t) { compressRequest.options.instancing = false; },
+                       "store every tile as it is (Draco alone)");
+    compress->add_flag("--no-symmetry", "instancing only (the default for now: fundamental regions are not used yet)");
+    compress->add_flag("--geometry-only", compressRequest.options.geometryOnly,
+                       "instance congruent tiles even when their normals, texture coordinates or colours differ");
+    compress->add_option("--report", compressRequest.report, "also write the size report as JSON");
+    compress->add_option("--threads", compressRequest.options.threads, "threads (0: all cores)")->capture_default_str();
+    compress->add_flag("-q,--quiet", compressRequest.quiet, "print nothing but errors");
+    addWriteOptions(*compress, compressRequest.write);
+
+    // symcompress IN -o OUT: the compress command without its name.
+    std::vector<std::string> arguments(argv + 1, argv + argc);
+    const std::set<std::string> commands{"info", "convert", "detect", "compress"};
+    const bool named = std::any_of(arguments.begin(), arguments.end(), [&](const std::string& a) { return commands.count(a) > 0; });
+    const bool onlyAsking = !arguments.empty() && (arguments[0] == "-h" || arguments[0] == "--help" || arguments[0] == "--version");
+    if (!arguments.empty() && !named && !onlyAsking) arguments.insert(arguments.begin(), "compress");
+    std::reverse(arguments.begin(), arguments.end());  // CLI11 takes them last first
+
     try {
-        app.parse(argc, argv);
+        app.parse(arguments);
     } catch (const CLI::ParseError& error) {
         const int status = app.exit(error);
         return status == 0 ? 0 : kExitBadInput;
@@ -243,6 +389,7 @@ int main(int argc, char** argv) {
     try {
         if (*info) return runInfo(infoFile, json);
         if (*convert) return runConvert(input, output, writeOptions, quiet);
+        if (*compress) return runCompress(compressRequest);
         if (*detect) return tiles ? runDetectTiles(detectFile, symmetryOptions, json) : runDetect(detectFile, symmetryOptions, json);
     } catch (const FileError& error) {
         std::fprintf(stderr, "symcompress: %s\n", error.what());

@@ -1,0 +1,63 @@
+// The compression plan (paper 7.1, ALGORITHM.md 8): every congruence class whose members reproduce the
+// prototype (geometry and attributes) is stored once and drawn by one node per member; the rest is stored
+// as it is. And the check a decoder makes: the rebuilt surface against the original or its digest.
+#pragma once
+
+#include "symcompress/congruence.hpp"
+#include "symcompress/scene.hpp"
+
+#include <string>
+
+namespace symcompress {
+
+struct CompressOptions {
+    double tolerance = 1e-5;    // relative to the scene's bounding-box diagonal
+    bool instancing = true;     // false: every tile stored as it is (Draco alone)
+    bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
+    int threads = 0;
+};
+
+struct CompressionStats {
+    std::size_t trianglesIn = 0, trianglesStored = 0;
+    std::size_t tiles = 0, classes = 0;
+    std::size_t instancedClasses = 0;  // classes stored once and drawn several times
+    std::size_t instances = 0;         // nodes drawing a shared mesh
+    std::size_t symmetricClasses = 0;  // classes whose prototype has a symmetry group of order > 1
+    std::size_t attributeMismatches = 0;  // congruent members stored apart because their attributes differ
+    std::size_t notWorthInstancing = 0;   // members of classes too small for a node each to pay
+    double maxDeviation = 0;              // of the placements used, relative to the diagonal
+    double secondsTiles = 0, secondsClasses = 0, secondsPlan = 0;
+};
+
+// The digest of the original surface that a decoder checks the rebuilt one against.
+struct SurfaceDigest {
+    std::size_t triangles = 0;
+    double area = 0;
+    Eigen::AlignedBox3d bounds;
+    double tolerance = 0;  // relative to the bounds' diagonal
+    std::string json() const;                              // {"symcompress_digest": {...}}
+    static bool fromJson(const std::string& text, SurfaceDigest& digest);  // false when absent
+};
+
+SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance);
+
+struct CompressedScene {
+    Scene scene;
+    CompressionStats stats;
+    SurfaceDigest digest;
+};
+
+// The input's materials and textures are kept; node names and hierarchy are not (the output is one level
+// of instances), which the caller reports.
+CompressedScene compressScene(const Scene& input, const CompressOptions& options = {});
+
+struct SurfaceComparison {
+    double maxDeviation = 0;  // two-sided vertex-to-surface distance, relative to the reference's diagonal
+    double areaRatio = 0;     // rebuilt area / reference area
+    bool sameBounds = false;  // within maxDeviation's tolerance
+};
+
+// The rebuilt surface against the reference: vertex-to-surface both ways (d_A), area, bounds.
+SurfaceComparison compareSurfaces(const TriangleMesh& rebuilt, const TriangleMesh& reference, double boundsTolerance);
+
+}  // namespace symcompress
