@@ -2,12 +2,15 @@
 // every class once per member.
 #include "symcompress/compress.hpp"
 
+#include "symcompress/fundamental_region.hpp"
 #include "symcompress/scene_ops.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <limits>
 #include <map>
+#include <optional>
 
 namespace symcompress {
 namespace {
@@ -15,12 +18,23 @@ namespace {
 constexpr double kNormalCosine = 0.999;  // normals within 2.6 degrees are the same
 constexpr double kTexcoordTolerance = 1e-4;
 constexpr double kColorTolerance = 1e-3;
-// A rough cost model of the glTF output, in bytes, measured on the shared models: a Draco-compressed
-// triangle (1.4 bytes for the rock, positions only, more with attributes), a node with its matrix, a
-// mesh with its accessors and buffer view.
-constexpr double kBytesPerTriangle = 1.5;
-constexpr double kBytesPerInstance = 200;
-constexpr double kBytesPerMesh = 500;
+// The fundamental region of a tile under a group, if its copies rebuild the tile within the tolerance.
+std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vector<Eigen::Matrix3d>& group,
+                                          const Eigen::Vector3d& center, double tolerance) {
+    try {
+        RegionOptions regionOptions;
+        regionOptions.groupTolerance = 1e-5;
+        FundamentalRegion region = computeFundamentalRegion(tile, group, center, regionOptions);
+        const Primitive rebuilt = rebuildFromRegion(region);
+        TriangleMesh a{rebuilt.positions, rebuilt.triangles}, b{tile.positions, tile.triangles};
+        const SurfaceComparison check = compareSurfaces(a, b, 1e-6);
+        const double diagonal = digestOf(b, 0).bounds.diagonal().norm();
+        if (check.maxDeviation * diagonal > tolerance || std::abs(check.areaRatio - 1) > 1e-6) return std::nullopt;
+        return region;
+    } catch (const std::invalid_argument&) {
+        return std::nullopt;  // a group the region code does not take (e.g. not closed within its tolerance)
+    }
+}
 
 // Whether the prototype placed by j reproduces the member one vertex to one vertex, attributes included.
 bool reproduces(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance) {
@@ -150,31 +164,60 @@ CompressedScene compressScene(const Scene& input, const CompressOptions& options
                 apart.push_back(std::move(member));
             }
         }
-        // Instancing pays when the copies it saves outweigh a node per member and a mesh of its own.
-        const double saved = double(placed.size() - 1) * double(prototype.triangles.size()) * kBytesPerTriangle;
-        const double cost = double(placed.size()) * kBytesPerInstance + kBytesPerMesh;
-        if (placed.size() == 1 || saved <= cost) {
-            stats.notWorthInstancing += placed.size() > 1 ? placed.size() : 0;
+        for (const Primitive& member : apart) append(unique[member.material], member);
+
+        // The prototype's symmetries that also carry its attributes onto themselves: the group its
+        // fundamental region may use (a textured part is rarely symmetric in its texture coordinates).
+        const Eigen::Vector3d center = shape.moments.centroid;
+        std::optional<FundamentalRegion> region;
+        if (options.regions && shape.symmetry.order() > 1) {
+            std::vector<Eigen::Matrix3d> group;
+            for (const Symmetry& g : shape.symmetry.elements) {
+                Isometry about;
+                about.linear = g.linear;
+                about.translation = center - g.linear * center;
+                if (options.geometryOnly || reproduces(prototype, prototype, about, tolerance)) group.push_back(g.linear);
+            }
+            if (group.size() > 1) region = regionOf(prototype, group, center, tolerance);
+        }
+        // Store whichever costs least: every copy as it is, the tile once with a node per copy, or its
+        // fundamental region once with a node per copy and group element.
+        const double copies = double(placed.size()), triangles = double(prototype.triangles.size());
+        const double asIs = copies * triangles * options.bytesPerTriangle;
+        const double instanced = triangles * options.bytesPerTriangle + copies * options.bytesPerInstance + options.bytesPerMesh;
+        const double regional = region ? double(region->region.triangles.size()) * options.bytesPerTriangle +
+                                             copies * double(region->instances.size()) * options.bytesPerInstance + options.bytesPerMesh
+                                       : std::numeric_limits<double>::infinity();
+        if (asIs <= std::min(instanced, regional)) {
+            if (placed.size() > 1) stats.notWorthInstancing += placed.size();
             for (std::size_t i : placed) append(unique[prototype.material], i == 0 ? prototype : tilePrimitive(tiles[c.members[i]], soup));
-            for (const Primitive& member : apart) append(unique[member.material], member);
             continue;
         }
-        for (const Primitive& member : apart) append(unique[member.material], member);
+        const bool useRegion = regional < instanced;
         // The shared mesh is stored about the prototype's centroid (a small range for quantization).
-        const Eigen::Vector3d center = classification.shapes[c.prototype].moments.centroid;
         Mesh mesh;
-        mesh.name = "class " + std::to_string(k);
-        Primitive local = prototype;
+        mesh.name = "class " + std::to_string(k) + (useRegion ? " (fundamental region)" : "");
+        Primitive local = useRegion ? region->region : prototype;
         for (auto& p : local.positions) p -= center;
         mesh.primitives.push_back(std::move(local));
         const int meshIndex = int(out.meshes.size());
         out.meshes.push_back(std::move(mesh));
-        ++stats.instancedClasses;
+        if (placed.size() > 1) ++stats.instancedClasses;
+        if (useRegion) ++stats.regionClasses;
+        // Region copy j about the centroid: x -> center + g_j x for x stored about the centroid.
+        std::vector<Eigen::Matrix4d> copiesInTile;
+        for (std::size_t j = 0; j < (useRegion ? region->instances.size() : 1); ++j) {
+            Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+            if (useRegion) m.topLeftCorner<3, 3>() = region->instances[j];
+            m.topRightCorner<3, 1>() = center;
+            copiesInTile.push_back(m);
+        }
         for (std::size_t i : placed) {
-            Isometry placement = placements[i];
-            placement.translation += placement.linear * center;
-            addNode(meshIndex, placement.matrix(), "class " + std::to_string(k) + " #" + std::to_string(i));
-            ++stats.instances;
+            for (std::size_t j = 0; j < copiesInTile.size(); ++j) {
+                addNode(meshIndex, placements[i].matrix() * copiesInTile[j],
+                        "class " + std::to_string(k) + " #" + std::to_string(i) + (useRegion ? "." + std::to_string(j) : ""));
+                ++stats.instances;
+            }
             stats.maxDeviation = std::max(stats.maxDeviation, c.deviations[i]);
         }
     }

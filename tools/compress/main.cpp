@@ -228,24 +228,30 @@ int runCompress(const CompressRequest& request) {
     const double readSeconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (!request.quiet)
         for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-    const CompressedScene compressed = compressScene(scene, request.options);
+    CompressOptions options = request.options;
+    if (formatFromExtension(request.output) == FileFormat::X3d) useX3dCosts(options);
+    const CompressedScene compressed = compressScene(scene, options);
     WriteOptions write = request.write;
     write.extrasJson = compressed.digest.json();
     const auto writeStart = Clock::now();
     writeScene(compressed.scene, request.output, write, {request.input});
     const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
 
-    // Ablation: the same scene with every tile stored as it is (Draco alone, no instancing).
-    std::uintmax_t dracoAlone = 0;
-    if (request.options.instancing) {
-        CompressOptions plain = request.options;
-        plain.instancing = false;
+    // Ablation: the same scene with every tile stored as it is (Draco alone), and with instancing but no
+    // fundamental regions.
+    auto sizeWith = [&](CompressOptions variant) -> std::uintmax_t {
         const fs::path temporary = request.output.parent_path() / (".symcompress-ablation-" + request.output.filename().string());
-        writeScene(compressScene(scene, plain).scene, temporary, write, {request.input});
+        writeScene(compressScene(scene, variant).scene, temporary, write, {request.input});
         std::error_code error;
-        dracoAlone = fs::file_size(temporary, error);
+        const std::uintmax_t size = fs::file_size(temporary, error);
         fs::remove(temporary, error);
-    }
+        return size;
+    };
+    CompressOptions plain = options, instancingOnly = options;
+    plain.instancing = false;
+    instancingOnly.regions = false;
+    const std::uintmax_t dracoAlone = request.options.instancing ? sizeWith(plain) : 0;
+    const std::uintmax_t withInstancing = request.options.instancing && request.options.regions ? sizeWith(instancingOnly) : 0;
     const CompressionStats& stats = compressed.stats;
     std::uintmax_t inputBytes = sceneBytes(request.input);
     const std::uintmax_t outputBytes = sceneBytes(request.output);
@@ -276,10 +282,14 @@ int runCompress(const CompressRequest& request) {
                             {"classes", stats.secondsClasses},
                             {"plan", stats.secondsPlan},
                             {"write", writeSeconds}}},
+                          {"region_classes", stats.regionClasses},
                           {"ablation",
-                           {{"draco_alone", request.options.instancing ? nlohmann::json(dracoAlone) : nlohmann::json(outputBytes)},
-                            {"instancing", request.options.instancing ? nlohmann::json(outputBytes) : nlohmann::json(nullptr)},
-                            {"instancing_and_regions", nullptr},
+                           {{"draco_alone", request.options.instancing ? dracoAlone : outputBytes},
+                            {"instancing", !request.options.instancing ? nlohmann::json(nullptr)
+                                           : request.options.regions ? nlohmann::json(withInstancing)
+                                                                     : nlohmann::json(outputBytes)},
+                            {"instancing_and_regions", request.options.instancing && request.options.regions
+                                                           ? nlohmann::json(outputBytes) : nlohmann::json(nullptr)},
                             {"final", outputBytes}}},
                           {"warnings", scene.warnings}};
     if (!request.report.empty()) {
@@ -293,15 +303,19 @@ int runCompress(const CompressRequest& request) {
     std::printf("  triangles       %zu drawn, %zu stored\n", stats.trianglesIn, stats.trianglesStored);
     std::printf("  tiles           %zu in %zu classes; %zu classes stored once for %zu instances\n", stats.tiles,
                 stats.classes, stats.instancedClasses, stats.instances);
-    std::printf("  symmetric       %zu classes (fundamental regions are not used yet)\n", stats.symmetricClasses);
+    std::printf("  symmetric       %zu classes, %zu stored as their fundamental region\n", stats.symmetricClasses,
+                stats.regionClasses);
     if (stats.attributeMismatches)
         std::printf("  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
                     "(--geometry-only instances them anyway)\n", stats.attributeMismatches);
     if (stats.notWorthInstancing)
         std::printf("  stored apart    %zu tiles of classes too small for a node per copy to pay\n", stats.notWorthInstancing);
     std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, request.options.tolerance);
-    if (request.options.instancing)
-        std::printf("  ablation        Draco alone %ju bytes, with instancing %ju bytes\n", dracoAlone, outputBytes);
+    if (request.options.instancing && request.options.regions)
+        std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju, with regions too %ju\n", dracoAlone,
+                    withInstancing, outputBytes);
+    else if (request.options.instancing)
+        std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju\n", dracoAlone, outputBytes);
     std::printf("  seconds         read %.2f, tiles %.2f, classes %.2f, plan %.2f, write %.2f\n", readSeconds,
                 stats.secondsTiles, stats.secondsClasses, stats.secondsPlan, writeSeconds);
     return 0;
@@ -363,7 +377,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     compress->add_flag("--no-instancing", [&](std::int64_t) { compressRequest.options.instancing = false; },
                        "store every tile as it is (Draco alone)");
-    compress->add_flag("--no-symmetry", "instancing only (the default for now: fundamental regions are not used yet)");
+    compress->add_flag("--no-symmetry", [&](std::int64_t) { compressRequest.options.regions = false; },
+                       "instancing only: no fundamental regions");
     compress->add_flag("--geometry-only", compressRequest.options.geometryOnly,
                        "instance congruent tiles even when their normals, texture coordinates or colours differ");
     compress->add_option("--report", compressRequest.report, "also write the size report as JSON");

@@ -66,8 +66,10 @@ int main(int argc, char** argv) {
             out["area_ratio"] = comparison.areaRatio;
             out["same_bounds"] = comparison.sameBounds;
             out["triangles_original"] = referenceMesh.triangles.size();
+            // Triangle counts may differ: fundamental regions split the triangles their planes cut. The
+            // surfaces must agree: distance both ways, area, bounds.
             verified = comparison.maxDeviation <= allowed && std::abs(comparison.areaRatio - 1) <= 10 * allowed &&
-                       comparison.sameBounds && referenceMesh.triangles.size() == rebuilt.triangles.size();
+                       comparison.sameBounds;
         } else if (haveDigest) {
             allowed += stored.tolerance;
             const double diagonal = stored.bounds.isEmpty() ? 0 : stored.bounds.diagonal().norm();
@@ -79,8 +81,8 @@ int main(int argc, char** argv) {
             out["area_ratio"] = stored.area > 0 ? rebuiltDigest.area / stored.area : 0;
             out["bounds_deviation"] = boundsError;
             out["max_deviation"] = boundsError;  // the digest has no surface: the bounds are what can be compared
-            verified = stored.triangles == rebuiltDigest.triangles && boundsError <= allowed &&
-                       std::abs(out["area_ratio"].get<double>() - 1) <= 10 * allowed;
+            out["triangles_original"] = stored.triangles;
+            verified = boundsError <= allowed && std::abs(out["area_ratio"].get<double>() - 1) <= 10 * allowed;
         } else {
             out["against"] = nullptr;
         }
