@@ -120,6 +120,9 @@ TEST_CASE("Symmetric parts are stored as their fundamental regions where that pa
     const nlohmann::json verified =
         runJson(kSymdecompress + " " + quoted(output) + " -o " + quoted(flat) + " --json --verify " + quoted(input));
     CHECK(verified["verified"] == true);
+    const nlohmann::json fromDigest = runJson(kSymdecompress + " " + quoted(output) + " -o " + quoted(flat) + " --json");
+    CHECK(fromDigest["against"] == "digest");  // read back from the X3D head's meta
+    CHECK(fromDigest["verified"] == true);
     if (x3dInteropAvailable()) {
         // X_ITE draws 48 shapes enclosing the volume of the original (converted to X3D as it is).
         const auto plain = folder / "plain.x3d";

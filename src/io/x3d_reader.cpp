@@ -160,6 +160,9 @@ std::vector<int> X3dReader::read() {
     if (!parsed)
         throw FileError(file_, std::string("malformed XML at byte ") + std::to_string(parsed.offset) + ": " +
                                    parsed.description());
+    // symcompress's digest of the original, for symdecompress (see the X3D writer).
+    for (pugi::xml_node meta : document_.child("X3D").child("head").children("meta"))
+        if (std::string(meta.attribute("name").value()) == "symcompress") scene_.extrasJson = meta.attribute("content").value();
     pugi::xml_node scene = document_.child("X3D").child("Scene");
     if (!scene) throw FileError(file_, "no <X3D><Scene> element (only the XML encoding of X3D is read)");
     std::vector<int> roots;
