@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
     const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
     const std::vector<std::pair<const char*, std::function<Scene()>>> samples = {
         {"bolts.glb", samples::makeBoltsScene},
+        {"three_spheres.glb", samples::makeThreeSpheresScene},
+        {"lamp.glb", samples::makeLampScene},
     };
     WriteOptions plain;
     plain.draco = false;
