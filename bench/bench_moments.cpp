@@ -1,6 +1,7 @@
 // Throughput of the exact moment coefficients (issue 3): seconds and triangles per second for meshes of
 // 10k to 10M triangles, orders 2..8 and 2..16, on 1 and 2 threads.
 //   bench_moments [max-triangles]      (default 10000000)
+#include "bench_meshes.hpp"
 #include "symcompress/moments.hpp"
 
 #include <chrono>
@@ -13,27 +14,9 @@ using namespace symcompress;
 
 namespace {
 
-// A bumpy torus as a grid of about `triangles` triangles: vertices shared, no symmetry in the bumps.
+// A bumpy torus: no symmetry in the bumps.
 TriangleMesh bumpyTorus(std::size_t triangles) {
-    const std::size_t rows = std::size_t(std::sqrt(triangles / 2.0)), columns = triangles / (2 * rows);
-    TriangleMesh mesh;
-    mesh.positions.reserve(rows * columns);
-    const double pi = 3.14159265358979323846;
-    for (std::size_t i = 0; i < rows; ++i)
-        for (std::size_t j = 0; j < columns; ++j) {
-            const double u = 2 * pi * i / rows, v = 2 * pi * j / columns;
-            const double r = 0.4 + 0.02 * std::sin(7 * u + 3 * v) * std::cos(5 * v);
-            mesh.positions.emplace_back((1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u),
-                                        r * std::sin(v));
-        }
-    mesh.triangles.reserve(2 * rows * columns);
-    auto index = [&](std::size_t i, std::size_t j) { return std::uint32_t((i % rows) * columns + j % columns); };
-    for (std::size_t i = 0; i < rows; ++i)
-        for (std::size_t j = 0; j < columns; ++j) {
-            mesh.triangles.push_back({index(i, j), index(i + 1, j), index(i + 1, j + 1)});
-            mesh.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i, j + 1)});
-        }
-    return mesh;
+    return bench::torusGrid(triangles, 1, [](double u, double v) { return 0.4 + 0.02 * std::sin(7 * u + 3 * v) * std::cos(5 * v); });
 }
 
 double secondsFor(const TriangleMesh& mesh, const MomentOptions& options) {

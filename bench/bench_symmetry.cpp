@@ -2,6 +2,7 @@
 //   bench_symmetry robustness MODELS_DIR [DATA_FILE]   angular error of the axis found under vertex noise
 //                                                      and triangle deletion; DATA_FILE gets a gnuplot table
 //   bench_symmetry speed [MAX_TRIANGLES]               detection time and its parts, 10k .. 1M triangles
+#include "bench_meshes.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "symcompress/symmetry.hpp"
@@ -100,24 +101,7 @@ int robustness(const std::string& models, const std::string& dataFile) {
 
 // A torus with 8 bumps around its axis (group D8h), as a grid of about `triangles` triangles.
 TriangleMesh bumpyTorus(std::size_t triangles) {
-    std::size_t rows = std::size_t(std::sqrt(triangles / 2.0));
-    rows -= rows % 8;
-    const std::size_t columns = triangles / (2 * rows);
-    TriangleMesh mesh;
-    for (std::size_t i = 0; i < rows; ++i)
-        for (std::size_t j = 0; j < columns; ++j) {
-            const double u = 2 * kPi * i / rows, v = 2 * kPi * j / columns;
-            const double r = 0.4 + 0.05 * std::cos(8 * u) * std::cos(v);
-            mesh.positions.emplace_back((1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u),
-                                        r * std::sin(v));
-        }
-    auto index = [&](std::size_t i, std::size_t j) { return std::uint32_t((i % rows) * columns + j % columns); };
-    for (std::size_t i = 0; i < rows; ++i)
-        for (std::size_t j = 0; j < columns; ++j) {
-            mesh.triangles.push_back({index(i, j), index(i + 1, j), index(i + 1, j + 1)});
-            mesh.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i, j + 1)});
-        }
-    return mesh;
+    return bench::torusGrid(triangles, 8, [](double u, double v) { return 0.4 + 0.05 * std::cos(8 * u) * std::cos(v); });
 }
 
 int speed(std::size_t largest) {

@@ -44,22 +44,6 @@ void appendTo(Primitive& out, const TriangleMesh& part) {
     for (const Triangle& t : part.triangles) out.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
-Scene bakedScene(const std::string& name, Primitive primitive) {
-    Scene scene;
-    Material material;
-    material.name = name + "-material";
-    material.metallicFactor = 0;
-    scene.materials.push_back(material);
-    primitive.material = 0;
-    scene.meshes.push_back({name, {std::move(primitive)}});
-    Node node;
-    node.name = name;
-    node.mesh = 0;
-    scene.nodes.push_back(node);
-    scene.roots.push_back(0);
-    return scene;
-}
-
 }  // namespace
 
 Scene makeThreeSpheresScene() {
@@ -68,7 +52,7 @@ Scene makeThreeSpheresScene() {
         const double angle = 2 * kPi * k / 3;
         appendTo(baked, uvSphere(3 * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0), angle, 12, 6));
     }
-    return bakedScene("three-spheres", std::move(baked));
+    return singleMeshScene("three-spheres", std::move(baked), {0.8, 0.8, 0.8, 1});
 }
 
 Scene makeLampScene() {
@@ -90,7 +74,7 @@ Scene makeLampScene() {
     TriangleMesh base = triangulateFaces(makePyramid(7, 1.5));
     for (auto& p : base.positions) p *= 0.5;
     appendTo(baked, base);
-    return bakedScene("lamp", std::move(baked));
+    return singleMeshScene("lamp", std::move(baked), {0.9, 0.8, 0.5, 1});
 }
 
 }  // namespace symcompress::samples

@@ -4,6 +4,8 @@
 // lobes and rings have mirror planes, but the diagonals that split the chamfer's non-planar quads do not.
 #include "sample_scenes.hpp"
 
+#include "symcompress/scene_ops.hpp"
+
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -92,25 +94,19 @@ Primitive bakeCopies(const Primitive& part, int copies, int mirrorEvery, double 
     return out;
 }
 
+}  // namespace
+
 Scene singleMeshScene(const std::string& name, Primitive primitive, const Eigen::Vector4d& colour) {
-    Scene scene;
     Material material;
     material.name = name + "-material";
     material.baseColorFactor = colour;
     material.metallicFactor = 0.8;
     material.roughnessFactor = 0.35;
-    scene.materials.push_back(material);
     primitive.material = 0;
-    scene.meshes.push_back({name, {std::move(primitive)}});
-    Node node;
-    node.name = name;
-    node.mesh = 0;
-    scene.nodes.push_back(node);
-    scene.roots.push_back(0);
+    Scene scene = sceneOfOneMesh(name, std::move(primitive));
+    scene.materials.push_back(material);
     return scene;
 }
-
-}  // namespace
 
 Scene makeBoltsScene() {
     return singleMeshScene("bolts", bakeCopies(makeBolt(), 12, 3, 12.0, 20261122u), {0.7, 0.7, 0.75, 1});

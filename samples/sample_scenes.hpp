@@ -4,7 +4,12 @@
 
 #include "symcompress/scene.hpp"
 
+#include <string>
+
 namespace symcompress::samples {
+
+// One mesh of one primitive, drawn once, with one material of the given base colour.
+Scene singleMeshScene(const std::string& name, Primitive primitive, const Eigen::Vector4d& colour);
 
 // 12 copies of a bolt baked into one mesh at random placements, every third one mirrored.
 // Expected: 12 tiles, 1 congruence class (4 members mirrored), tile group C6 (order 6).

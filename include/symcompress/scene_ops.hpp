@@ -10,6 +10,9 @@
 
 namespace symcompress {
 
+// A scene drawing one mesh of one primitive once, at the identity (materials are the caller's).
+Scene sceneOfOneMesh(const std::string& name, Primitive primitive);
+
 // Throws std::invalid_argument naming the first broken invariant of scene.hpp.
 void validateScene(const Scene& scene);
 

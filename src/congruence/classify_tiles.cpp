@@ -3,9 +3,9 @@
 #include "symcompress/congruence.hpp"
 
 #include "find_isometry.hpp"
+#include "../common/with_threads.hpp"
 
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -31,13 +31,6 @@ Eigen::Matrix3d secondMomentsOf(const SurfaceMoments& moments) {
         at(1, 0), at(2, 0), at(1, 1),   //
         at(0, 1), at(1, 1), at(0, 2);
     return s;
-}
-
-template <typename Body>
-void withThreads(int threads, Body body) {
-    if (threads <= 0) return body();
-    tbb::task_arena arena(threads);
-    arena.execute(body);
 }
 
 }  // namespace

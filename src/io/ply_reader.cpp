@@ -2,6 +2,7 @@
 // length (polygons triangulated); properties we do not use are skipped.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 #include "symcompress/triangulate_polygon.hpp"
 #include "text_scanner.hpp"
 
@@ -239,11 +240,11 @@ Scene readPly(const fs::path& file) {
         if (triangles.empty()) ++skippedPolygons;
         for (const Triangle& local : triangles) primitive.triangles.push_back({face[local[0]], face[local[1]], face[local[2]]});
     }
-    Scene scene;
+    std::vector<std::string> warnings;
     auto dropIfNotFinite = [&](auto& attribute, const char* name) {
         for (const auto& value : attribute)
             if (!value.allFinite()) {
-                scene.warnings.push_back(file.filename().string() + ": " + name + " with NaN or infinite values dropped");
+                warnings.push_back(file.filename().string() + ": " + name + " with NaN or infinite values dropped");
                 attribute.clear();
                 return;
             }
@@ -252,17 +253,13 @@ Scene readPly(const fs::path& file) {
     dropIfNotFinite(primitive.texcoords, "texture coordinates");
     dropIfNotFinite(primitive.colors, "colours");
     if (skippedPolygons)
-        scene.warnings.push_back(file.filename().string() + ": " + std::to_string(skippedPolygons) +
+        warnings.push_back(file.filename().string() + ": " + std::to_string(skippedPolygons) +
                                  " faces with fewer than 3 distinct corners or no area skipped");
     if (otherElements)
-        scene.warnings.push_back(file.filename().string() + ": " + std::to_string(otherElements) +
-                                 " elements other than vertex and face ignored");
-    scene.meshes.push_back({file.stem().string(), {std::move(primitive)}});
-    Node node;
-    node.name = file.stem().string();
-    node.mesh = 0;
-    scene.nodes.push_back(node);
-    scene.roots.push_back(0);
+        warnings.push_back(file.filename().string() + ": " + std::to_string(otherElements) +
+                           " elements other than vertex and face ignored");
+    Scene scene = sceneOfOneMesh(file.stem().string(), std::move(primitive));
+    scene.warnings = std::move(warnings);
     return scene;
 }
 

@@ -2,6 +2,7 @@
 // positions are bit-for-bit equal; welding within a tolerance is the tiles stage's job.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 #include "text_scanner.hpp"
 
 #include <cmath>
@@ -112,14 +113,7 @@ Scene readStl(const fs::path& file) {
     } else {
         throw FileError(file, "too short for a binary STL and not ASCII STL");
     }
-    Scene scene;
-    scene.meshes.push_back({file.stem().string(), {std::move(primitive)}});
-    Node node;
-    node.name = file.stem().string();
-    node.mesh = 0;
-    scene.nodes.push_back(node);
-    scene.roots.push_back(0);
-    return scene;
+    return sceneOfOneMesh(file.stem().string(), std::move(primitive));
 }
 
 }  // namespace symcompress

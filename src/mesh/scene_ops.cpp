@@ -193,4 +193,15 @@ TriangleMesh worldMesh(const Scene& scene) {
     return mesh;
 }
 
+Scene sceneOfOneMesh(const std::string& name, Primitive primitive) {
+    Scene scene;
+    scene.meshes.push_back({name, {std::move(primitive)}});
+    Node node;
+    node.name = name;
+    node.mesh = 0;
+    scene.nodes.push_back(node);
+    scene.roots.push_back(0);
+    return scene;
+}
+
 }  // namespace symcompress

@@ -9,12 +9,12 @@
 // So each triangle costs a few multiply-adds per monomial, and the factors beta! / (d + 2)! are applied once
 // to the sums.
 #include "moment_basis.hpp"
+#include "../common/with_threads.hpp"
 
 #include "symcompress/moments.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/task_arena.h>
 
 #include <Eigen/Geometry>
 
@@ -129,13 +129,6 @@ private:
     Lanes twiceArea_ = {};
     int queued_ = 0;
 };
-
-template <typename Body>
-auto withThreads(int threads, Body body) {
-    if (threads <= 0) return body();
-    tbb::task_arena arena(threads);
-    return arena.execute(body);
-}
 
 constexpr std::size_t kGrain = 4096;  // triangles per task: large enough to amortize, small enough to balance
 

@@ -3,12 +3,12 @@
 #include "symcompress/symmetry.hpp"
 
 #include "candidate_axes.hpp"
+#include "../common/with_threads.hpp"
 #include "point_group_closure.hpp"
 #include "shape_verifier.hpp"
 
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -129,13 +129,6 @@ std::vector<int> divisorsDescending(int n) {
     for (int d = n; d >= 2; --d)
         if (n % d == 0) divisors.push_back(d);
     return divisors;
-}
-
-template <typename Body>
-void withThreads(int threads, Body body) {
-    if (threads <= 0) return body();
-    tbb::task_arena arena(threads);
-    arena.execute(body);
 }
 
 }  // namespace
