@@ -29,11 +29,12 @@ struct TileShape {
     MomentCoefficients moments;
     CongruenceDescriptor descriptor;
     Eigen::Matrix3d secondMoments = Eigen::Matrix3d::Zero();  // integral of s s^T about the centroid
-    SymmetryGroup symmetry;
+    SymmetryGroup symmetry;  // detected on class prototypes; a member's is its prototype's, carried over by J
 };
 
 // Invariant: members[0] == prototype; placements[i] takes the prototype onto members[i] (identity for
-// the prototype itself) within the tolerance; every member has the prototype's material and group.
+// the prototype itself) within the tolerance; every member has the prototype's material (and, being
+// congruent, a conjugate group).
 struct CongruenceClass {
     std::size_t prototype = 0;
     std::vector<std::size_t> members;
@@ -44,7 +45,7 @@ struct CongruenceClass {
 struct CongruenceOptions {
     double tolerance = 1e-5;  // relative to the scene's bounding-box diagonal (d_A of placements and symmetries)
     int maxOrder = 8;         // moment orders in the descriptor
-    bool symmetries = true;   // find each tile's symmetry group (and require equal groups in a class)
+    bool symmetries = true;   // find each class's symmetry group
     int threads = 0;
 };
 
@@ -57,7 +58,7 @@ struct TileClassification {
 };
 
 // Every tile in exactly one class. Tiles are grouped by area (a sorted index, never all pairs), then
-// descriptor, material and symmetry group, then checked geometrically.
+// material and descriptor, then checked geometrically (which also keeps tiles of different groups apart).
 TileClassification classifyTiles(const std::vector<Tile>& tiles, const CongruenceOptions& options = {});
 
 }  // namespace symcompress

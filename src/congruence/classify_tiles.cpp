@@ -50,7 +50,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
     result.sceneDiagonal = sceneBox.isEmpty() ? 0 : sceneBox.diagonal().norm();
     const double tolerance = options.tolerance * result.sceneDiagonal;  // absolute
 
-    // Per tile, in parallel: moments, descriptor, second moments, symmetry group.
+    // Per tile, in parallel: moments, descriptor, second moments.
     result.shapes.resize(tiles.size());
     withThreads(options.threads, [&] {
         tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t i) {
@@ -68,13 +68,6 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
             shape.moments = momentCoefficients(surface);
             shape.descriptor = computeCongruenceDescriptor(shape.moments);
             shape.secondMoments = secondMomentsOf(surface);
-            if (options.symmetries && shape.diagonal > 0) {
-                SymmetryOptions symmetryOptions;
-                symmetryOptions.tolerance =
-                    std::min(kMaxTileTolerance, std::max(options.tolerance, tolerance / shape.diagonal));
-                symmetryOptions.threads = 1;
-                shape.symmetry = detectSymmetries(tile.mesh, symmetryOptions);
-            }
         });
     });
 
@@ -97,9 +90,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
              ++it) {
             CongruenceClass& candidate = result.classes[it->second];
             const TileShape& prototype = result.shapes[candidate.prototype];
-            if (prototype.material != shape.material || prototype.symmetry.name != shape.symmetry.name ||
-                prototype.symmetry.order() != shape.symmetry.order() ||
-                descriptorDifference(prototype.descriptor, shape.descriptor) > epsilon)
+            if (prototype.material != shape.material || descriptorDifference(prototype.descriptor, shape.descriptor) > epsilon)
                 continue;
             ++result.descriptorMatches;
             if (!verifier) verifier = std::make_unique<ShapeVerifier>(tiles[tile].mesh, shape.moments.centroid);
@@ -125,6 +116,35 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
         result.classes.push_back(std::move(created));
         prototypeVerifiers.push_back(verifier ? std::move(verifier)
                                               : std::make_unique<ShapeVerifier>(tiles[tile].mesh, shape.moments.centroid));
+    }
+
+    // The group of each prototype, in parallel; a member's group is its prototype's carried over by its
+    // placement J (J g J^-1), congruent tiles having conjugate groups. Only prototypes need the detector:
+    // the geometric check already keeps tiles of different groups apart.
+    if (options.symmetries) {
+        withThreads(options.threads, [&] {
+            tbb::parallel_for(std::size_t(0), result.classes.size(), [&](std::size_t k) {
+                const std::size_t prototype = result.classes[k].prototype;
+                TileShape& shape = result.shapes[prototype];
+                if (!(shape.diagonal > 0)) return;
+                SymmetryOptions symmetryOptions;
+                symmetryOptions.tolerance = std::min(kMaxTileTolerance, std::max(options.tolerance, tolerance / shape.diagonal));
+                symmetryOptions.threads = 1;
+                shape.symmetry = detectSymmetries(tiles[prototype].mesh, symmetryOptions);
+            });
+        });
+        for (const CongruenceClass& c : result.classes)
+            for (std::size_t i = 1; i < c.members.size(); ++i) {
+                const Isometry& j = c.placements[i];
+                SymmetryGroup& group = result.shapes[c.members[i]].symmetry;
+                group = result.shapes[c.prototype].symmetry;
+                group.centroid = result.shapes[c.members[i]].moments.centroid;
+                for (Symmetry& g : group.elements) g = describeOrthogonal(j.linear * g.linear * j.linear.transpose());
+                for (std::size_t e = 0; e < group.elements.size(); ++e) {
+                    group.elements[e].fold = result.shapes[c.prototype].symmetry.elements[e].fold;
+                    group.elements[e].deviation = result.shapes[c.prototype].symmetry.elements[e].deviation;
+                }
+            }
     }
     return result;
 }

@@ -65,42 +65,51 @@ void criticalCandidates(const MomentFunction& f, const MomentFunction& g, std::v
 
 std::optional<FoundIsometry> findIsometry(const TileShape& from, const ShapeVerifier& fromVerifier, const TileShape& to,
                                           const ShapeVerifier& toVerifier, double tolerance) {
-    std::vector<Eigen::Matrix3d> candidates;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> fromAxes(from.secondMoments), toAxes(to.secondMoments);
     const Eigen::Vector3d& values = fromAxes.eigenvalues();
+    const double screening = std::max(2 * tolerance, tolerance + 2e-4 * from.diagonal);
+    // The first candidate that passes, refined: candidates come in stages, cheapest first.
+    auto firstPassing = [&](const std::vector<Eigen::Matrix3d>& candidates) -> std::optional<FoundIsometry> {
+        for (const Eigen::Matrix3d& candidate : candidates) {
+            if (fromVerifier.farthestOnto(toVerifier, candidate, screening, 2000) > screening) continue;
+            const Eigen::Matrix3d refined = fromVerifier.refineOnto(toVerifier, candidate, 2 * screening);
+            std::optional<FoundIsometry> best;
+            for (const Eigen::Matrix3d& linear : {refined, candidate}) {
+                const double d = deviationBetween(fromVerifier, toVerifier, linear, tolerance);
+                if (d <= tolerance && (!best || d < best->deviation)) best = FoundIsometry{linear, d};
+            }
+            if (best) return best;
+        }
+        return std::nullopt;
+    };
+    std::vector<Eigen::Matrix3d> candidates;
     const double gap = std::min(values[1] - values[0], values[2] - values[1]);
-    if (gap > kDistinctEigenvalues * values[2]) principalCandidates(fromAxes.eigenvectors(), toAxes.eigenvectors(), candidates);
-    // Every order: a low one may be invariant about an axis (M_4 of a 6-fold part), and its critical points
-    // then lie anywhere on circles.
+    if (gap > kDistinctEigenvalues * values[2]) {
+        principalCandidates(fromAxes.eigenvectors(), toAxes.eigenvectors(), candidates);
+        if (auto found = firstPassing(candidates)) return found;
+    }
+    // Degenerate principal axes: the critical directions of each order in turn (a low order may be
+    // invariant about an axis, M_4 of a 6-fold part, and its critical points then lie anywhere on circles).
     for (int order = 4; order <= from.moments.maxOrder; order += 2) {
         const MomentFunction f(from.moments, order), g(to.moments, order);
-        if (f.relativeVariation() > kNoiseVariation) criticalCandidates(f, g, candidates);
+        if (!(f.relativeVariation() > kNoiseVariation)) continue;
+        candidates.clear();
+        criticalCandidates(f, g, candidates);
+        if (auto found = firstPassing(candidates)) return found;
     }
-    {
-        // Moments invariant about an axis (a part turned on a lathe, a high-order gear): the axis with the
-        // distinct eigenvalue, and the direction across it to the farthest point.
-        const int lone = values[1] - values[0] > values[2] - values[1] ? 0 : 2;
-        const Eigen::Vector3d axisFrom = fromAxes.eigenvectors().col(lone), axisTo = toAxes.eigenvectors().col(lone);
-        const Eigen::Matrix3d fromFrame = frameOf(axisFrom, fromVerifier.farthestFromAxis(axisFrom));
-        const Eigen::Matrix3d flip = Eigen::Vector3d(1, 1, -1).asDiagonal();
-        for (double sa : {1.0, -1.0}) {
-            const Eigen::Matrix3d toFrame = frameOf(sa * axisTo, toVerifier.farthestFromAxis(axisTo));
-            candidates.push_back(toFrame * fromFrame.transpose());
-            candidates.push_back(toFrame * flip * fromFrame.transpose());
-        }
+    // Moments invariant about an axis (a part turned on a lathe, a high-order gear): the axis with the
+    // distinct eigenvalue, and the direction across it to the farthest point.
+    candidates.clear();
+    const int lone = values[1] - values[0] > values[2] - values[1] ? 0 : 2;
+    const Eigen::Vector3d axisFrom = fromAxes.eigenvectors().col(lone), axisTo = toAxes.eigenvectors().col(lone);
+    const Eigen::Matrix3d fromFrame = frameOf(axisFrom, fromVerifier.farthestFromAxis(axisFrom));
+    const Eigen::Matrix3d flip = Eigen::Vector3d(1, 1, -1).asDiagonal();
+    for (double sa : {1.0, -1.0}) {
+        const Eigen::Matrix3d toFrame = frameOf(sa * axisTo, toVerifier.farthestFromAxis(axisTo));
+        candidates.push_back(toFrame * fromFrame.transpose());
+        candidates.push_back(toFrame * flip * fromFrame.transpose());
     }
-    const double screening = std::max(2 * tolerance, tolerance + 2e-4 * from.diagonal);
-    std::optional<FoundIsometry> best;
-    for (const Eigen::Matrix3d& candidate : candidates) {
-        if (fromVerifier.farthestOnto(toVerifier, candidate, screening, 2000) > screening) continue;
-        const Eigen::Matrix3d refined = fromVerifier.refineOnto(toVerifier, candidate, 2 * screening);
-        for (const Eigen::Matrix3d& linear : {refined, candidate}) {
-            const double d = deviationBetween(fromVerifier, toVerifier, linear, tolerance);
-            if (d <= tolerance && (!best || d < best->deviation)) best = FoundIsometry{linear, d};
-        }
-        if (best) break;
-    }
-    return best;
+    return firstPassing(candidates);
 }
 
 }  // namespace symcompress

@@ -9,8 +9,18 @@ HomogeneousPolynomial::HomogeneousPolynomial(int degree) : degree_(degree), coef
 }
 
 double HomogeneousPolynomial::operator()(const Eigen::Vector3d& point) const {
-    // Powers of each coordinate, then one pass over the monomials.
-    std::vector<double> xs(degree_ + 1, 1.0), ys(degree_ + 1, 1.0), zs(degree_ + 1, 1.0);
+    // Powers of each coordinate, then one pass over the monomials. On the stack up to degree 64 (the
+    // searches for critical points evaluate these millions of times).
+    constexpr int kStackDegree = 64;
+    double stack[3 * (kStackDegree + 1)];
+    std::vector<double> heap;
+    double* powers = stack;
+    if (degree_ > kStackDegree) {
+        heap.resize(3 * std::size_t(degree_ + 1));
+        powers = heap.data();
+    }
+    double *xs = powers, *ys = powers + degree_ + 1, *zs = powers + 2 * (degree_ + 1);
+    xs[0] = ys[0] = zs[0] = 1;
     for (int e = 1; e <= degree_; ++e) {
         xs[e] = xs[e - 1] * point.x();
         ys[e] = ys[e - 1] * point.y();
