@@ -72,13 +72,12 @@ std::optional<FoundIsometry> findIsometry(const TileShape& from, const ShapeVeri
     auto firstPassing = [&](const std::vector<Eigen::Matrix3d>& candidates) -> std::optional<FoundIsometry> {
         for (const Eigen::Matrix3d& candidate : candidates) {
             if (fromVerifier.farthestOnto(toVerifier, candidate, screening, 2000) > screening) continue;
+            // Exact copies pass as they are; refine only what does not.
+            const double direct = deviationBetween(fromVerifier, toVerifier, candidate, tolerance);
+            if (direct <= tolerance) return FoundIsometry{candidate, direct};
             const Eigen::Matrix3d refined = fromVerifier.refineOnto(toVerifier, candidate, 2 * screening);
-            std::optional<FoundIsometry> best;
-            for (const Eigen::Matrix3d& linear : {refined, candidate}) {
-                const double d = deviationBetween(fromVerifier, toVerifier, linear, tolerance);
-                if (d <= tolerance && (!best || d < best->deviation)) best = FoundIsometry{linear, d};
-            }
-            if (best) return best;
+            const double d = deviationBetween(fromVerifier, toVerifier, refined, tolerance);
+            if (d <= tolerance) return FoundIsometry{refined, d};
         }
         return std::nullopt;
     };

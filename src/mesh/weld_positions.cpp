@@ -30,21 +30,27 @@ std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& pos
     if (positions.empty()) return representative;
     Eigen::AlignedBox3d bounds;
     for (const Eigen::Vector3d& p : positions) bounds.extend(p);
-    // A grid of cells as large as the tolerance: a point's partners lie in its cell or the 26 around it.
-    // Exact welding (tolerance 0) uses a fine grid and exact equality. Cells count from the box's corner
-    // in 64-bit integers, so that tiny tolerances on large scenes cannot overflow.
+    // A grid of cells kCellsPerTolerance times the tolerance: a point's partners lie in its own cell, or in
+    // a neighbouring one only when the point is within the tolerance of that side, so most points need one
+    // lookup. Exact welding (tolerance 0) uses a fine grid and exact equality. Cells count from the box's
+    // corner in 64-bit integers, so that tiny tolerances on large scenes cannot overflow.
+    constexpr double kCellsPerTolerance = 64;
     const double extent = std::max(bounds.diagonal().maxCoeff(), 1e-300);
-    const double cellSize = std::max(tolerance, extent * 1e-12);
+    const double cellSize = std::max(kCellsPerTolerance * tolerance, extent * 1e-12);
     const double toleranceSquared = tolerance > 0 ? tolerance * tolerance : 0.0;
     std::unordered_map<Cell, std::vector<std::uint32_t>, CellHash, CellEqual> grid;
     grid.reserve(positions.size());
     for (std::uint32_t i = 0; i < positions.size(); ++i) {
         const Eigen::Vector3d& p = positions[i];
-        const Cell cell = ((p - bounds.min()).array() / cellSize).floor().cast<long long>();
+        const Eigen::Array3d scaled = (p - bounds.min()).array() / cellSize;
+        const Cell cell = scaled.floor().cast<long long>();
+        // Per axis, the neighbouring cells within reach: -1 and/or +1 only near the cell's sides.
+        const Eigen::Array3d within = scaled - scaled.floor(), reach = Eigen::Array3d::Constant(tolerance / cellSize);
+        const Eigen::Array3i low = (within <= reach).cast<int>(), high = (within >= 1 - reach).cast<int>();
         std::uint32_t found = i;
-        for (int dx = -1; dx <= 1 && found == i; ++dx)
-            for (int dy = -1; dy <= 1 && found == i; ++dy)
-                for (int dz = -1; dz <= 1 && found == i; ++dz) {
+        for (int dx = -low.x(); dx <= high.x() && found == i; ++dx)
+            for (int dy = -low.y(); dy <= high.y() && found == i; ++dy)
+                for (int dz = -low.z(); dz <= high.z() && found == i; ++dz) {
                     auto bucket = grid.find(cell + Cell(dx, dy, dz));
                     if (bucket == grid.end()) continue;
                     for (std::uint32_t candidate : bucket->second)

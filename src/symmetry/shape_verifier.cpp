@@ -8,8 +8,9 @@
 
 namespace symcompress {
 namespace {
-// Cells of the sample-point hash, relative to the diagonal: a few times the rounding of float32 data.
-constexpr double kSnapCell = 1e-6;
+// Cells of the sample-point hash, relative to the diagonal: well above the rounding of float32 data (a
+// small part far from the origin rounds at 1e-5 of its size), well below the spacing of vertices.
+constexpr double kSnapCell = 1e-4;
 }  // namespace
 
 ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& center) : mesh_(mesh), bvh_(mesh), center_(center) {
