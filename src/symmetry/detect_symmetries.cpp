@@ -43,7 +43,7 @@ constexpr double kDeviationSearch = 10;
 constexpr double kKnownElement = 2e-3;
 // Sample points a candidate map is screened on before it is refined.
 constexpr std::size_t kScreeningPoints = 2000;
-// Folds whose rotation fits within this factor of the best-fitting fold's are preferred (see above).
+// Folds whose rotation fits within this factor of the best-fitting fold's are preferred (see below).
 constexpr double kGoodFitFactor = 10;
 // Beyond this many folds passing the preliminary bound about one axis, none is refined (see below).
 constexpr std::size_t kMaxRefinedFolds = 8;
