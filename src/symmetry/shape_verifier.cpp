@@ -11,6 +11,10 @@ namespace {
 // Cells of the sample-point hash, relative to the diagonal: well above the rounding of float32 data (a
 // small part far from the origin rounds at 1e-5 of its size), well below the spacing of vertices.
 constexpr double kSnapCell = 1e-4;
+// A sample point found in the cell stands for the surface only this close (relative to the diagonal, a
+// tenth of the default tolerance): the distance to it is an upper bound of the distance to the surface,
+// tight only at rounding level.
+constexpr double kSnapDistance = 1e-6;
 }  // namespace
 
 ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& center) : mesh_(mesh), bvh_(mesh), center_(center) {
@@ -36,6 +40,7 @@ ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& ce
     Eigen::AlignedBox3d box;
     for (const Eigen::Vector3d& p : samples_) box.extend(p);
     cellSize_ = std::max(kSnapCell * box.diagonal().norm(), 1e-300);
+    snapSquared_ = std::pow(kSnapDistance * box.diagonal().norm(), 2);
     sampleInCell_.reserve(samples_.size());
     for (std::size_t i = 0; i < samples_.size(); ++i) sampleInCell_.emplace(cellKey(samples_[i]), std::uint32_t(i));
 }
@@ -53,7 +58,7 @@ double ShapeVerifier::squaredDistanceToSurface(const Eigen::Vector3d& p, double 
     const auto found = sampleInCell_.find(cellKey(p));
     if (found != sampleInCell_.end()) {
         const double d = (samples_[found->second] - p).squaredNorm();  // the sample point is on the surface
-        if (d <= accept) return d;
+        if (d <= std::min(accept, snapSquared_)) return d;
     }
     return bvh_.squaredDistance(center_ + p, bound);
 }

@@ -61,6 +61,7 @@ private:
     Eigen::Vector3d center_;
     std::vector<Eigen::Vector3d> samples_;  // about center_, in an order that spreads over the shape early
     double cellSize_ = 1;
+    double snapSquared_ = 0;
     std::unordered_map<std::uint64_t, std::uint32_t> sampleInCell_;  // a sample point of each occupied cell
 };
 
