@@ -9,17 +9,21 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace symcompress {
 namespace {
 
-// The largest distance of a vertex of `from` to the surface `to`.
+// The largest distance of a vertex of `from` (one that a triangle uses: a file may list others) to the
+// surface `to`.
 double farthestVertex(const TriangleMesh& from, const TriangleBvh& to) {
+    std::vector<char> used(from.positions.size(), 0);
+    for (const Triangle& t : from.triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, from.positions.size(), 1024), 0.0,
         [&](const tbb::blocked_range<std::size_t>& range, double worst) {
             for (std::size_t i = range.begin(); i != range.end(); ++i)
-                worst = std::max(worst, to.squaredDistance(from.positions[i], std::numeric_limits<double>::infinity()));
+                if (used[i]) worst = std::max(worst, to.squaredDistance(from.positions[i], std::numeric_limits<double>::infinity()));
             return worst;
         },
         [](double a, double b) { return std::max(a, b); });
