@@ -73,10 +73,8 @@ public:
     // The Riemannian Hessian as a 3x3 matrix that acts on the tangent plane at w (w is in its kernel).
     Eigen::Matrix3d tangentialHessian(const Eigen::Vector3d& w) const;
 
-    // Whether the function is constant on the sphere (every band above 0 negligible against band 0):
-    // such an order tells nothing about axes (e.g. M_2 of a cube).
-    bool isConstant(double relativeTolerance = 1e-9) const;
-    // The root-mean-square variation of the function over the sphere relative to its mean.
+    // The root-mean-square variation of the function over the sphere relative to its mean: near 0, the
+    // order tells nothing about axes (e.g. M_2 of a cube).
     double relativeVariation() const { return otherBandsNorm_ / bandZeroNorm_; }
 
 private:

@@ -40,8 +40,4 @@ Eigen::Matrix3d MomentFunction::tangentialHessian(const Eigen::Vector3d& w) cons
     return projector * (hessian - gradient.dot(w) * Eigen::Matrix3d::Identity()) * projector;
 }
 
-bool MomentFunction::isConstant(double relativeTolerance) const {
-    return otherBandsNorm_ <= relativeTolerance * bandZeroNorm_;
-}
-
 }  // namespace symcompress

@@ -119,7 +119,11 @@ int runDetectTiles(const fs::path& file, const SymmetryOptions& options, bool js
     std::vector<std::string> warnings = scene.warnings;
     if (json) {
         nlohmann::json out{{"file", file.string()}, {"tiles", tiles.size()}, {"classes", nlohmann::json::array()},
-                           {"tolerance", options.tolerance}, {"warnings", warnings}};
+                           {"tolerance", options.tolerance}, {"warnings", warnings},
+                           // Tile pairs that passed area, material and descriptor, and how many of them the
+                           // geometric check found congruent.
+                           {"descriptor_matches", classification.descriptorMatches},
+                           {"verified_matches", classification.verifiedMatches}};
         for (const CongruenceClass& c : classification.classes) {
             const TileShape& prototype = classification.shapes[c.prototype];
             nlohmann::json entry{{"prototype", c.prototype}, {"members", c.members.size()}, {"triangles", prototype.triangles},
