@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # Robustness of single-shape detection (paper Fig. 4): runs bench_symmetry on three shared models with
 # vertex noise and triangle deletion, prints the table and draws bench/robustness.png with gnuplot.
-#   bench/plot_robustness.sh [BUILD_DIR]     (gnuplot: apt-get install gnuplot-nox)
+#   bench/plot_robustness.sh [BUILD_DIR]     (installs gnuplot-nox when it is missing)
 set -euo pipefail
+if ! command -v gnuplot >/dev/null; then
+  sudo=""; [[ $(id -u) -eq 0 ]] || sudo="sudo"
+  $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq gnuplot-nox >/dev/null
+fi
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$here/build}"
 data="$(mktemp)"

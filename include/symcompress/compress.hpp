@@ -5,6 +5,7 @@
 
 #include "symcompress/congruence.hpp"
 #include "symcompress/scene.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <string>
 
@@ -63,8 +64,23 @@ struct CompressedScene {
     SurfaceDigest digest;
 };
 
+// What the plan is made from: the tiles and their congruence classes (the expensive part), computed once
+// for any number of plans (the size report's ablation makes three).
+struct SceneAnalysis {
+    std::vector<WorldPrimitive> soup;
+    std::vector<Tile> tiles;
+    TileClassification classification;
+    SurfaceDigest digest;
+    double secondsTiles = 0, secondsClasses = 0;
+};
+
+SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options = {});
+
 // The input's materials and textures are kept; node names and hierarchy are not (the output is one level
-// of instances), which the caller reports.
+// of instances). `options.tolerance` and `threads` must be those the analysis was made with.
+CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysis, const CompressOptions& options = {});
+
+// analyzeScene, then planCompression.
 CompressedScene compressScene(const Scene& input, const CompressOptions& options = {});
 
 struct SurfaceComparison {

@@ -91,27 +91,40 @@ double since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-CompressedScene compressScene(const Scene& input, const CompressOptions& options) {
-    CompressedScene result;
-    CompressionStats& stats = result.stats;
+SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options) {
+    SceneAnalysis analysis;
     auto start = std::chrono::steady_clock::now();
-    const std::vector<WorldPrimitive> soup = flattenScene(input);
-    const std::vector<Tile> tiles = splitIntoTiles(soup);
-    result.digest = digestOf(worldMesh(input), options.tolerance);
-    stats.trianglesIn = result.digest.triangles;
-    stats.tiles = tiles.size();
-    stats.secondsTiles = since(start);
-
+    analysis.soup = flattenScene(input);
+    analysis.tiles = splitIntoTiles(analysis.soup);
+    analysis.digest = digestOf(worldMesh(input), options.tolerance);
+    analysis.secondsTiles = since(start);
     start = std::chrono::steady_clock::now();
     CongruenceOptions congruenceOptions;
     congruenceOptions.tolerance = options.tolerance;
     congruenceOptions.threads = options.threads;
-    congruenceOptions.symmetries = true;
-    const TileClassification classification =
-        options.instancing ? classifyTiles(tiles, congruenceOptions) : TileClassification{};
-    stats.secondsClasses = since(start);
+    if (options.instancing) analysis.classification = classifyTiles(analysis.tiles, congruenceOptions);
+    analysis.secondsClasses = since(start);
+    return analysis;
+}
 
-    start = std::chrono::steady_clock::now();
+CompressedScene compressScene(const Scene& input, const CompressOptions& options) {
+    return planCompression(input, analyzeScene(input, options), options);
+}
+
+CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysis, const CompressOptions& options) {
+    CompressedScene result;
+    CompressionStats& stats = result.stats;
+    const std::vector<WorldPrimitive>& soup = analysis.soup;
+    const std::vector<Tile>& tiles = analysis.tiles;
+    result.digest = analysis.digest;
+    stats.trianglesIn = result.digest.triangles;
+    stats.tiles = tiles.size();
+    stats.secondsTiles = analysis.secondsTiles;
+    stats.secondsClasses = analysis.secondsClasses;
+    static const TileClassification noClasses;
+    const TileClassification& classification = options.instancing ? analysis.classification : noClasses;
+
+    const auto start = std::chrono::steady_clock::now();
     Scene& out = result.scene;
     out.textures = input.textures;
     out.materials = input.materials;
@@ -127,7 +140,7 @@ CompressedScene compressScene(const Scene& input, const CompressOptions& options
     };
     if (!options.instancing)
         for (const Tile& tile : tiles) append(unique[tile.material], tilePrimitive(tile, soup));
-    const double tolerance = options.tolerance * classification.sceneDiagonal;
+    const double tolerance = options.tolerance * analysis.classification.sceneDiagonal;
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         const CongruenceClass& c = classification.classes[k];
         ++stats.classes;

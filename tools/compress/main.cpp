@@ -234,7 +234,8 @@ int runCompress(const CompressRequest& request) {
         for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     CompressOptions options = request.options;
     if (formatFromExtension(request.output) == FileFormat::X3d) useX3dCosts(options);
-    const CompressedScene compressed = compressScene(scene, options);
+    const SceneAnalysis analysis = analyzeScene(scene, options);
+    const CompressedScene compressed = planCompression(scene, analysis, options);
     WriteOptions write = request.write;
     write.extrasJson = compressed.digest.json();
     const auto writeStart = Clock::now();
@@ -245,7 +246,7 @@ int runCompress(const CompressRequest& request) {
     // fundamental regions.
     auto sizeWith = [&](CompressOptions variant) -> std::uintmax_t {
         const fs::path temporary = request.output.parent_path() / (".symcompress-ablation-" + request.output.filename().string());
-        writeScene(compressScene(scene, variant).scene, temporary, write, {request.input});
+        writeScene(planCompression(scene, analysis, variant).scene, temporary, write, {request.input});
         std::error_code error;
         const std::uintmax_t size = fs::file_size(temporary, error);
         fs::remove(temporary, error);
