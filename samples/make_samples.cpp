@@ -14,6 +14,10 @@ int main(int argc, char** argv) {
         {"bolts.glb", samples::makeBoltsScene},
         {"three_spheres.glb", samples::makeThreeSpheresScene},
         {"lamp.glb", samples::makeLampScene},
+        {"pliers.glb", samples::makePliersScene},
+        {"chess.glb", samples::makeChessScene},
+        {"icosahedral.glb", samples::makeIcosahedralScene},
+        {"room.glb", samples::makeRoomScene},
     };
     WriteOptions plain;
     plain.draco = false;

@@ -5,8 +5,32 @@
 #include "symcompress/scene.hpp"
 
 #include <string>
+#include <vector>
 
 namespace symcompress::samples {
+
+// Building blocks (sample_geometry.cpp).
+void appendMesh(Primitive& out, const TriangleMesh& part);
+TriangleMesh boxMesh(const Eigen::Vector3d& centre, const Eigen::Vector3d& size);  // axis-aligned, 12 triangles
+// A closed surface of revolution about the z axis through `base`: profile points (radius, z), the first
+// and last on the axis; `segments` equal sectors, so group C_nv with n = segments.
+TriangleMesh latheMesh(const std::vector<Eigen::Vector2d>& profile, int segments, const Eigen::Vector3d& base);
+// x -> linear x + translation; a mirroring map also reverses the triangles, keeping them outward.
+TriangleMesh transformed(TriangleMesh mesh, const Eigen::Matrix3d& linear, const Eigen::Vector3d& translation);
+
+// A scene of one mesh drawn once, one primitive per material, filled part by part.
+class OneMeshBuilder {
+public:
+    explicit OneMeshBuilder(std::string name);
+    int addMaterial(const std::string& name, const Eigen::Vector4d& colour);  // returns the material's index
+    void add(int material, const TriangleMesh& part);
+    Scene build() &&;
+
+private:
+    std::string name_;
+    std::vector<Material> materials_;
+    std::vector<Primitive> primitives_;  // primitives_[k] has material k
+};
 
 // One mesh of one primitive, drawn once, with one material of the given base colour.
 Scene singleMeshScene(const std::string& name, Primitive primitive, const Eigen::Vector4d& colour);
@@ -22,5 +46,24 @@ Scene makeThreeSpheresScene();
 // Paper Fig. 11: a lamp of 7 equal arms (each with one mirror plane) around a heptagonal pyramid.
 // Expected: 8 tiles in 2 classes; assembly group C7v (order 14).
 Scene makeLampScene();
+
+// Paper 6.4: pliers of two congruent handles (each with one mirror plane), crossed.
+// Expected: 2 tiles in 1 class (group Cs); assembly group C2 (order 2).
+Scene makePliersScene();
+
+// Paper Fig. 11: a chess board of 64 squares (two materials) with 4 pawns and 2 rooks (12-sided lathes)
+// moved so that one 2-fold axis is left. Expected: 70 tiles in 4 classes; assembly group C2 (order 2).
+Scene makeChessScene();
+
+// Paper Fig. 10: 60 oblique 16-sided cones (each with one mirror plane, nearly of revolution) placed by
+// the 60 rotations of the icosahedron on a sphere. Expected: 60 tiles in 1 class; assembly group Ih (120).
+Scene makeIcosahedralScene();
+
+// In the spirit of the paper's Room: floor, walls, 4 tables with 4 chairs each, 4 bookshelves of
+// books of 3 sizes (two colours), all axis-aligned boxes in 5 materials, laid out with two mirror planes.
+// Expected: kRoomTiles tiles in kRoomClasses classes; assembly group C2v (order 4).
+Scene makeRoomScene();
+constexpr std::size_t kRoomTiles = 5 + 4 * (5 + 4 * 6) + 4 * (2 + 6 + 5 * 36);
+constexpr std::size_t kRoomClasses = 3 + 2 + 3 + 2 + 3;  // room, table, chair, shelf, books
 
 }  // namespace symcompress::samples

@@ -1,0 +1,88 @@
+// Building blocks of the sample generators: meshes appended into one primitive, boxes and lathes.
+#include "sample_scenes.hpp"
+
+#include <Eigen/LU>
+
+#include <cmath>
+
+namespace symcompress::samples {
+
+void appendMesh(Primitive& out, const TriangleMesh& part) {
+    const auto offset = std::uint32_t(out.positions.size());
+    out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
+    for (const Triangle& t : part.triangles) out.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
+TriangleMesh boxMesh(const Eigen::Vector3d& centre, const Eigen::Vector3d& size) {
+    TriangleMesh box;
+    for (int k = 0; k < 8; ++k)
+        box.positions.push_back(centre + 0.5 * Eigen::Vector3d((k & 1) ? size.x() : -size.x(), (k & 2) ? size.y() : -size.y(),
+                                                               (k & 4) ? size.z() : -size.z()));
+    // Corners indexed by bits (x, y, z); two triangles per face, counter-clockwise seen from outside.
+    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& f : faces) {
+        box.triangles.push_back({std::uint32_t(f[0]), std::uint32_t(f[1]), std::uint32_t(f[2])});
+        box.triangles.push_back({std::uint32_t(f[0]), std::uint32_t(f[2]), std::uint32_t(f[3])});
+    }
+    return box;
+}
+
+TriangleMesh latheMesh(const std::vector<Eigen::Vector2d>& profile, int segments, const Eigen::Vector3d& base) {
+    // profile.front() and profile.back() are on the axis (radius 0): they become the two poles.
+    TriangleMesh lathe;
+    lathe.positions.push_back(base + Eigen::Vector3d(0, 0, profile.front().y()));
+    for (std::size_t r = 1; r + 1 < profile.size(); ++r)
+        for (int s = 0; s < segments; ++s) {
+            const double angle = 2 * M_PI * s / segments;
+            lathe.positions.push_back(base + Eigen::Vector3d(profile[r].x() * std::cos(angle), profile[r].x() * std::sin(angle),
+                                                             profile[r].y()));
+        }
+    lathe.positions.push_back(base + Eigen::Vector3d(0, 0, profile.back().y()));
+    const auto rings = int(profile.size()) - 2;
+    const auto top = std::uint32_t(lathe.positions.size() - 1);
+    auto at = [&](int r, int s) { return std::uint32_t(1 + r * segments + (s % segments)); };
+    for (int s = 0; s < segments; ++s) {
+        lathe.triangles.push_back({0, at(0, s + 1), at(0, s)});
+        lathe.triangles.push_back({top, at(rings - 1, s), at(rings - 1, s + 1)});
+        // Quads between rings at equal azimuths are planar trapezoids: either diagonal keeps the mirrors.
+        for (int r = 0; r + 1 < rings; ++r) {
+            lathe.triangles.push_back({at(r, s), at(r, s + 1), at(r + 1, s + 1)});
+            lathe.triangles.push_back({at(r, s), at(r + 1, s + 1), at(r + 1, s)});
+        }
+    }
+    return lathe;
+}
+
+TriangleMesh transformed(TriangleMesh mesh, const Eigen::Matrix3d& linear, const Eigen::Vector3d& translation) {
+    for (auto& p : mesh.positions) p = linear * p + translation;
+    if (linear.determinant() < 0)
+        for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+    return mesh;
+}
+
+OneMeshBuilder::OneMeshBuilder(std::string name) : name_(std::move(name)) {}
+
+int OneMeshBuilder::addMaterial(const std::string& name, const Eigen::Vector4d& colour) {
+    Material material;
+    material.name = name;
+    material.baseColorFactor = colour;
+    material.metallicFactor = 0;
+    material.roughnessFactor = 0.6;
+    materials_.push_back(material);
+    primitives_.emplace_back();
+    primitives_.back().material = int(materials_.size()) - 1;
+    return primitives_.back().material;
+}
+
+void OneMeshBuilder::add(int material, const TriangleMesh& part) { appendMesh(primitives_.at(std::size_t(material)), part); }
+
+Scene OneMeshBuilder::build() && {
+    Scene scene;
+    scene.materials = std::move(materials_);
+    scene.meshes.push_back({name_, std::move(primitives_)});
+    scene.nodes.push_back({name_, Eigen::Matrix4d::Identity(), 0, {}});
+    scene.roots.push_back(0);
+    return scene;
+}
+
+}  // namespace symcompress::samples
