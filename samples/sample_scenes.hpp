@@ -3,6 +3,7 @@
 #pragma once
 
 #include "symcompress/scene.hpp"
+#include "symcompress/tiles.hpp"
 
 #include <string>
 #include <vector>
@@ -65,5 +66,16 @@ Scene makeIcosahedralScene();
 Scene makeRoomScene();
 constexpr std::size_t kRoomTiles = 5 + 4 * (5 + 4 * 6) + 4 * (2 + 6 + 5 * 36);
 constexpr std::size_t kRoomClasses = 3 + 2 + 3 + 2 + 3;  // room, table, chair, shelf, books
+
+// Tiles whose congruence is known by construction (labelled_tiles.cpp): each base shape `copies` times at
+// random rotations (every second copy mirrored), and, when `perturbation` > 0, once more with one vertex
+// pushed out by that fraction of the largest base's diagonal (a distance the same for every tile, as the
+// classification's tolerance is), under a label of its own. Tiles of one label are congruent; tiles of
+// different labels are not, provided the bases are pairwise non-congruent. Material 0, apart on a grid.
+struct LabelledTiles {
+    std::vector<Tile> tiles;
+    std::vector<std::size_t> labels;
+};
+LabelledTiles labelledCopies(const std::vector<TriangleMesh>& bases, int copies, double perturbation, std::uint64_t seed);
 
 }  // namespace symcompress::samples

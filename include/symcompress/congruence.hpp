@@ -44,6 +44,7 @@ struct CongruenceClass {
 
 struct CongruenceOptions {
     double tolerance = 1e-5;  // relative to the scene's bounding-box diagonal (d_A of placements and symmetries)
+    double absoluteTolerance = 0;  // when > 0, the tolerance as a distance, in place of `tolerance`
     int maxOrder = 8;         // moment orders in the descriptor
     bool symmetries = true;   // find each class's symmetry group
     int threads = 0;
@@ -56,6 +57,13 @@ struct TileClassification {
     std::size_t descriptorMatches = 0;  // pairs that passed descriptor and group and went to the geometric check
     std::size_t verifiedMatches = 0;    // of those, the congruent ones
 };
+
+// The largest descriptorDifference between tiles that go on to the geometric check, for a tile of this
+// bounding-box diagonal and the classification's absolute tolerance.
+double descriptorTolerance(double tileDiagonal, double absoluteTolerance);
+// The relative tolerance of a tile's own symmetry group: the classification's absolute tolerance relative
+// to the tile, at least `relativeTolerance` and at most 1e-3 (a small tile is not allowed everything).
+double tileSymmetryTolerance(double tileDiagonal, double absoluteTolerance, double relativeTolerance);
 
 // Every tile in exactly one class. Tiles are grouped by area (a sorted index, never all pairs), then
 // material and descriptor, then checked geometrically (which also keeps tiles of different groups apart).

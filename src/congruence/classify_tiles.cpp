@@ -16,13 +16,6 @@
 namespace symcompress {
 namespace {
 
-// The descriptor tolerance: a floor for the rounding of float32 tiles, and room for the geometric
-// tolerance (the geometric check decides; this only has to keep congruent tiles together).
-constexpr double kDescriptorFloor = 1e-3;
-constexpr double kDescriptorPerTolerance = 50;
-// Per-tile symmetry tolerance, relative to the tile: at most this, however small the tile.
-constexpr double kMaxTileTolerance = 1e-3;
-
 Eigen::Matrix3d secondMomentsOf(const SurfaceMoments& moments) {
     const auto& m = moments.monomialIntegrals[0];
     auto at = [&](int j, int k) { return m[HomogeneousPolynomial::monomialIndex(2, j, k)]; };
@@ -33,7 +26,22 @@ Eigen::Matrix3d secondMomentsOf(const SurfaceMoments& moments) {
     return s;
 }
 
+// The descriptor tolerance: a floor for the rounding of float32 tiles, and room for the geometric
+// tolerance (the geometric check decides; this only has to keep congruent tiles together).
+constexpr double kDescriptorFloor = 1e-3;
+constexpr double kDescriptorPerTolerance = 50;
+// Per-tile symmetry tolerance, relative to the tile: at most this, however small the tile.
+constexpr double kMaxTileTolerance = 1e-3;
+
 }  // namespace
+
+double descriptorTolerance(double tileDiagonal, double absoluteTolerance) {
+    return std::max(kDescriptorFloor, kDescriptorPerTolerance * absoluteTolerance / std::max(tileDiagonal, 1e-300));
+}
+
+double tileSymmetryTolerance(double tileDiagonal, double absoluteTolerance, double relativeTolerance) {
+    return std::min(kMaxTileTolerance, std::max(relativeTolerance, absoluteTolerance / tileDiagonal));
+}
 
 Eigen::Matrix4d Isometry::matrix() const {
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
@@ -48,7 +56,8 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
     for (const Tile& tile : tiles)
         for (const auto& p : tile.mesh.positions) sceneBox.extend(p);
     result.sceneDiagonal = sceneBox.isEmpty() ? 0 : sceneBox.diagonal().norm();
-    const double tolerance = options.tolerance * result.sceneDiagonal;  // absolute
+    const double tolerance = options.absoluteTolerance > 0 ? options.absoluteTolerance : options.tolerance * result.sceneDiagonal;
+    const double relativeTolerance = result.sceneDiagonal > 0 ? tolerance / result.sceneDiagonal : options.tolerance;
 
     // Per tile, in parallel: moments, descriptor, second moments.
     result.shapes.resize(tiles.size());
@@ -82,8 +91,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
     for (std::size_t tile : order) {
         const TileShape& shape = result.shapes[tile];
         const double area = shape.descriptor.area;
-        const double epsilon =
-            std::max(kDescriptorFloor, kDescriptorPerTolerance * tolerance / std::max(shape.diagonal, 1e-300));
+        const double epsilon = descriptorTolerance(shape.diagonal, tolerance);
         std::unique_ptr<ShapeVerifier> verifier;
         bool placed = false;
         for (auto it = classByArea.lower_bound(area * (1 - epsilon)); it != classByArea.end() && it->first <= area * (1 + epsilon);
@@ -128,7 +136,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
                 TileShape& shape = result.shapes[prototype];
                 if (!(shape.diagonal > 0)) return;
                 SymmetryOptions symmetryOptions;
-                symmetryOptions.tolerance = std::min(kMaxTileTolerance, std::max(options.tolerance, tolerance / shape.diagonal));
+                symmetryOptions.tolerance = tileSymmetryTolerance(shape.diagonal, tolerance, relativeTolerance);
                 symmetryOptions.threads = 1;
                 shape.symmetry = detectSymmetries(tiles[prototype].mesh, symmetryOptions);
             });
