@@ -26,7 +26,9 @@ if [[ -d "$bench" ]] && command -v node >/dev/null && command -v npm >/dev/null;
     for dir in node x3d; do
       if [[ -f "$bench/$dir/package-lock.json" && ! -d "$bench/$dir/node_modules" ]]; then
         echo "install-deps: npm ci in $bench/$dir"
+        # Once more on failure: the registry is sometimes briefly unreachable.
         npm ci --prefix "$bench/$dir" --no-audit --no-fund >/dev/null 2>&1 ||
+          { sleep 5; npm ci --prefix "$bench/$dir" --no-audit --no-fund >/dev/null 2>&1; } ||
           echo "install-deps: warning: npm ci in $bench/$dir failed; the interoperability tests will be skipped"
       fi
     done

@@ -1,10 +1,12 @@
 // Symmetries of assemblies from the constructive algorithm (paper 6.3), against groups known by
-// construction and against the single-shape detector run on the whole assembly.
+// construction and against the single-shape detector run on the whole assembly; repeated assemblies.
 #include "sample_scenes.hpp"
 #include "symcompress/assembly.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
+
+#include <set>
 
 using namespace symcompress;
 
@@ -52,4 +54,39 @@ TEST_CASE("The sterile room: the constructive group equals the whole-shape group
     const SymmetryGroup whole = detectSymmetries(worldMesh(scene));
     CHECK(assembly.name == whole.name);
     CHECK(assembly.order() == whole.order());
+}
+
+TEST_CASE("Repeated assemblies: the room's bookshelves, tables and chairs, each copy the placement of the first",
+          "[assembly]") {
+    const auto soup = flattenScene(samples::makeRoomScene());
+    const auto tiles = splitIntoTiles(soup);
+    const TileClassification classification = classifyTiles(tiles);
+    const std::vector<RepeatedAssembly> assemblies = findRepeatedAssemblies(tiles, classification);
+    std::multiset<std::pair<std::size_t, std::size_t>> found;  // (copies, tiles per copy)
+    for (const RepeatedAssembly& a : assemblies) found.emplace(a.copies.size(), a.copies[0].size());
+    CHECK(found.count({4, 188}) == 1);  // bookshelves: 2 sides, 6 boards, 180 books
+    CHECK(found.count({4, 5}) == 1);    // tables: top and 4 legs (the chairs stand apart)
+    CHECK(found.count({16, 6}) == 1);   // chairs: seat, 4 legs, back
+    CHECK(found.size() == 3);           // floor and walls belong to none: mirrors take them onto themselves
+
+    // Brute force: every vertex of a tile of copy 0, placed, is a vertex of the corresponding tile.
+    std::set<std::size_t> seen;
+    const double distance = 1e-5 * classification.sceneDiagonal;
+    for (const RepeatedAssembly& a : assemblies)
+        for (std::size_t j = 0; j < a.copies.size(); ++j) {
+            REQUIRE(a.copies[j].size() == a.copies[0].size());
+            for (std::size_t i = 0; i < a.copies[j].size(); ++i) {
+                CHECK(seen.insert(a.copies[j][i]).second);
+                const TriangleMesh& from = tiles[a.copies[0][i]].mesh;
+                const TriangleMesh& to = tiles[a.copies[j][i]].mesh;
+                double worst = 0;
+                for (const auto& p : from.positions) {
+                    const Eigen::Vector3d placed = a.placements[j].linear * p + a.placements[j].translation;
+                    double nearest = std::numeric_limits<double>::infinity();
+                    for (const auto& q : to.positions) nearest = std::min(nearest, (q - placed).norm());
+                    worst = std::max(worst, nearest);
+                }
+                CHECK(worst <= distance);
+            }
+        }
 }

@@ -4,6 +4,9 @@
 
 #include "symcompress/congruence.hpp"
 #include "symcompress/symmetry.hpp"
+#include "symcompress/tiles.hpp"
+
+#include <functional>
 
 namespace symcompress {
 
@@ -13,5 +16,29 @@ namespace symcompress {
 // tile's centroid lands on a tile of its class and the map, seen from the two tiles' placements, is a
 // symmetry of their prototype. `tolerance` is relative to the scene's diagonal, as for the classes.
 SymmetryGroup assemblySymmetries(const TileClassification& classification, double tolerance);
+
+// Tiles that recur together in one relative placement: the parts of a chair, a table with its legs, a
+// whole copied object. Copy 0 is the assembly as stored; copy j is placement j of it.
+// Invariant: copies[j][i] is the tile that placement j puts tile copies[0][i] onto (a tile of the same
+// class); no tile is in two copies, or in two assemblies.
+struct RepeatedAssembly {
+    std::vector<std::vector<std::size_t>> copies;
+    std::vector<Isometry> placements;  // identity for copy 0
+    double deviation = 0;              // bound on any rebuilt tile's distance from its original, relative to the diagonal
+};
+
+struct AssemblyOptions {
+    double tolerance = 1e-5;  // relative to the scene's diagonal, as for the classes
+    // Optional: whether tile `from`, placed by the isometry, may stand for tile `to` (e.g. attributes agree).
+    std::function<bool(std::size_t from, std::size_t to, const Isometry&)> accept;
+};
+
+// Grows assemblies from anchors: for a class with several members, the isometries that take one member
+// onto another (J_b g J_a^-1, g in the class's group), then, through tiles whose bounding boxes touch,
+// every tile that each of those isometries takes onto a free tile of its own class. A tile that a
+// placement takes onto itself (a floor under a mirrored room) or onto nothing stops the growth. Only
+// assemblies of two or more tiles are returned.
+std::vector<RepeatedAssembly> findRepeatedAssemblies(const std::vector<Tile>& tiles, const TileClassification& classification,
+                                                     const AssemblyOptions& options = {});
 
 }  // namespace symcompress

@@ -1,6 +1,6 @@
-// The compression plan (paper 7.1, ALGORITHM.md 8): every congruence class whose members reproduce the
-// prototype (geometry and attributes) is stored once and drawn by one node per member; the rest is stored
-// as it is. And the check a decoder makes: the rebuilt surface against the original or its digest.
+// The compression plan (paper 7.1, ALGORITHM.md 8): tiles that recur together are stored once per group
+// and drawn by one node per copy; every congruence class whose members reproduce the prototype (geometry
+// and attributes) is stored once and drawn by one node per member; the rest is stored as it is. And the check a decoder makes: the rebuilt surface against the original or its digest.
 #pragma once
 
 #include "symcompress/congruence.hpp"
@@ -16,13 +16,14 @@ struct CompressOptions {
     bool instancing = true;     // false: every tile stored as it is (Draco alone)
     bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
     bool regions = true;        // store symmetric tiles as their fundamental regions where that pays
+    bool assemblies = true;     // store tiles that recur together once per group, drawn by one node per copy
     int threads = 0;
     // The cost model of the output format, in bytes: a stored triangle with its attributes, a node
     // drawing a shared mesh, a shared mesh's own overhead. The defaults are Draco glTF as measured on the
     // shared models (Draco stores the rock's 180 triangles in 250 bytes); X3D text costs far more per
     // triangle (see useX3dCosts).
     double bytesPerTriangle = 1.5;
-    double bytesPerInstance = 200;
+    double bytesPerInstance = 120;
     double bytesPerMesh = 500;
 };
 
@@ -35,6 +36,9 @@ struct CompressionStats {
     std::size_t attributeMismatches = 0;  // congruent members stored apart because their attributes differ
     std::size_t notWorthInstancing = 0;   // members of classes too small for a node each to pay
     std::size_t regionClasses = 0;        // classes stored as their fundamental region
+    std::size_t assemblies = 0;           // repeated assemblies stored once (tiles that recur together)
+    std::size_t assemblyCopies = 0;       // nodes drawing them
+    std::size_t tilesInAssemblies = 0;    // tiles those nodes draw
     double maxDeviation = 0;              // of the placements used, relative to the diagonal
     double secondsTiles = 0, secondsClasses = 0, secondsPlan = 0;
 };

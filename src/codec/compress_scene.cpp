@@ -2,6 +2,7 @@
 // every class once per member.
 #include "symcompress/compress.hpp"
 
+#include "symcompress/assembly.hpp"
 #include "symcompress/fundamental_region.hpp"
 #include "symcompress/scene_ops.hpp"
 
@@ -85,6 +86,77 @@ void append(Primitive& into, const Primitive& part) {
     for (const Triangle& t : part.triangles) into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
+void addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const std::string& name) {
+    Node node;
+    node.name = name;
+    node.mesh = mesh;
+    node.transform = transform;
+    out.roots.push_back(int(out.nodes.size()));
+    out.nodes.push_back(std::move(node));
+}
+
+// The repeated assemblies worth storing once: each becomes one mesh (its first copy, about its anchor's
+// centroid) drawn by a node per copy. Returns which tiles they draw.
+std::vector<bool> planAssemblies(const SceneAnalysis& analysis, const CompressOptions& options, Scene& out, CompressionStats& stats) {
+    const std::vector<Tile>& tiles = analysis.tiles;
+    const TileClassification& classification = analysis.classification;
+    const double tolerance = options.tolerance * classification.sceneDiagonal;
+    std::vector<std::optional<Primitive>> primitives(tiles.size());
+    auto primitiveOf = [&](std::size_t t) -> const Primitive& {
+        if (!primitives[t]) primitives[t] = tilePrimitive(tiles[t], analysis.soup);
+        return *primitives[t];
+    };
+    AssemblyOptions assemblyOptions;
+    assemblyOptions.tolerance = options.tolerance;
+    if (!options.geometryOnly)
+        assemblyOptions.accept = [&](std::size_t from, std::size_t to, const Isometry& map) {
+            return reproduces(primitiveOf(from), primitiveOf(to), map, tolerance);
+        };
+    std::vector<double> classDeviation(tiles.size(), 0);
+    for (const CongruenceClass& c : classification.classes)
+        for (std::size_t i = 0; i < c.members.size(); ++i) classDeviation[c.members[i]] = c.deviations[i];
+
+    std::vector<bool> inAssembly(tiles.size(), false);
+    for (const RepeatedAssembly& assembly : findRepeatedAssemblies(tiles, classification, assemblyOptions)) {
+        // Once with a node per copy, against the cheaper of a node or the triangles for every tile of every copy.
+        const double copies = double(assembly.copies.size());
+        double triangles = 0, apart = 0;
+        for (std::size_t t : assembly.copies[0]) {
+            const double n = double(tiles[t].mesh.triangles.size());
+            triangles += n;
+            apart += copies * std::min(n * options.bytesPerTriangle, options.bytesPerInstance);
+        }
+        if (triangles * options.bytesPerTriangle + options.bytesPerMesh + copies * options.bytesPerInstance >= apart) continue;
+        const std::size_t index = stats.assemblies++;
+        const Eigen::Vector3d center = classification.shapes[assembly.copies[0][0]].moments.centroid;
+        std::map<int, Primitive> byMaterial;
+        for (std::size_t t : assembly.copies[0]) {
+            Primitive local = primitiveOf(t);
+            for (auto& p : local.positions) p -= center;
+            append(byMaterial[local.material], local);
+        }
+        Mesh mesh;
+        mesh.name = "assembly " + std::to_string(index) + " (" + std::to_string(assembly.copies[0].size()) + " tiles)";
+        for (auto& [material, primitive] : byMaterial) mesh.primitives.push_back(std::move(primitive));
+        out.meshes.push_back(std::move(mesh));
+        Eigen::Matrix4d atCenter = Eigen::Matrix4d::Identity();
+        atCenter.topRightCorner<3, 1>() = center;
+        for (std::size_t j = 0; j < assembly.copies.size(); ++j) {
+            addRootNode(out, int(out.meshes.size()) - 1, assembly.placements[j].matrix() * atCenter, "");
+            double worst = 0;
+            for (std::size_t i = 0; i < assembly.copies[j].size(); ++i) {
+                inAssembly[assembly.copies[j][i]] = true;
+                worst = std::max(worst, classDeviation[assembly.copies[0][i]] + classDeviation[assembly.copies[j][i]]);
+            }
+            if (j > 0) stats.maxDeviation = std::max(stats.maxDeviation, assembly.deviation + worst);
+        }
+        stats.assemblyCopies += assembly.copies.size();
+        stats.instances += assembly.copies.size();
+        stats.tilesInAssemblies += assembly.copies.size() * assembly.copies[0].size();
+    }
+    return inAssembly;
+}
+
 double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -130,27 +202,25 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     out.materials = input.materials;
     out.warnings = input.warnings;
     std::map<int, Primitive> unique;  // by material: tiles stored as they are
-    auto addNode = [&](int mesh, const Eigen::Matrix4d& transform, const std::string& name) {
-        Node node;
-        node.name = name;
-        node.mesh = mesh;
-        node.transform = transform;
-        out.roots.push_back(int(out.nodes.size()));
-        out.nodes.push_back(std::move(node));
-    };
     if (!options.instancing)
         for (const Tile& tile : tiles) append(unique[tile.material], tilePrimitive(tile, soup));
     const double tolerance = options.tolerance * analysis.classification.sceneDiagonal;
+    const std::vector<bool> inAssembly = options.instancing && options.assemblies
+                                             ? planAssemblies(analysis, options, out, stats)
+                                             : std::vector<bool>(tiles.size(), false);
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         const CongruenceClass& c = classification.classes[k];
         ++stats.classes;
         if (classification.shapes[c.prototype].symmetry.order() > 1) ++stats.symmetricClasses;
         const Primitive prototype = tilePrimitive(tiles[c.prototype], soup);
-        std::vector<std::size_t> placed{0};  // indices into c.members drawn from the prototype's mesh
+        // Indices into c.members drawn from the prototype's mesh (members in assemblies are drawn there).
+        std::vector<std::size_t> placed;
+        if (!inAssembly[c.prototype]) placed.push_back(0);
         std::vector<Isometry> placements = c.placements;
         std::vector<Primitive> apart;  // members stored as they are
         const TileShape& shape = classification.shapes[c.prototype];
         for (std::size_t i = 1; i < c.members.size(); ++i) {
+            if (inAssembly[c.members[i]]) continue;
             Primitive member = tilePrimitive(tiles[c.members[i]], soup);
             if (options.geometryOnly) {
                 placed.push_back(i);
@@ -178,6 +248,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
             }
         }
         for (const Primitive& member : apart) append(unique[member.material], member);
+        if (placed.empty()) continue;
 
         // The prototype's symmetries that also carry its attributes onto themselves: the group its
         // fundamental region may use (a textured part is rarely symmetric in its texture coordinates).
@@ -227,8 +298,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         }
         for (std::size_t i : placed) {
             for (std::size_t j = 0; j < copiesInTile.size(); ++j) {
-                addNode(meshIndex, placements[i].matrix() * copiesInTile[j],
-                        "class " + std::to_string(k) + " #" + std::to_string(i) + (useRegion ? "." + std::to_string(j) : ""));
+                addRootNode(out, meshIndex, placements[i].matrix() * copiesInTile[j], "");
                 ++stats.instances;
             }
             stats.maxDeviation = std::max(stats.maxDeviation, c.deviations[i]);
@@ -239,7 +309,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         mesh.name = "unique tiles";
         for (auto& [material, primitive] : unique) mesh.primitives.push_back(std::move(primitive));
         out.meshes.push_back(std::move(mesh));
-        addNode(int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(), "unique tiles");
+        addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(), "unique tiles");
     }
     for (const Mesh& mesh : out.meshes)
         for (const Primitive& p : mesh.primitives) stats.trianglesStored += p.triangles.size();

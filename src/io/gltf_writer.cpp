@@ -4,6 +4,7 @@
 // WriteOptions::draco is false.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "rounded.hpp"
 
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
@@ -202,19 +203,26 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}, {"mode", 4}};
 }
 
-// Writes only a node's nonzero parts; `matrix` carries any affine transform, mirrors included.
+// Writes only a node's nonzero parts. A rigid transform (a node per instance: the common case, where its
+// size counts) as translation, rotation quaternion and, for a mirror, scale [-1, 1, 1]: about half the
+// bytes of a matrix; any other affine transform as a matrix. Numbers cut as rounded.hpp says.
 Json writeNode(const Node& node, const std::vector<int>& meshIndex) {
     Json out = Json::object();
     if (!node.name.empty()) out["name"] = node.name;
-    if (!node.transform.isIdentity(0)) {
+    const Eigen::Matrix3d linear = node.transform.topLeftCorner<3, 3>();
+    const Eigen::Vector3d translation = node.transform.topRightCorner<3, 1>();
+    const bool mirror = linear.determinant() < 0;
+    if ((linear.transpose() * linear - Eigen::Matrix3d::Identity()).norm() < 1e-9) {
+        const Eigen::Matrix3d rotation = mirror ? Eigen::Matrix3d(linear * Eigen::Vector3d(-1, 1, 1).asDiagonal()) : linear;
+        Eigen::Quaterniond q(rotation);
+        if (q.w() < 0) q.coeffs() *= -1;
+        if (!translation.isZero(0))
+            out["translation"] = {rounded(translation.x(), kPlacementDigits), rounded(translation.y(), kPlacementDigits), rounded(translation.z(), kPlacementDigits)};
+        if (!rotation.isIdentity(1e-12)) out["rotation"] = {rounded(q.x(), kRotationDigits), rounded(q.y(), kRotationDigits), rounded(q.z(), kRotationDigits), rounded(q.w(), kRotationDigits)};
+        if (mirror) out["scale"] = {-1, 1, 1};
+    } else {
         std::vector<double> matrix(16);
-        // 9 significant digits (beyond float32, which viewers use) print in about half the bytes of 17:
-        // a node per instance makes this count.
-        for (int i = 0; i < 16; ++i) {
-            char text[32];
-            std::snprintf(text, sizeof text, "%.9g", node.transform(i % 4, i / 4));
-            matrix[i] = std::strtod(text, nullptr);
-        }
+        for (int i = 0; i < 16; ++i) matrix[i] = rounded(node.transform(i % 4, i / 4), kPlacementDigits);
         matrix[3] = matrix[7] = matrix[11] = 0;  // glTF requires an affine matrix
         matrix[15] = 1;
         out["matrix"] = matrix;

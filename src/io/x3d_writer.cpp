@@ -4,6 +4,7 @@
 // rotation, scale and scaleOrientation). `.x3dz` is the same, gzip-compressed.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "rounded.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -29,10 +30,10 @@ void appendNumber(std::string& out, double value) {
 }
 
 template <typename Vector>
-void appendVector(std::string& out, const Vector& v, int components) {
+void appendVector(std::string& out, const Vector& v, int components, int digits = 0) {
     for (int c = 0; c < components; ++c) {
         if (c) out += ' ';
-        appendNumber(out, v[c]);
+        appendNumber(out, digits > 0 ? rounded(v[c], digits) : v[c]);
     }
 }
 
@@ -78,21 +79,21 @@ void appendTransformFields(std::string& out, const Eigen::Matrix4d& matrix) {
     const Eigen::Vector3d translation = matrix.topRightCorner<3, 1>();
     if (!translation.isZero(0)) {
         out += " translation='";
-        appendVector(out, translation, 3);
+        appendVector(out, translation, 3, kPlacementDigits);
         out += "'";
     }
     auto appendRotation = [&](const char* field, const Eigen::AngleAxisd& value) {
         if (std::abs(value.angle()) < 1e-15) return;
         out += std::string(" ") + field + "='";
-        appendVector(out, value.axis(), 3);
+        appendVector(out, value.axis(), 3, kRotationDigits);
         out += ' ';
-        appendNumber(out, value.angle());
+        appendNumber(out, rounded(value.angle(), kRotationDigits));
         out += "'";
     };
     appendRotation("rotation", rotation);
     if (!scale.isApprox(Eigen::Vector3d::Ones(), 1e-15)) {
         out += " scale='";
-        appendVector(out, scale, 3);
+        appendVector(out, scale, 3, kPlacementDigits);
         out += "'";
         appendRotation("scaleOrientation", orientation);
     }

@@ -10,6 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstring>
+#include <iterator>
+#include <regex>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -197,6 +200,34 @@ int runDetect(const fs::path& file, const SymmetryOptions& options, bool json) {
     return 0;
 }
 
+// The bytes the written file spends placing instances, per instance: glTF nodes without a name (the plan
+// names only the node of the tiles stored as they are), X3D Transforms around a USE. 0 when there are
+// none or the file is compressed (.x3dz).
+double bytesPerInstance(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::size_t total = 0, count = 0;
+    const FileFormat format = formatFromExtension(file);
+    if (format == FileFormat::Glb || format == FileFormat::Gltf) {
+        std::string text = bytes;
+        if (format == FileFormat::Glb) {
+            if (bytes.size() < 20) return 0;
+            std::uint32_t length = 0;
+            std::memcpy(&length, bytes.data() + 12, 4);
+            text = bytes.substr(20, length);
+        }
+        const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+        if (json.is_discarded() || !json.contains("nodes")) return 0;
+        for (const auto& node : json["nodes"])
+            if (node.contains("mesh") && !node.contains("name")) total += node.dump().size() + 1, ++count;
+    } else if (format == FileFormat::X3d) {
+        static const std::regex instance(R"(<Transform[^>]*>\s*<Group USE='[^']*'/>\s*</Transform>)");
+        for (auto it = std::sregex_iterator(bytes.begin(), bytes.end(), instance); it != std::sregex_iterator(); ++it)
+            total += std::size_t(it->length()), ++count;
+    }
+    return count ? double(total) / double(count) : 0;
+}
+
 // The bytes of a scene on disk: the file, and for .gltf the buffers and images it names by relative path.
 std::uintmax_t sceneBytes(const fs::path& file) {
     std::error_code error;
@@ -265,6 +296,7 @@ int runCompress(const CompressRequest& request) {
     if (inputFormat != FileFormat::Gltf && inputFormat != FileFormat::Glb)
         for (const Texture& texture : scene.textures) inputBytes += texture.bytes.size();
     const double ratio = outputBytes ? double(inputBytes) / double(outputBytes) : 0;
+    const double instanceBytes = bytesPerInstance(request.output);
     nlohmann::json report{{"input", request.input.string()},
                           {"output", request.output.string()},
                           {"input_bytes", inputBytes},
@@ -288,6 +320,10 @@ int runCompress(const CompressRequest& request) {
                             {"plan", stats.secondsPlan},
                             {"write", writeSeconds}}},
                           {"region_classes", stats.regionClasses},
+                          {"assemblies", stats.assemblies},
+                          {"assembly_copies", stats.assemblyCopies},
+                          {"tiles_in_assemblies", stats.tilesInAssemblies},
+                          {"bytes_per_instance", instanceBytes},
                           {"ablation",
                            {{"draco_alone", request.options.instancing ? dracoAlone : outputBytes},
                             {"instancing", !request.options.instancing ? nlohmann::json(nullptr)
@@ -310,6 +346,10 @@ int runCompress(const CompressRequest& request) {
                 stats.classes, stats.instancedClasses, stats.instances);
     std::printf("  symmetric       %zu classes, %zu stored as their fundamental region\n", stats.symmetricClasses,
                 stats.regionClasses);
+    if (stats.assemblies)
+        std::printf("  assemblies      %zu groups of tiles that recur together, stored once for %zu copies (%zu tiles)\n",
+                    stats.assemblies, stats.assemblyCopies, stats.tilesInAssemblies);
+    if (stats.instances) std::printf("  per instance    %.0f bytes\n", instanceBytes);
     if (stats.attributeMismatches)
         std::printf("  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
                     "(--geometry-only instances them anyway)\n", stats.attributeMismatches);
