@@ -117,6 +117,25 @@ TEST_CASE("Tiles that recur together are stored once per group: the room's books
     CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());
 }
 
+TEST_CASE("A symmetric single part is stored as its fundamental region (GLB): the coffee cup", "[compress]") {
+    // Its mirror halves the triangles; the cut must not leave zero-area slivers, which would push Draco
+    // from edgebreaker to its sequential method (the region was once 3 times Draco alone).
+    TemporaryFolder folder;
+    const nlohmann::json report = compressAndVerify(modelPath("xj3d_coffee_cup/coffeeCup.x3d"), folder, "cup");
+    CHECK(report["plan"] == "final");
+    CHECK(report["region_classes"] == 1);
+    CHECK(report["triangles_stored"] == report["triangles_in"].get<std::size_t>() / 2);
+    CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());
+}
+
+TEST_CASE("Where nothing pays, the output is the Draco-alone file: the spider", "[compress]") {
+    // Its repeated legs are under 100 triangles: nodes cost more than Draco's bytes for them.
+    TemporaryFolder folder;
+    const nlohmann::json report = compressAndVerify(modelPath("assimp_spider/spider.obj"), folder, "spider");
+    CHECK(report["output_bytes"].get<double>() <= report["ablation"]["draco_alone"].get<double>());
+    CHECK(report["output_bytes"] == report["ablation"]["final"]);
+}
+
 TEST_CASE("symcompress refuses to overwrite its input and reports bad input with status 2", "[compress][cli]") {
     TemporaryFolder folder;
     const auto copy = folder / "rock.gltf";

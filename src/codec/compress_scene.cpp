@@ -25,6 +25,10 @@ std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vect
     try {
         RegionOptions regionOptions;
         regionOptions.groupTolerance = 1e-5;
+        // Float32 coordinates put a symmetric model's vertices on its planes only to about 1e-7 of its size;
+        // cut points that close to a vertex become zero-area triangles once quantized, which Draco's
+        // edgebreaker cannot keep (the coffee cup's region tripled in size).
+        regionOptions.snapTolerance = 1e-6;
         FundamentalRegion region = computeFundamentalRegion(tile, group, center, regionOptions);
         const Primitive rebuilt = rebuildFromRegion(region);
         TriangleMesh a{rebuilt.positions, rebuilt.triangles}, b{tile.positions, tile.triangles};

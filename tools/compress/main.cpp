@@ -266,7 +266,7 @@ int runCompress(const CompressRequest& request) {
     CompressOptions options = request.options;
     if (formatFromExtension(request.output) == FileFormat::X3d) useX3dCosts(options);
     const SceneAnalysis analysis = analyzeScene(scene, options);
-    const CompressedScene compressed = planCompression(scene, analysis, options);
+    CompressedScene compressed = planCompression(scene, analysis, options);
     WriteOptions write = request.write;
     write.extrasJson = compressed.digest.json();
     const auto writeStart = Clock::now();
@@ -274,23 +274,42 @@ int runCompress(const CompressRequest& request) {
     const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
 
     // Ablation: the same scene with every tile stored as it is (Draco alone), and with instancing but no
-    // fundamental regions.
-    auto sizeWith = [&](CompressOptions variant) -> std::uintmax_t {
+    // fundamental regions. The cost model only estimates: where a simpler plan's file is smaller, that
+    // file is the output (the report says which plan it is).
+    struct Variant {
+        const char* name;
+        CompressedScene plan;
+        std::uintmax_t bytes;
+    };
+    std::vector<Variant> variants;
+    auto tryVariant = [&](const char* name, CompressOptions variant) {
         const fs::path temporary = request.output.parent_path() / (".symcompress-ablation-" + request.output.filename().string());
-        writeScene(planCompression(scene, analysis, variant).scene, temporary, write, {request.input});
+        CompressedScene plan = planCompression(scene, analysis, variant);
+        writeScene(plan.scene, temporary, write, {request.input});
         std::error_code error;
         const std::uintmax_t size = fs::file_size(temporary, error);
         fs::remove(temporary, error);
-        return size;
+        variants.push_back({name, std::move(plan), size});
     };
     CompressOptions plain = options, instancingOnly = options;
     plain.instancing = false;
     instancingOnly.regions = false;
-    const std::uintmax_t dracoAlone = request.options.instancing ? sizeWith(plain) : 0;
-    const std::uintmax_t withInstancing = request.options.instancing && request.options.regions ? sizeWith(instancingOnly) : 0;
+    if (request.options.instancing) tryVariant("draco_alone", plain);
+    if (request.options.instancing && request.options.regions) tryVariant("instancing", instancingOnly);
+    const std::uintmax_t dracoAlone = request.options.instancing ? variants[0].bytes : 0;
+    const std::uintmax_t withInstancing = request.options.instancing && request.options.regions ? variants[1].bytes : 0;
+    const std::uintmax_t fullPlanBytes = sceneBytes(request.output);
+    std::uintmax_t outputBytes = fullPlanBytes;
+    const char* chosen = "final";
+    for (Variant& variant : variants)
+        if (variant.bytes < outputBytes) {
+            writeScene(variant.plan.scene, request.output, write, {request.input});
+            compressed = std::move(variant.plan);
+            chosen = variant.name;
+            outputBytes = sceneBytes(request.output);
+        }
     const CompressionStats& stats = compressed.stats;
     std::uintmax_t inputBytes = sceneBytes(request.input);
-    const std::uintmax_t outputBytes = sceneBytes(request.output);
     // OBJ, PLY, STL and X3D name their images by path: those files are part of the input too.
     const FileFormat inputFormat = formatFromExtension(request.input);
     if (inputFormat != FileFormat::Gltf && inputFormat != FileFormat::Glb)
@@ -302,6 +321,7 @@ int runCompress(const CompressRequest& request) {
                           {"input_bytes", inputBytes},
                           {"output_bytes", outputBytes},
                           {"ratio", ratio},
+                          {"plan", chosen},
                           {"triangles_in", stats.trianglesIn},
                           {"triangles_stored", stats.trianglesStored},
                           {"tiles", stats.tiles},
@@ -328,9 +348,9 @@ int runCompress(const CompressRequest& request) {
                            {{"draco_alone", request.options.instancing ? dracoAlone : outputBytes},
                             {"instancing", !request.options.instancing ? nlohmann::json(nullptr)
                                            : request.options.regions ? nlohmann::json(withInstancing)
-                                                                     : nlohmann::json(outputBytes)},
+                                                                     : nlohmann::json(fullPlanBytes)},
                             {"instancing_and_regions", request.options.instancing && request.options.regions
-                                                           ? nlohmann::json(outputBytes) : nlohmann::json(nullptr)},
+                                                           ? nlohmann::json(fullPlanBytes) : nlohmann::json(nullptr)},
                             {"final", outputBytes}}},
                           {"warnings", scene.warnings}};
     if (!request.report.empty()) {
@@ -341,6 +361,9 @@ int runCompress(const CompressRequest& request) {
     if (request.quiet) return 0;
     std::printf("%s -> %s\n", request.input.string().c_str(), request.output.string().c_str());
     std::printf("  size            %ju -> %ju bytes, ratio %.2f\n", inputBytes, outputBytes, ratio);
+    if (std::string(chosen) != "final")
+        std::printf("  plan            %s: its file was smaller than the full plan's\n",
+                    std::string(chosen) == "draco_alone" ? "every tile as it is" : "instancing without regions");
     std::printf("  triangles       %zu drawn, %zu stored\n", stats.trianglesIn, stats.trianglesStored);
     std::printf("  tiles           %zu in %zu classes; %zu classes stored once for %zu instances\n", stats.tiles,
                 stats.classes, stats.instancedClasses, stats.instances);
@@ -358,9 +381,9 @@ int runCompress(const CompressRequest& request) {
     std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, request.options.tolerance);
     if (request.options.instancing && request.options.regions)
         std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju, with regions too %ju\n", dracoAlone,
-                    withInstancing, outputBytes);
+                    withInstancing, fullPlanBytes);
     else if (request.options.instancing)
-        std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju\n", dracoAlone, outputBytes);
+        std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju\n", dracoAlone, fullPlanBytes);
     std::printf("  seconds         read %.2f, tiles %.2f, classes %.2f, plan %.2f, write %.2f\n", readSeconds,
                 stats.secondsTiles, stats.secondsClasses, stats.secondsPlan, writeSeconds);
     return 0;
