@@ -117,6 +117,20 @@ TEST_CASE("Tiles that recur together are stored once per group: the room's books
     CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());
 }
 
+TEST_CASE("symcompress prints the size report, and no progress line when stderr is not a terminal", "[compress][cli]") {
+    TemporaryFolder folder;
+    const auto input = folder / "lamp.glb";
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(samples::makeLampScene(), input, plain);
+    const CommandResult run = runCommand(kSymcompress + " " + quoted(input) + " -o " + quoted(folder / "lamp-small.glb"));
+    REQUIRE(run.status == 0);
+    CHECK(run.output.find("ratio") != std::string::npos);
+    CHECK(run.output.find("ablation") != std::string::npos);
+    CHECK(run.output.find('\r') == std::string::npos);
+    CHECK(run.output.find("symcompress: classifying") == std::string::npos);
+}
+
 TEST_CASE("A symmetric single part is stored as its fundamental region (GLB): the coffee cup", "[compress]") {
     // Its mirror halves the triangles; the cut must not leave zero-area slivers, which would push Draco
     // from edgebreaker to its sequential method (the region was once 3 times Draco alone).

@@ -7,6 +7,7 @@
 #include "symcompress/scene.hpp"
 #include "symcompress/scene_ops.hpp"
 
+#include <functional>
 #include <string>
 
 namespace symcompress {
@@ -18,6 +19,8 @@ struct CompressOptions {
     bool regions = true;        // store symmetric tiles as their fundamental regions where that pays
     bool assemblies = true;     // store tiles that recur together once per group, drawn by one node per copy
     int threads = 0;
+    // Called as each stage starts, with what it works on (e.g. "classifying", 873 tiles); may be empty.
+    std::function<void(const char* stage, std::size_t count, const char* unit)> progress;
     // The cost model of the output format, in bytes: a stored triangle with its attributes, a node
     // drawing a shared mesh, a shared mesh's own overhead. The defaults are Draco glTF as measured on the
     // shared models (Draco stores the rock's 180 triangles in 250 bytes); X3D text costs far more per

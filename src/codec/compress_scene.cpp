@@ -165,12 +165,19 @@ double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+void reportProgress(const CompressOptions& options, const char* stage, std::size_t count, const char* unit) {
+    if (options.progress) options.progress(stage, count, unit);
+}
+
 }  // namespace
 
 SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options) {
     SceneAnalysis analysis;
     auto start = std::chrono::steady_clock::now();
     analysis.soup = flattenScene(input);
+    std::size_t triangles = 0;
+    for (const WorldPrimitive& placed : analysis.soup) triangles += placed.primitive.triangles.size();
+    reportProgress(options, "splitting into tiles", triangles, "triangles");
     analysis.tiles = splitIntoTiles(analysis.soup);
     analysis.digest = digestOf(worldMesh(input), options.tolerance);
     analysis.secondsTiles = since(start);
@@ -178,7 +185,10 @@ SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options) {
     CongruenceOptions congruenceOptions;
     congruenceOptions.tolerance = options.tolerance;
     congruenceOptions.threads = options.threads;
-    if (options.instancing) analysis.classification = classifyTiles(analysis.tiles, congruenceOptions);
+    if (options.instancing) {
+        reportProgress(options, "classifying", analysis.tiles.size(), "tiles");
+        analysis.classification = classifyTiles(analysis.tiles, congruenceOptions);
+    }
     analysis.secondsClasses = since(start);
     return analysis;
 }
@@ -209,6 +219,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     if (!options.instancing)
         for (const Tile& tile : tiles) append(unique[tile.material], tilePrimitive(tile, soup));
     const double tolerance = options.tolerance * analysis.classification.sceneDiagonal;
+    reportProgress(options, "planning", analysis.classification.classes.size(), "classes");
     const std::vector<bool> inAssembly = options.instancing && options.assemblies
                                              ? planAssemblies(analysis, options, out, stats)
                                              : std::vector<bool>(tiles.size(), false);

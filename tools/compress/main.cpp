@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 #include <set>
+#include <unistd.h>
 #include <algorithm>
 
 namespace fs = std::filesystem;
@@ -256,20 +257,45 @@ struct CompressRequest {
     bool quiet = false;
 };
 
+// One line on stderr, rewritten as each stage starts, with the time so far; only on a terminal.
+class ProgressLine {
+public:
+    explicit ProgressLine(bool wanted) : shown_(wanted && isatty(fileno(stderr))) {}
+    ~ProgressLine() { clear(); }
+    void stage(const char* name, std::size_t count = 0, const char* unit = "") {
+        if (!shown_) return;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        if (count) std::fprintf(stderr, "\r\033[Ksymcompress: %s %zu %s (%.1f s)", name, count, unit, seconds);
+        else std::fprintf(stderr, "\r\033[Ksymcompress: %s (%.1f s)", name, seconds);
+        std::fflush(stderr);
+    }
+    void clear() {
+        if (shown_) std::fprintf(stderr, "\r\033[K"), std::fflush(stderr);
+    }
+
+private:
+    bool shown_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
 int runCompress(const CompressRequest& request) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
+    ProgressLine progress(!request.quiet);
+    progress.stage("reading");
     const Scene scene = readScene(request.input);
     const double readSeconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (!request.quiet)
         for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     CompressOptions options = request.options;
     if (formatFromExtension(request.output) == FileFormat::X3d) useX3dCosts(options);
+    options.progress = [&progress](const char* stage, std::size_t count, const char* unit) { progress.stage(stage, count, unit); };
     const SceneAnalysis analysis = analyzeScene(scene, options);
     CompressedScene compressed = planCompression(scene, analysis, options);
     WriteOptions write = request.write;
     write.extrasJson = compressed.digest.json();
     const auto writeStart = Clock::now();
+    progress.stage("writing", compressed.stats.trianglesStored, "triangles");
     writeScene(compressed.scene, request.output, write, {request.input});
     const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
 
@@ -294,6 +320,8 @@ int runCompress(const CompressRequest& request) {
     CompressOptions plain = options, instancingOnly = options;
     plain.instancing = false;
     instancingOnly.regions = false;
+    plain.progress = instancingOnly.progress = nullptr;
+    progress.stage("measuring the ablation");
     if (request.options.instancing) tryVariant("draco_alone", plain);
     if (request.options.instancing && request.options.regions) tryVariant("instancing", instancingOnly);
     const std::uintmax_t dracoAlone = request.options.instancing ? variants[0].bytes : 0;
@@ -358,6 +386,7 @@ int runCompress(const CompressRequest& request) {
         out << report.dump(2) << '\n';
         if (!out) throw FileError(request.report, "cannot write the report");
     }
+    progress.clear();
     if (request.quiet) return 0;
     std::printf("%s -> %s\n", request.input.string().c_str(), request.output.string().c_str());
     std::printf("  size            %ju -> %ju bytes, ratio %.2f\n", inputBytes, outputBytes, ratio);
