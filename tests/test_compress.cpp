@@ -2,11 +2,13 @@
 // the report's keys, instancing where it pays, the Khronos validator on the output.
 #include "sample_scenes.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/tiles.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
 
 #include <Eigen/Geometry>
 
+#include <map>
 #include <random>
 
 using namespace symcompress;
@@ -140,6 +142,41 @@ TEST_CASE("A symmetric single part is stored as its fundamental region (GLB): th
     CHECK(report["region_classes"] == 1);
     CHECK(report["triangles_stored"] == report["triangles_in"].get<std::size_t>() / 2);
     CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());
+}
+
+TEST_CASE("Seams of a fundamental region stay closed after quantization: the cup turned so its mirror is oblique",
+          "[compress]") {
+    // In the tile's own frame, Draco's grid moves the seam vertices of the two halves apart by up to a
+    // step (282 open edges); in the region's aligned frame the mirror is a coordinate plane on the grid.
+    Scene cup = readScene(modelPath("xj3d_coffee_cup/coffeeCup.x3d"));
+    Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
+    turn.topLeftCorner<3, 3>() = Eigen::Quaterniond(0.3, -0.5, 0.7, 0.2).normalized().toRotationMatrix();
+    for (int root : cup.roots) cup.nodes[root].transform = turn * cup.nodes[root].transform;
+    Scene turned = sceneOfOneMesh("cup", flattenScene(cup)[0].primitive);
+    turned.materials = cup.materials;
+    TemporaryFolder folder;
+    const auto input = folder / "cup.glb";
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(turned, input, plain);
+    const nlohmann::json report = compressAndVerify(input, folder, "cup-small");
+    REQUIRE(report["region_classes"] == 1);
+
+    // Open edges (used by one triangle) after welding at 1e-6 of the diagonal, far below a 14-bit step.
+    auto openEdges = [](const TriangleMesh& mesh) {
+        Eigen::AlignedBox3d box;
+        for (const auto& p : mesh.positions) box.extend(p);
+        const auto representative = weldPositions(mesh.positions, 1e-6 * box.diagonal().norm());
+        std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+        for (const Triangle& t : mesh.triangles)
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t a = representative[t[i]], b = representative[t[(i + 1) % 3]];
+                if (a != b) ++uses[{std::min(a, b), std::max(a, b)}];
+            }
+        return std::count_if(uses.begin(), uses.end(), [](const auto& entry) { return entry.second == 1; });
+    };
+    REQUIRE(openEdges(worldMesh(turned)) == 0);
+    CHECK(openEdges(worldMesh(readScene(folder / "cup-small.glb"))) == 0);
 }
 
 TEST_CASE("Where nothing pays, the output is the Draco-alone file: the spider", "[compress]") {

@@ -24,6 +24,9 @@ std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vect
                                           const Eigen::Vector3d& center, double tolerance) {
     try {
         RegionOptions regionOptions;
+        // Instances that are signed permutations in the region's frame map Draco's grid onto itself, so
+        // seams on coordinate planes stay closed after quantization.
+        regionOptions.frame = RegionFrame::Aligned;
         regionOptions.groupTolerance = 1e-5;
         // Float32 coordinates put a symmetric model's vertices on its planes only to about 1e-7 of its size;
         // cut points that close to a vertex become zero-area triangles once quantized, which Draco's
@@ -293,23 +296,24 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
             continue;
         }
         const bool useRegion = regional < instanced;
-        // The shared mesh is stored about the prototype's centroid (a small range for quantization).
+        // The shared mesh is stored about the prototype's centroid (a small range for quantization); a
+        // region in its aligned frame, also about the centroid (see RegionFrame::Aligned).
         Mesh mesh;
         mesh.name = "class " + std::to_string(k) + (useRegion ? " (fundamental region)" : "");
         Primitive local = useRegion ? region->region : prototype;
-        for (auto& p : local.positions) p -= center;
+        if (!useRegion)
+            for (auto& p : local.positions) p -= center;
         mesh.primitives.push_back(std::move(local));
         const int meshIndex = int(out.meshes.size());
         out.meshes.push_back(std::move(mesh));
         if (placed.size() > 1) ++stats.instancedClasses;
         if (useRegion) ++stats.regionClasses;
-        // Region copy j about the centroid: x -> center + g_j x for x stored about the centroid.
         std::vector<Eigen::Matrix4d> copiesInTile;
-        for (std::size_t j = 0; j < (useRegion ? region->instances.size() : 1); ++j) {
-            Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-            if (useRegion) m.topLeftCorner<3, 3>() = region->instances[j];
-            m.topRightCorner<3, 1>() = center;
-            copiesInTile.push_back(m);
+        if (useRegion) {
+            for (std::size_t j = 0; j < region->instances.size(); ++j) copiesInTile.push_back(instanceTransform(*region, j));
+        } else {
+            copiesInTile.push_back(Eigen::Matrix4d::Identity());
+            copiesInTile.back().topRightCorner<3, 1>() = center;
         }
         for (std::size_t i : placed) {
             for (std::size_t j = 0; j < copiesInTile.size(); ++j) {
