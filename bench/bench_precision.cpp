@@ -37,20 +37,21 @@ CongruenceOptions withAbsoluteTolerance(double absolute, int maxOrder) {
     return options;
 }
 
-// Every part of the models (up to kMaxBaseTriangles), then one of every class of those pooled, at the
-// bench's tolerance: no two bases are congruent.
+// Every part of the models (up to kMaxBaseTriangles, of non-zero size), then one of every class of those
+// pooled at three times the bench's tolerance: no two bases are congruent, nor near the tolerance's edge.
 std::vector<TriangleMesh> distinctParts(const std::vector<std::string>& models) {
     std::vector<Tile> pooled;
     double largest = 0;
     for (const std::string& model : models)
         for (Tile& tile : splitIntoTiles(flattenScene(readScene(model)))) {
-            if (tile.mesh.triangles.size() > kMaxBaseTriangles) continue;
+            const double diagonal = boxOf(tile.mesh).diagonal().norm();
+            if (tile.mesh.triangles.size() > kMaxBaseTriangles || !(diagonal > 0)) continue;
             tile.material = 0;
-            largest = std::max(largest, boxOf(tile.mesh).diagonal().norm());
+            largest = std::max(largest, diagonal);
             pooled.push_back(std::move(tile));
         }
     std::vector<TriangleMesh> bases;
-    for (const CongruenceClass& c : classifyTiles(pooled, withAbsoluteTolerance(kTolerance * largest, 8)).classes)
+    for (const CongruenceClass& c : classifyTiles(pooled, withAbsoluteTolerance(3 * kTolerance * largest, 8)).classes)
         bases.push_back(pooled[c.prototype].mesh);
     return bases;
 }

@@ -192,8 +192,8 @@ TEST_CASE("Parts of real models, copied and nearly copied: after the geometric c
     // Paper Tables II and III measure how many descriptor matches are truly congruent; after the geometric
     // check it must be all of them, at any maximum order, and no copies may be left apart (order >= 4; at
     // order 2 the frames of tiles with equal principal moments are ambiguous). bench_precision prints the table.
-    // The parts of two models, told apart at one distance (the models' scales differ), and the copies
-    // classified at that distance: 1e-4 of the largest part (the near misses are off by 20 times that).
+    // The parts of two models, told apart at three times one distance (the models' scales differ), and the
+    // copies classified at that distance: 1e-4 of the largest part (the near misses are off by 20 times that).
     std::vector<Tile> parts;
     double largest = 0;
     for (const char* model : {"kenney_racing_forest/decoration-forest.glb", "assimp_spider/spider.obj"})
@@ -205,10 +205,11 @@ TEST_CASE("Parts of real models, copied and nearly copied: after the geometric c
             parts.push_back(std::move(tile));
         }
     CongruenceOptions options;
-    options.absoluteTolerance = 1e-4 * largest;
+    options.absoluteTolerance = 3e-4 * largest;
     options.symmetries = false;
     std::vector<TriangleMesh> bases;
     for (const auto& k : classifyTiles(parts, options).classes) bases.push_back(parts[k.prototype].mesh);
+    options.absoluteTolerance = 1e-4 * largest;
     const samples::LabelledTiles set = samples::labelledCopies(bases, 3, 2e-3, 7);
     const std::size_t labels = *std::max_element(set.labels.begin(), set.labels.end()) + 1;
     REQUIRE(labels == 2 * bases.size());
