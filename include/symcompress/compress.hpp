@@ -83,8 +83,10 @@ struct SceneAnalysis {
 
 SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options = {});
 
-// The input's materials and textures are kept; node names and hierarchy are not (the output is one level
-// of instances). `options.tolerance` and `threads` must be those the analysis was made with.
+// The input's materials and textures are kept. The output is one level of nodes: an instance node takes
+// the name of the input node its tile came from; tiles stored as they are share one mesh per material,
+// and the names of their nodes are reported as not kept (CompressedScene::scene.warnings), as is the
+// input's hierarchy. `options.tolerance` and `threads` must be those the analysis was made with.
 CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysis, const CompressOptions& options = {});
 
 // analyzeScene, then planCompression.

@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 
 namespace symcompress {
 namespace {
@@ -93,6 +94,14 @@ void append(Primitive& into, const Primitive& part) {
     for (const Triangle& t : part.triangles) into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
+// The name of the input node that draws tile t (empty when it has none): instance nodes keep it.
+std::string sourceName(const Scene& input, const SceneAnalysis& analysis, std::size_t t) {
+    const Tile& tile = analysis.tiles[t];
+    if (tile.sources.empty()) return {};
+    const int node = analysis.soup[tile.sources.front().primitive].node;
+    return node >= 0 && std::size_t(node) < input.nodes.size() ? input.nodes[std::size_t(node)].name : std::string();
+}
+
 void addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const std::string& name) {
     Node node;
     node.name = name;
@@ -104,7 +113,8 @@ void addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const s
 
 // The repeated assemblies worth storing once: each becomes one mesh (its first copy, about its anchor's
 // centroid) drawn by a node per copy. Returns which tiles they draw.
-std::vector<bool> planAssemblies(const SceneAnalysis& analysis, const CompressOptions& options, Scene& out, CompressionStats& stats) {
+std::vector<bool> planAssemblies(const Scene& input, const SceneAnalysis& analysis, const CompressOptions& options, Scene& out,
+                                 CompressionStats& stats) {
     const std::vector<Tile>& tiles = analysis.tiles;
     const TileClassification& classification = analysis.classification;
     const double tolerance = options.tolerance * classification.sceneDiagonal;
@@ -149,7 +159,8 @@ std::vector<bool> planAssemblies(const SceneAnalysis& analysis, const CompressOp
         Eigen::Matrix4d atCenter = Eigen::Matrix4d::Identity();
         atCenter.topRightCorner<3, 1>() = center;
         for (std::size_t j = 0; j < assembly.copies.size(); ++j) {
-            addRootNode(out, int(out.meshes.size()) - 1, assembly.placements[j].matrix() * atCenter, "");
+            addRootNode(out, int(out.meshes.size()) - 1, assembly.placements[j].matrix() * atCenter,
+                        sourceName(input, analysis, assembly.copies[j][0]));
             double worst = 0;
             for (std::size_t i = 0; i < assembly.copies[j].size(); ++i) {
                 inAssembly[assembly.copies[j][i]] = true;
@@ -221,10 +232,11 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     std::map<int, Primitive> unique;  // by material: tiles stored as they are
     if (!options.instancing)
         for (const Tile& tile : tiles) append(unique[tile.material], tilePrimitive(tile, soup));
+    std::vector<bool> uniqueTile(tiles.size(), !options.instancing);  // stored as it is
     const double tolerance = options.tolerance * analysis.classification.sceneDiagonal;
     reportProgress(options, "planning", analysis.classification.classes.size(), "classes");
     const std::vector<bool> inAssembly = options.instancing && options.assemblies
-                                             ? planAssemblies(analysis, options, out, stats)
+                                             ? planAssemblies(input, analysis, options, out, stats)
                                              : std::vector<bool>(tiles.size(), false);
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         const CongruenceClass& c = classification.classes[k];
@@ -262,6 +274,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
                 placed.push_back(i);
             } else {
                 ++stats.attributeMismatches;
+                uniqueTile[c.members[i]] = true;
                 apart.push_back(std::move(member));
             }
         }
@@ -292,7 +305,10 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
                                        : std::numeric_limits<double>::infinity();
         if (asIs <= std::min(instanced, regional)) {
             if (placed.size() > 1) stats.notWorthInstancing += placed.size();
-            for (std::size_t i : placed) append(unique[prototype.material], i == 0 ? prototype : tilePrimitive(tiles[c.members[i]], soup));
+            for (std::size_t i : placed) {
+                uniqueTile[c.members[i]] = true;
+                append(unique[prototype.material], i == 0 ? prototype : tilePrimitive(tiles[c.members[i]], soup));
+            }
             continue;
         }
         const bool useRegion = regional < instanced;
@@ -317,13 +333,21 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         }
         for (std::size_t i : placed) {
             for (std::size_t j = 0; j < copiesInTile.size(); ++j) {
-                addRootNode(out, meshIndex, placements[i].matrix() * copiesInTile[j], "");
+                addRootNode(out, meshIndex, placements[i].matrix() * copiesInTile[j], sourceName(input, analysis, c.members[i]));
                 ++stats.instances;
             }
             stats.maxDeviation = std::max(stats.maxDeviation, c.deviations[i]);
         }
     }
     if (!unique.empty()) {
+        // One mesh per material for every tile stored as it is: the names of the nodes it came from are lost.
+        std::set<std::string> merged;
+        for (std::size_t t = 0; t < tiles.size(); ++t)
+            if (uniqueTile[t])
+                if (std::string name = sourceName(input, analysis, t); !name.empty()) merged.insert(name);
+        if (!merged.empty())
+            out.warnings.push_back(std::to_string(merged.size()) + " node names (e.g. '" + *merged.begin() +
+                                   "') not kept: their tiles are stored as they are in one mesh per material");
         Mesh mesh;
         mesh.name = "unique tiles";
         for (auto& [material, primitive] : unique) mesh.primitives.push_back(std::move(primitive));

@@ -201,9 +201,9 @@ int runDetect(const fs::path& file, const SymmetryOptions& options, bool json) {
     return 0;
 }
 
-// The bytes the written file spends placing instances, per instance: glTF nodes without a name (the plan
-// names only the node of the tiles stored as they are), X3D Transforms around a USE. 0 when there are
-// none or the file is compressed (.x3dz).
+// The bytes the written file spends placing instances, per instance: glTF nodes but the one drawing the
+// tiles stored as they are, X3D Transforms around a USE. 0 when there are none or the file is compressed
+// (.x3dz).
 double bytesPerInstance(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -220,7 +220,7 @@ double bytesPerInstance(const fs::path& file) {
         const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
         if (json.is_discarded() || !json.contains("nodes")) return 0;
         for (const auto& node : json["nodes"])
-            if (node.contains("mesh") && !node.contains("name")) total += node.dump().size() + 1, ++count;
+            if (node.contains("mesh") && node.value("name", "") != "unique tiles") total += node.dump().size() + 1, ++count;
     } else if (format == FileFormat::X3d) {
         static const std::regex instance(R"(<Transform[^>]*>\s*<Group USE='[^']*'/>\s*</Transform>)");
         for (auto it = std::sregex_iterator(bytes.begin(), bytes.end(), instance); it != std::sregex_iterator(); ++it)
@@ -337,6 +337,10 @@ int runCompress(const CompressRequest& request) {
             outputBytes = sceneBytes(request.output);
         }
     const CompressionStats& stats = compressed.stats;
+    // What the plan could not carry through, after the reader's own warnings.
+    const std::vector<std::string>& warnings = compressed.scene.warnings;
+    if (!request.quiet)
+        for (std::size_t i = scene.warnings.size(); i < warnings.size(); ++i) std::fprintf(stderr, "warning: %s\n", warnings[i].c_str());
     std::uintmax_t inputBytes = sceneBytes(request.input);
     // OBJ, PLY, STL and X3D name their images by path: those files are part of the input too.
     const FileFormat inputFormat = formatFromExtension(request.input);
@@ -380,7 +384,7 @@ int runCompress(const CompressRequest& request) {
                             {"instancing_and_regions", request.options.instancing && request.options.regions
                                                            ? nlohmann::json(fullPlanBytes) : nlohmann::json(nullptr)},
                             {"final", outputBytes}}},
-                          {"warnings", scene.warnings}};
+                          {"warnings", warnings}};
     if (!request.report.empty()) {
         std::ofstream out(request.report);
         out << report.dump(2) << '\n';
