@@ -41,32 +41,6 @@ void addFlatTriangle(Primitive& out, const Eigen::Vector3d& a, const Eigen::Vect
     out.triangles.push_back({base, base + 1, base + 2});
 }
 
-Primitive makeBolt() {
-    std::vector<Ring> rings = {{0.38, 0.38, 0.0}, {0.5, 0.5, 0.12}};
-    for (int ridge = 0; ridge < 10; ++ridge) {  // the thread, as rings (a helix would break the mirrors)
-        const double z = 0.2 + 0.26 * ridge;
-        rings.push_back({0.44, 0.44, z});
-        rings.push_back({0.5, 0.5, z + 0.13});
-    }
-    for (const Ring& ring : std::vector<Ring>{{0.5, 0.5, 3.0}, {1.0, 0.87, 3.0}, {1.0, 0.87, 3.7}, {0.9, 0.78, 3.8}})
-        rings.push_back(ring);
-    Primitive bolt;
-    for (std::size_t level = 0; level + 1 < rings.size(); ++level)
-        for (int k = 0; k < kSides; ++k) {
-            const Eigen::Vector3d a = ringCorner(rings[level], k), b = ringCorner(rings[level], k + 1),
-                                  c = ringCorner(rings[level + 1], k + 1), d = ringCorner(rings[level + 1], k);
-            addFlatTriangle(bolt, a, b, c);
-            addFlatTriangle(bolt, a, c, d);
-        }
-    // Caps fanned from their centres, so that the tessellation keeps the 6-fold symmetry.
-    const Eigen::Vector3d bottomCentre(0, 0, rings.front().z), topCentre(0, 0, rings.back().z);
-    for (int k = 0; k < kSides; ++k) {
-        addFlatTriangle(bolt, bottomCentre, ringCorner(rings.front(), k + 1), ringCorner(rings.front(), k));
-        addFlatTriangle(bolt, topCentre, ringCorner(rings.back(), k), ringCorner(rings.back(), k + 1));
-    }
-    return bolt;
-}
-
 // Bakes `copies` placements of `part` into one primitive; every `mirrorEvery`-th copy is mirrored.
 Primitive bakeCopies(const Primitive& part, int copies, int mirrorEvery, double spread, std::uint32_t seed) {
     std::mt19937 random(seed);
@@ -95,6 +69,32 @@ Primitive bakeCopies(const Primitive& part, int copies, int mirrorEvery, double 
 }
 
 }  // namespace
+
+Primitive makeBolt() {
+    std::vector<Ring> rings = {{0.38, 0.38, 0.0}, {0.5, 0.5, 0.12}};
+    for (int ridge = 0; ridge < 10; ++ridge) {  // the thread, as rings (a helix would break the mirrors)
+        const double z = 0.2 + 0.26 * ridge;
+        rings.push_back({0.44, 0.44, z});
+        rings.push_back({0.5, 0.5, z + 0.13});
+    }
+    for (const Ring& ring : std::vector<Ring>{{0.5, 0.5, 3.0}, {1.0, 0.87, 3.0}, {1.0, 0.87, 3.7}, {0.9, 0.78, 3.8}})
+        rings.push_back(ring);
+    Primitive bolt;
+    for (std::size_t level = 0; level + 1 < rings.size(); ++level)
+        for (int k = 0; k < kSides; ++k) {
+            const Eigen::Vector3d a = ringCorner(rings[level], k), b = ringCorner(rings[level], k + 1),
+                                  c = ringCorner(rings[level + 1], k + 1), d = ringCorner(rings[level + 1], k);
+            addFlatTriangle(bolt, a, b, c);
+            addFlatTriangle(bolt, a, c, d);
+        }
+    // Caps fanned from their centres, so that the tessellation keeps the 6-fold symmetry.
+    const Eigen::Vector3d bottomCentre(0, 0, rings.front().z), topCentre(0, 0, rings.back().z);
+    for (int k = 0; k < kSides; ++k) {
+        addFlatTriangle(bolt, bottomCentre, ringCorner(rings.front(), k + 1), ringCorner(rings.front(), k));
+        addFlatTriangle(bolt, topCentre, ringCorner(rings.back(), k), ringCorner(rings.back(), k + 1));
+    }
+    return bolt;
+}
 
 Scene singleMeshScene(const std::string& name, Primitive primitive, const Eigen::Vector4d& colour) {
     Material material;

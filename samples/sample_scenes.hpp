@@ -36,6 +36,9 @@ private:
 // One mesh of one primitive, drawn once, with one material of the given base colour.
 Scene singleMeshScene(const std::string& name, Primitive primitive, const Eigen::Vector4d& colour);
 
+// The bolt of bolts.glb: one closed surface of 1248 flat-shaded triangles, group C6.
+Primitive makeBolt();
+
 // 12 copies of a bolt baked into one mesh at random placements, every third one mirrored.
 // Expected: 12 tiles, 1 congruence class (4 members mirrored), tile group C6 (order 6).
 Scene makeBoltsScene();

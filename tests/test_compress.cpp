@@ -115,7 +115,7 @@ TEST_CASE("Tiles that recur together are stored once per group: the room's books
     CHECK(report["assembly_copies"] == 4);
     CHECK(report["tiles_in_assemblies"] == 4 * 188);
     CHECK(report["triangles_stored"] == report["triangles_in"].get<std::size_t>() - 3 * 188 * 12);
-    CHECK(report["bytes_per_instance"].get<double>() < 80);  // a mirror and a translation, no rotation
+    CHECK(report["bytes_per_instance"].get<double>() < 100);  // a mirror, a translation and the name "room"
     CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());
 }
 

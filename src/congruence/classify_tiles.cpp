@@ -7,6 +7,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -32,6 +34,14 @@ constexpr double kDescriptorFloor = 1e-3;
 constexpr double kDescriptorPerTolerance = 50;
 // Per-tile symmetry tolerance, relative to the tile: at most this, however small the tile.
 constexpr double kMaxTileTolerance = 1e-3;
+
+// The principal second moments agree within `epsilon` of the largest: invariants like the descriptor,
+// and as cheap to compare, but they also tell apart shapes whose band energies happen to agree.
+bool samePrincipalMoments(const TileShape& a, const TileShape& b, double epsilon) {
+    const Eigen::Vector3d x = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(a.secondMoments, Eigen::EigenvaluesOnly).eigenvalues();
+    const Eigen::Vector3d y = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(b.secondMoments, Eigen::EigenvaluesOnly).eigenvalues();
+    return (x - y).cwiseAbs().maxCoeff() <= epsilon * std::max(x[2], y[2]);
+}
 
 }  // namespace
 
@@ -87,22 +97,23 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
         return result.shapes[a].descriptor.area > result.shapes[b].descriptor.area;
     });
     std::multimap<double, std::size_t> classByArea;
-    std::vector<std::unique_ptr<ShapeVerifier>> prototypeVerifiers;
+    std::vector<std::unique_ptr<TileProbe>> prototypeProbes;
     for (std::size_t tile : order) {
         const TileShape& shape = result.shapes[tile];
         const double area = shape.descriptor.area;
         const double epsilon = descriptorTolerance(shape.diagonal, tolerance);
-        std::unique_ptr<ShapeVerifier> verifier;
+        std::unique_ptr<TileProbe> probe;
         bool placed = false;
         for (auto it = classByArea.lower_bound(area * (1 - epsilon)); it != classByArea.end() && it->first <= area * (1 + epsilon);
              ++it) {
             CongruenceClass& candidate = result.classes[it->second];
             const TileShape& prototype = result.shapes[candidate.prototype];
-            if (prototype.material != shape.material || descriptorDifference(prototype.descriptor, shape.descriptor) > epsilon)
+            if (prototype.material != shape.material || descriptorDifference(prototype.descriptor, shape.descriptor) > epsilon ||
+                !samePrincipalMoments(prototype, shape, epsilon))
                 continue;
             ++result.descriptorMatches;
-            if (!verifier) verifier = std::make_unique<ShapeVerifier>(tiles[tile].mesh, shape.moments.centroid);
-            const auto found = findIsometry(prototype, *prototypeVerifiers[it->second], shape, *verifier, tolerance);
+            if (!probe) probe = std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid);
+            const auto found = findIsometry(prototype, *prototypeProbes[it->second], shape, *probe, tolerance);
             if (!found) continue;
             ++result.verifiedMatches;
             Isometry placement;
@@ -122,8 +133,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
         created.deviations.push_back(0);
         classByArea.emplace(area, result.classes.size());
         result.classes.push_back(std::move(created));
-        prototypeVerifiers.push_back(verifier ? std::move(verifier)
-                                              : std::make_unique<ShapeVerifier>(tiles[tile].mesh, shape.moments.centroid));
+        prototypeProbes.push_back(probe ? std::move(probe) : std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid));
     }
 
     // The group of each prototype, in parallel; a member's group is its prototype's carried over by its

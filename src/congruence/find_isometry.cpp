@@ -34,8 +34,8 @@ void principalCandidates(const Eigen::Matrix3d& from, const Eigen::Matrix3d& to,
 
 // Candidate maps from critical directions of one moment function: the two directions of `from` where it is
 // largest, matched to pairs of `to` with the same values and the same angle between them.
-void criticalCandidates(const MomentFunction& f, const MomentFunction& g, std::vector<Eigen::Matrix3d>& out) {
-    const auto fAxes = findCandidateAxes({f}, 1e-4), gAxes = findCandidateAxes({g}, 1e-4);
+void criticalCandidates(const MomentFunction& f, const std::vector<Eigen::Vector3d>& fAxes, const MomentFunction& g,
+                        const std::vector<Eigen::Vector3d>& gAxes, std::vector<Eigen::Matrix3d>& out) {
     if (fAxes.size() < 2) return;
     std::vector<Eigen::Vector3d> sorted = fAxes;
     std::sort(sorted.begin(), sorted.end(), [&](const Eigen::Vector3d& x, const Eigen::Vector3d& y) { return f.value(x) > f.value(y); });
@@ -63,8 +63,16 @@ void criticalCandidates(const MomentFunction& f, const MomentFunction& g, std::v
 
 }  // namespace
 
-std::optional<FoundIsometry> findIsometry(const TileShape& from, const ShapeVerifier& fromVerifier, const TileShape& to,
-                                          const ShapeVerifier& toVerifier, double tolerance) {
+const std::vector<Eigen::Vector3d>& TileProbe::criticalDirections(const MomentFunction& f, int order) {
+    auto found = directions_.find(order);
+    if (found == directions_.end()) found = directions_.emplace(order, findCandidateAxes({f}, 1e-4)).first;
+    return found->second;
+}
+
+std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& fromProbe, const TileShape& to, TileProbe& toProbe,
+                                          double tolerance) {
+    const ShapeVerifier& fromVerifier = fromProbe.verifier();
+    const ShapeVerifier& toVerifier = toProbe.verifier();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> fromAxes(from.secondMoments), toAxes(to.secondMoments);
     const Eigen::Vector3d& values = fromAxes.eigenvalues();
     const double screening = std::max(2 * tolerance, tolerance + 2e-4 * from.diagonal);
@@ -93,7 +101,7 @@ std::optional<FoundIsometry> findIsometry(const TileShape& from, const ShapeVeri
         const MomentFunction f(from.moments, order), g(to.moments, order);
         if (!(f.relativeVariation() > kNoiseVariation)) continue;
         candidates.clear();
-        criticalCandidates(f, g, candidates);
+        criticalCandidates(f, fromProbe.criticalDirections(f, order), g, toProbe.criticalDirections(g, order), candidates);
         if (auto found = firstPassing(candidates)) return found;
     }
     // Moments invariant about an axis (a part turned on a lathe, a high-order gear): the axis with the

@@ -6,7 +6,9 @@
 
 #include "../symmetry/shape_verifier.hpp"
 
+#include <map>
 #include <optional>
+#include <vector>
 
 namespace symcompress {
 
@@ -15,10 +17,23 @@ struct FoundIsometry {
     double deviation = 0;    // absolute d_A
 };
 
+// What the search needs of one tile, kept across every pair the tile takes part in: its verifier, and the
+// critical directions of each order's moment function (Newton from many starts: found once per tile).
+class TileProbe {
+public:
+    TileProbe(const TriangleMesh& mesh, const Eigen::Vector3d& centroid) : verifier_(mesh, centroid) {}
+    const ShapeVerifier& verifier() const { return verifier_; }
+    const std::vector<Eigen::Vector3d>& criticalDirections(const MomentFunction& f, int order);
+
+private:
+    ShapeVerifier verifier_;
+    std::map<int, std::vector<Eigen::Vector3d>> directions_;  // by order
+};
+
 // A map from shape `from` onto shape `to` within `tolerance` (absolute), or nothing. Frames come from the
 // principal axes of the second moments when they are distinct, and from the critical directions of the
 // moment functions and the farthest point across the principal axis.
-std::optional<FoundIsometry> findIsometry(const TileShape& from, const ShapeVerifier& fromVerifier, const TileShape& to,
-                                          const ShapeVerifier& toVerifier, double tolerance);
+std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& fromProbe, const TileShape& to, TileProbe& toProbe,
+                                          double tolerance);
 
 }  // namespace symcompress

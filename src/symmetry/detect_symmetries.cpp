@@ -7,6 +7,7 @@
 #include "point_group_closure.hpp"
 #include "shape_verifier.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
@@ -19,6 +20,7 @@
 #include <map>
 #include <mutex>
 #include <numeric>
+#include <optional>
 
 namespace symcompress {
 namespace {
@@ -51,6 +53,11 @@ constexpr std::size_t kMaxRefinedFolds = 8;
 constexpr double kGenericTurn = 0.3819660112501051;
 // How far, relative to the diagonal, a candidate from the moments may be from a symmetry before refinement.
 constexpr double kPreliminaryMargin = 2e-4;
+// Principal second moments this far apart (relative to the largest, and in units of the tolerance) cannot
+// be made equal by any asymmetry within the tolerance: every symmetry then maps each principal axis onto
+// itself, so the axes to try are those three (a subgroup of D2h about them), with no search.
+constexpr double kDistinctPrincipal = 1e-3;
+constexpr double kDistinctPrincipalPerTolerance = 50;
 
 Eigen::Matrix3d mirrorWithNormal(const Eigen::Vector3d& n) { return Eigen::Matrix3d::Identity() - 2 * n * n.transpose(); }
 Eigen::Matrix3d rotationAbout(const Eigen::Vector3d& axis, double angle) {
@@ -131,6 +138,23 @@ std::vector<int> divisorsDescending(int n) {
     return divisors;
 }
 
+// The principal axes of the second moments (order 2 function f(w) = w^T M w) when their moments are
+// clearly distinct; else nothing.
+std::optional<std::vector<Eigen::Vector3d>> distinctPrincipalAxes(const MomentCoefficients& coefficients, double tolerance) {
+    const MomentFunction f(coefficients, 2);
+    Eigen::Matrix3d m;
+    const Eigen::Matrix3d unit = Eigen::Matrix3d::Identity();
+    for (int i = 0; i < 3; ++i) m(i, i) = f.value(unit.col(i));
+    for (int i = 0; i < 3; ++i)
+        for (int j = i + 1; j < 3; ++j)
+            m(i, j) = m(j, i) = f.value((unit.col(i) + unit.col(j)).normalized()) - (m(i, i) + m(j, j)) / 2;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(m);
+    const Eigen::Vector3d values = solver.eigenvalues();
+    const double gap = std::min(values[1] - values[0], values[2] - values[1]);
+    if (!(gap > std::max(kDistinctPrincipal, kDistinctPrincipalPerTolerance * tolerance) * std::abs(values[2]))) return std::nullopt;
+    return std::vector<Eigen::Vector3d>{solver.eigenvectors().col(0), solver.eigenvectors().col(1), solver.eigenvectors().col(2)};
+}
+
 }  // namespace
 
 SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& options) {
@@ -193,7 +217,8 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     }
     group.seconds.moments = since(start);
     start = Clock::now();
-    const std::vector<Eigen::Vector3d> axes = findCandidateAxes(functions, std::max(1e-4, options.tolerance));
+    const auto principal = distinctPrincipalAxes(coefficients, options.tolerance);
+    const std::vector<Eigen::Vector3d> axes = principal ? *principal : findCandidateAxes(functions, std::max(1e-4, options.tolerance));
     group.seconds.axes = since(start);
     start = Clock::now();
     const ShapeVerifier verifier(mesh, group.centroid);
