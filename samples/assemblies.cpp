@@ -12,30 +12,13 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A UV sphere about the z axis whose azimuth 0 points along `facing`, centred at `centre`.
-TriangleMesh uvSphere(const Eigen::Vector3d& centre, double azimuthOffset, int segments, int rings) {
-    TriangleMesh mesh;
-    mesh.positions.push_back(centre + Eigen::Vector3d(0, 0, -1));
-    for (int r = 1; r < rings; ++r) {
-        const double polar = kPi * r / rings;
-        for (int s = 0; s < segments; ++s) {
-            const double azimuth = 2 * kPi * s / segments + azimuthOffset;
-            mesh.positions.push_back(centre + Eigen::Vector3d(std::sin(polar) * std::cos(azimuth),
-                                                              std::sin(polar) * std::sin(azimuth), -std::cos(polar)));
-        }
-    }
-    mesh.positions.push_back(centre + Eigen::Vector3d(0, 0, 1));
-    const auto top = std::uint32_t(mesh.positions.size() - 1);
-    auto at = [&](int r, int s) { return std::uint32_t(1 + (r - 1) * segments + (s % segments)); };
-    for (int s = 0; s < segments; ++s) {
-        mesh.triangles.push_back({0, at(1, s + 1), at(1, s)});
-        mesh.triangles.push_back({top, at(rings - 1, s), at(rings - 1, s + 1)});
-        for (int r = 1; r + 1 < rings; ++r) {
-            mesh.triangles.push_back({at(r, s), at(r, s + 1), at(r + 1, s + 1)});
-            mesh.triangles.push_back({at(r, s), at(r + 1, s + 1), at(r + 1, s)});
-        }
-    }
-    return mesh;
+// A UV sphere of unit radius about the z axis, as a lathe, turned by `azimuth` and centred at `centre`.
+TriangleMesh uvSphere(const Eigen::Vector3d& centre, double azimuth, int segments, int rings) {
+    std::vector<Eigen::Vector2d> profile;
+    for (int r = 0; r <= rings; ++r) profile.emplace_back(std::sin(kPi * r / rings), -std::cos(kPi * r / rings));
+    profile.front().x() = profile.back().x() = 0;  // the poles exactly on the axis
+    return transformed(latheMesh(profile, segments, Eigen::Vector3d::Zero()),
+                       Eigen::AngleAxisd(azimuth, Eigen::Vector3d::UnitZ()).toRotationMatrix(), centre);
 }
 
 }  // namespace

@@ -37,6 +37,15 @@ nlohmann::json compressAndVerify(const std::filesystem::path& input, const Tempo
     return nlohmann::json::parse(readTextFile(report));
 }
 
+// The scene as an uncompressed GLB in the folder: the input a user would start from.
+std::filesystem::path writePlainGlb(const Scene& scene, const TemporaryFolder& folder, const std::string& name) {
+    WriteOptions plain;
+    plain.draco = false;
+    const auto file = folder / (name + ".glb");
+    writeScene(scene, file, plain);
+    return file;
+}
+
 }  // namespace
 
 TEST_CASE("Every shared model, compressed, rebuilds its original surface", "[compress][models]") {
@@ -88,10 +97,7 @@ TEST_CASE("Baked copies are stored once and drawn by instances, mirrors included
     scene.nodes[0].mesh = 0;
     scene.roots = {0};
     TemporaryFolder folder;
-    const auto input = folder / "knots.glb";
-    WriteOptions plain;
-    plain.draco = false;
-    writeScene(scene, input, plain);
+    const auto input = writePlainGlb(scene, folder, "knots");
 
     const nlohmann::json report = compressAndVerify(input, folder, "knots-compressed");
     CHECK(report["tiles"] == 12);
@@ -104,10 +110,7 @@ TEST_CASE("Baked copies are stored once and drawn by instances, mirrors included
 
 TEST_CASE("Tiles that recur together are stored once per group: the room's bookshelves", "[compress]") {
     TemporaryFolder folder;
-    const auto input = folder / "room.glb";
-    WriteOptions plain;
-    plain.draco = false;
-    writeScene(samples::makeRoomScene(), input, plain);
+    const auto input = writePlainGlb(samples::makeRoomScene(), folder, "room");
     const nlohmann::json report = compressAndVerify(input, folder, "room-compressed");
     // The 4 bookshelves of 188 boxes each pay for a mesh and 4 nodes; tables and chairs of 12-triangle
     // boxes cost less stored as they are than a node per copy.
@@ -121,10 +124,7 @@ TEST_CASE("Tiles that recur together are stored once per group: the room's books
 
 TEST_CASE("symcompress prints the size report, and no progress line when stderr is not a terminal", "[compress][cli]") {
     TemporaryFolder folder;
-    const auto input = folder / "lamp.glb";
-    WriteOptions plain;
-    plain.draco = false;
-    writeScene(samples::makeLampScene(), input, plain);
+    const auto input = writePlainGlb(samples::makeLampScene(), folder, "lamp");
     const CommandResult run = runCommand(kSymcompress + " " + quoted(input) + " -o " + quoted(folder / "lamp-small.glb"));
     REQUIRE(run.status == 0);
     CHECK(run.output.find("ratio") != std::string::npos);
@@ -155,10 +155,7 @@ TEST_CASE("Seams of a fundamental region stay closed after quantization: the cup
     Scene turned = sceneOfOneMesh("cup", flattenScene(cup)[0].primitive);
     turned.materials = cup.materials;
     TemporaryFolder folder;
-    const auto input = folder / "cup.glb";
-    WriteOptions plain;
-    plain.draco = false;
-    writeScene(turned, input, plain);
+    const auto input = writePlainGlb(turned, folder, "cup");
     const nlohmann::json report = compressAndVerify(input, folder, "cup-small");
     REQUIRE(report["region_classes"] == 1);
 
