@@ -176,6 +176,14 @@ TEST_CASE("Seams of a fundamental region stay closed after quantization: the cup
     CHECK(openEdges(worldMesh(readScene(folder / "cup-small.glb"))) == 0);
 }
 
+TEST_CASE("An image that several materials use is embedded once: the Chevy Tahoe's 8 ImageTextures", "[compress]") {
+    // Its X3D names one 76 KB JPEG from 7 ImageTextures; embedded 7 times the GLB was 622 KB.
+    TemporaryFolder folder;
+    const nlohmann::json report = compressAndVerify(modelPath("savage_chevy_tahoe/ChevyTahoe.x3d"), folder, "chevy");
+    CHECK(readScene(folder / "chevy.glb").textures.size() == 2);
+    CHECK(report["output_bytes"].get<double>() < 200000);
+}
+
 TEST_CASE("Where nothing pays, the output is the Draco-alone file: the spider", "[compress]") {
     // Its repeated legs are under 100 triangles: nodes cost more than Draco's bytes for them.
     TemporaryFolder folder;

@@ -232,13 +232,30 @@ Json writeNode(const Node& node, const std::vector<int>& meshIndex) {
     return out;
 }
 
+// For each texture, the first one with the same image bytes: an image that several materials (or an X3D
+// file's several ImageTextures of one URL) use is embedded once.
+std::vector<int> firstOfSameImage(const std::vector<Texture>& textures) {
+    std::vector<int> first(textures.size());
+    for (std::size_t i = 0; i < textures.size(); ++i) {
+        first[i] = int(i);
+        for (std::size_t j = 0; j < i; ++j)
+            if (textures[j].bytes == textures[i].bytes && textures[j].mimeType == textures[i].mimeType) {
+                first[i] = first[j];
+                break;
+            }
+    }
+    return first;
+}
+
+// textureIndex: the glTF texture of each of the scene's textures once written (-1 before), shared by
+// textures of the same image.
 Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, const Scene& scene,
-                   std::vector<int>& textureIndex) {
+                   const std::vector<int>& sameImage, std::vector<int>& textureIndex) {
     Json pbr = {{"baseColorFactor", {material.baseColorFactor[0], material.baseColorFactor[1],
                                      material.baseColorFactor[2], material.baseColorFactor[3]}},
                 {"metallicFactor", material.metallicFactor},
                 {"roughnessFactor", material.roughnessFactor}};
-    const int texture = material.baseColorTexture;
+    const int texture = material.baseColorTexture >= 0 ? sameImage[material.baseColorTexture] : -1;
     if (texture >= 0 && !scene.textures[texture].bytes.empty()) {
         if (textureIndex[texture] < 0) {
             const Texture& source = scene.textures[texture];
@@ -303,8 +320,9 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     }
     GltfBuilder builder(root);
     std::vector<int> textureIndex(scene.textures.size(), -1);
+    const std::vector<int> sameImage = firstOfSameImage(scene.textures);
     for (const Material& material : scene.materials)
-        root["materials"].push_back(writeMaterial(material, builder, root, scene, textureIndex));
+        root["materials"].push_back(writeMaterial(material, builder, root, scene, sameImage, textureIndex));
 
     // Meshes with no triangles are left out (glTF requires at least one primitive), and so is the
     // reference to them from nodes.
