@@ -18,6 +18,7 @@ struct CompressOptions {
     bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
     bool regions = true;        // store symmetric tiles as their fundamental regions where that pays
     bool assemblies = true;     // store tiles that recur together once per group, drawn by one node per copy
+    bool keepInputInstances = true;  // meshes the input draws from several nodes stay shared, as they are
     int threads = 0;
     // Called as each stage starts, with what it works on (e.g. "classifying", 873 tiles); may be empty.
     std::function<void(const char* stage, std::size_t count, const char* unit)> progress;
@@ -42,6 +43,7 @@ struct CompressionStats {
     std::size_t assemblies = 0;           // repeated assemblies stored once (tiles that recur together)
     std::size_t assemblyCopies = 0;       // nodes drawing them
     std::size_t tilesInAssemblies = 0;    // tiles those nodes draw
+    std::size_t inputInstancesKept = 0;   // nodes of the input's own shared meshes, kept (KeptInstance)
     double maxDeviation = 0;              // of the placements used, relative to the diagonal
     double secondsTiles = 0, secondsClasses = 0, secondsPlan = 0;
 };
@@ -73,7 +75,16 @@ struct CompressedScene {
 
 // What the plan is made from: the tiles and their congruence classes (the expensive part), computed once
 // for any number of plans (the size report's ablation makes three).
+// A node of the input that draws a mesh several nodes draw: the author's own instancing, kept as it is
+// (any affine transform, so also scaled copies that are not congruent).
+struct KeptInstance {
+    int mesh = -1;  // in the input
+    Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // world
+    std::string name;
+};
+
 struct SceneAnalysis {
+    std::vector<KeptInstance> keptInstances;  // not in the soup: their meshes are stored as they are
     std::vector<WorldPrimitive> soup;
     std::vector<Tile> tiles;
     TileClassification classification;

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -189,6 +190,18 @@ SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options) {
     SceneAnalysis analysis;
     auto start = std::chrono::steady_clock::now();
     analysis.soup = flattenScene(input);
+    if (options.keepInputInstances) {
+        // Meshes drawn by two or more nodes are the author's instancing: kept, and left out of the tiles.
+        std::map<int, std::set<int>> nodesOfMesh;
+        for (const WorldPrimitive& placed : analysis.soup) nodesOfMesh[placed.mesh].insert(placed.node);
+        const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+        for (const auto& [mesh, nodes] : nodesOfMesh)
+            if (mesh >= 0 && nodes.size() > 1)
+                for (int node : nodes) analysis.keptInstances.push_back({mesh, world[std::size_t(node)], input.nodes[std::size_t(node)].name});
+        analysis.soup.erase(std::remove_if(analysis.soup.begin(), analysis.soup.end(),
+                                           [&](const WorldPrimitive& placed) { return nodesOfMesh[placed.mesh].size() > 1; }),
+                            analysis.soup.end());
+    }
     std::size_t triangles = 0;
     for (const WorldPrimitive& placed : analysis.soup) triangles += placed.primitive.triangles.size();
     reportProgress(options, "splitting into tiles", triangles, "triangles");
@@ -229,6 +242,14 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     out.textures = input.textures;
     out.materials = input.materials;
     out.warnings = input.warnings;
+    std::map<int, int> keptMesh;  // input mesh -> output mesh
+    for (const KeptInstance& kept : analysis.keptInstances) {
+        auto [entry, added] = keptMesh.emplace(kept.mesh, int(out.meshes.size()));
+        if (added) out.meshes.push_back(input.meshes[std::size_t(kept.mesh)]);
+        addRootNode(out, entry->second, kept.transform, kept.name);
+        ++stats.inputInstancesKept;
+        ++stats.instances;
+    }
     std::map<int, Primitive> unique;  // by material: tiles stored as they are
     if (!options.instancing)
         for (const Tile& tile : tiles) append(unique[tile.material], tilePrimitive(tile, soup));

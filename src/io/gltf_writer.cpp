@@ -102,10 +102,32 @@ struct DracoAttributeIds {
     int position = -1, normal = -1, texcoord = -1, color = -1;
 };
 
+// The primitive's triangles split in two: those Draco's edgebreaker keeps, and those whose corners its
+// quantization of positions (`bits` over the box's largest side) puts on one point, which it would drop.
+// The second part goes to the sequential method, so that a few slivers do not cost a mesh its edgebreaker
+// compression (vertex arrays are shared; Draco takes only the corners its triangles use).
+std::pair<Primitive, Primitive> splitCollapsingTriangles(const Primitive& primitive, int bits) {
+    Eigen::AlignedBox3d box;
+    for (const Triangle& t : primitive.triangles)
+        for (std::uint32_t v : t) box.extend(primitive.positions[v]);
+    const double range = box.sizes().maxCoeff();
+    const double scale = range > 0 ? double((1u << bits) - 1) / range : 0;
+    std::pair<Primitive, Primitive> parts{primitive, primitive};
+    parts.first.triangles.clear();
+    parts.second.triangles.clear();
+    for (const Triangle& t : primitive.triangles) {
+        auto onGrid = [&](std::uint32_t v) -> Eigen::Array3d { return (((primitive.positions[v] - box.min()) * scale).array() + 0.5).floor(); };
+        const Eigen::Array3d qa = onGrid(t[0]), qb = onGrid(t[1]), qc = onGrid(t[2]);
+        const bool collapses = (qa == qb).all() || (qb == qc).all() || (qa == qc).all();
+        (collapses ? parts.second : parts.first).triangles.push_back(t);
+    }
+    return parts;
+}
+
 // Encodes one primitive with Draco and describes it in glTF: the accessors carry counts and bounds
 // (decoded from our own output, since Draco merges equal corners) but no buffer view.
 Json writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
-                         const fs::path& file) {
+                         const fs::path& file, bool sequentialOnly = false) {
     draco::TriangleSoupMeshBuilder soup;
     soup.Start(static_cast<int>(primitive.triangles.size()));
     DracoAttributeIds ids;
@@ -137,8 +159,8 @@ Json writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const
         return std::move(decoded).value();
     };
     draco::EncoderBuffer encoded;
-    std::unique_ptr<draco::Mesh> result = encode(draco::MESH_EDGEBREAKER_ENCODING, encoded);
-    if (result->num_faces() != primitive.triangles.size()) {
+    std::unique_ptr<draco::Mesh> result = encode(sequentialOnly ? draco::MESH_SEQUENTIAL_ENCODING : draco::MESH_EDGEBREAKER_ENCODING, encoded);
+    if (result->num_faces() != primitive.triangles.size() && !sequentialOnly) {
         encoded.Clear();
         result = encode(draco::MESH_SEQUENTIAL_ENCODING, encoded);
     }
@@ -332,11 +354,19 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         Json primitives = Json::array();
         for (const Primitive& primitive : scene.meshes[m].primitives) {
             if (primitive.triangles.empty()) continue;
-            Json out = options.draco ? writeDracoPrimitive(builder, primitive, options, file)
-                                     : writePlainPrimitive(builder, primitive);
-            usedDraco = usedDraco || options.draco;
-            if (primitive.material >= 0) out["material"] = primitive.material;
-            primitives.push_back(std::move(out));
+            auto emit = [&](const Primitive& part, bool draco, bool sequentialOnly) {
+                Json out = draco ? writeDracoPrimitive(builder, part, options, file, sequentialOnly) : writePlainPrimitive(builder, part);
+                if (part.material >= 0) out["material"] = part.material;
+                primitives.push_back(std::move(out));
+                usedDraco = usedDraco || draco;
+            };
+            if (!options.draco) {
+                emit(primitive, false, false);
+                continue;
+            }
+            const auto [kept, collapsing] = splitCollapsingTriangles(primitive, options.positionBits);
+            if (!kept.triangles.empty()) emit(kept, true, false);
+            if (!collapsing.triangles.empty()) emit(collapsing, true, true);
         }
         if (primitives.empty()) continue;
         Json mesh = {{"primitives", primitives}};

@@ -375,6 +375,7 @@ int runCompress(const CompressRequest& request) {
                           {"assemblies", stats.assemblies},
                           {"assembly_copies", stats.assemblyCopies},
                           {"tiles_in_assemblies", stats.tilesInAssemblies},
+                          {"input_instances_kept", stats.inputInstancesKept},
                           {"bytes_per_instance", instanceBytes},
                           {"ablation",
                            {{"draco_alone", request.options.instancing ? dracoAlone : outputBytes},
@@ -405,6 +406,8 @@ int runCompress(const CompressRequest& request) {
     if (stats.assemblies)
         std::printf("  assemblies      %zu groups of tiles that recur together, stored once for %zu copies (%zu tiles)\n",
                     stats.assemblies, stats.assemblyCopies, stats.tilesInAssemblies);
+    if (stats.inputInstancesKept)
+        std::printf("  kept            %zu nodes of meshes the input already shares\n", stats.inputInstancesKept);
     if (stats.instances) std::printf("  per instance    %.0f bytes\n", instanceBytes);
     if (stats.attributeMismatches)
         std::printf("  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
