@@ -32,6 +32,11 @@ Eigen::Matrix3d secondMomentsOf(const SurfaceMoments& moments) {
 // tolerance (the geometric check decides; this only has to keep congruent tiles together).
 constexpr double kDescriptorFloor = 1e-3;
 constexpr double kDescriptorPerTolerance = 50;
+// And a ceiling: in a large scene the tolerance, relative to a small tile, opens the area window so wide
+// that every tile is compared with a large share of all classes (quadratic time). Exact copies differ by
+// rounding only; what the ceiling can cost is grouping copies deformed by more than about 1e-4 of their
+// size, never a wrong class.
+constexpr double kDescriptorCeiling = 1e-2;
 // Per-tile symmetry tolerance, relative to the tile: at most this, however small the tile.
 constexpr double kMaxTileTolerance = 1e-3;
 
@@ -46,7 +51,7 @@ bool samePrincipalMoments(const TileShape& a, const TileShape& b, double epsilon
 }  // namespace
 
 double descriptorTolerance(double tileDiagonal, double absoluteTolerance) {
-    return std::max(kDescriptorFloor, kDescriptorPerTolerance * absoluteTolerance / std::max(tileDiagonal, 1e-300));
+    return std::clamp(kDescriptorPerTolerance * absoluteTolerance / std::max(tileDiagonal, 1e-300), kDescriptorFloor, kDescriptorCeiling);
 }
 
 double tileSymmetryTolerance(double tileDiagonal, double absoluteTolerance, double relativeTolerance) {
