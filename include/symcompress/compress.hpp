@@ -18,7 +18,7 @@ struct CompressOptions {
     bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
     bool regions = true;        // store symmetric tiles as their fundamental regions where that pays
     bool assemblies = true;     // store tiles that recur together once per group, drawn by one node per copy
-    bool keepInputInstances = true;  // meshes the input draws from several nodes stay shared, as they are
+    bool keepInputInstances = true;  // meshes the input draws from several nodes, scaled, stay shared as they are
     int threads = 0;
     // Called as each stage starts, with what it works on (e.g. "classifying", 873 tiles); may be empty.
     std::function<void(const char* stage, std::size_t count, const char* unit)> progress;
@@ -75,8 +75,8 @@ struct CompressedScene {
 
 // What the plan is made from: the tiles and their congruence classes (the expensive part), computed once
 // for any number of plans (the size report's ablation makes three).
-// A node of the input that draws a mesh several nodes draw: the author's own instancing, kept as it is
-// (any affine transform, so also scaled copies that are not congruent).
+// A node of the input that draws a mesh several nodes draw, one of them scaling or shearing it: the
+// author's own instancing of copies that are not congruent, kept as it is.
 struct KeptInstance {
     int mesh = -1;  // in the input
     Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // world

@@ -191,15 +191,24 @@ SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options) {
     auto start = std::chrono::steady_clock::now();
     analysis.soup = flattenScene(input);
     if (options.keepInputInstances) {
-        // Meshes drawn by two or more nodes are the author's instancing: kept, and left out of the tiles.
+        // A mesh drawn by two or more nodes, one of them scaling or shearing it, is the author's instancing
+        // of copies that are not congruent: kept as it is, and left out of the tiles. (Rigid copies are
+        // left to the classes, which may also find more of them baked elsewhere.)
         std::map<int, std::set<int>> nodesOfMesh;
         for (const WorldPrimitive& placed : analysis.soup) nodesOfMesh[placed.mesh].insert(placed.node);
         const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+        auto rigid = [&](int node) {
+            const Eigen::Matrix3d linear = world[std::size_t(node)].topLeftCorner<3, 3>();
+            return (linear.transpose() * linear - Eigen::Matrix3d::Identity()).norm() < 1e-6;
+        };
+        std::set<int> kept;
         for (const auto& [mesh, nodes] : nodesOfMesh)
-            if (mesh >= 0 && nodes.size() > 1)
+            if (mesh >= 0 && nodes.size() > 1 && !std::all_of(nodes.begin(), nodes.end(), rigid)) {
+                kept.insert(mesh);
                 for (int node : nodes) analysis.keptInstances.push_back({mesh, world[std::size_t(node)], input.nodes[std::size_t(node)].name});
+            }
         analysis.soup.erase(std::remove_if(analysis.soup.begin(), analysis.soup.end(),
-                                           [&](const WorldPrimitive& placed) { return nodesOfMesh[placed.mesh].size() > 1; }),
+                                           [&](const WorldPrimitive& placed) { return kept.count(placed.mesh) > 0; }),
                             analysis.soup.end());
     }
     std::size_t triangles = 0;

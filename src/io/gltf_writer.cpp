@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -104,8 +105,8 @@ struct DracoAttributeIds {
 
 // The primitive's triangles split in two: those Draco's edgebreaker keeps, and those whose corners its
 // quantization of positions (`bits` over the box's largest side) puts on one point, which it would drop.
-// The second part goes to the sequential method, so that a few slivers do not cost a mesh its edgebreaker
-// compression (vertex arrays are shared; Draco takes only the corners its triangles use).
+// The second part goes to the sequential method, so that a few slivers do not cost a whole mesh its
+// edgebreaker compression (vertex arrays are shared; Draco takes only the corners its triangles use).
 std::pair<Primitive, Primitive> splitCollapsingTriangles(const Primitive& primitive, int bits) {
     Eigen::AlignedBox3d box;
     for (const Triangle& t : primitive.triangles)
@@ -124,10 +125,18 @@ std::pair<Primitive, Primitive> splitCollapsingTriangles(const Primitive& primit
     return parts;
 }
 
+// How to encode: edgebreaker compresses best but drops triangles whose corners its quantization merges;
+// the sequential method keeps every triangle.
+enum class DracoMethod {
+    EdgebreakerOrNothing,       // nothing (no primitive written) when a triangle would be lost
+    EdgebreakerElseSequential,  // the sequential method when a triangle would be lost
+    Sequential,
+};
+
 // Encodes one primitive with Draco and describes it in glTF: the accessors carry counts and bounds
 // (decoded from our own output, since Draco merges equal corners) but no buffer view.
-Json writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
-                         const fs::path& file, bool sequentialOnly = false) {
+std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
+                                        const fs::path& file, DracoMethod method) {
     draco::TriangleSoupMeshBuilder soup;
     soup.Start(static_cast<int>(primitive.triangles.size()));
     DracoAttributeIds ids;
@@ -138,19 +147,21 @@ Json writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const
     std::unique_ptr<draco::Mesh> mesh = soup.Finalize();
     if (!mesh) throw FileError(file, "Draco could not build a mesh from a primitive");
 
-    // Edgebreaker compresses best but drops zero-area triangles (corners that coincide once equal points are
-    // merged); the sequential method keeps every triangle, so it is the fallback when a triangle went missing.
-    auto encode = [&](int method, draco::EncoderBuffer& encoded) {
+    // The decoded mesh, or nothing when the encoder refuses (edgebreaker: "all triangles are degenerate").
+    auto encode = [&](int encoding, draco::EncoderBuffer& encoded) -> std::unique_ptr<draco::Mesh> {
         draco::Encoder encoder;
         const int speed = std::clamp(10 - options.compressionLevel, 0, 10);
         encoder.SetSpeedOptions(speed, speed);
-        encoder.SetEncodingMethod(method);
+        encoder.SetEncodingMethod(encoding);
         encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.positionBits);
         encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options.normalBits);
         encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, options.texcoordBits);
         encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, options.colorBits);
         const draco::Status status = encoder.EncodeMeshToBuffer(*mesh, &encoded);
-        if (!status.ok()) throw FileError(file, "Draco encoding failed: " + status.error_msg_string());
+        if (!status.ok()) {
+            if (encoding == draco::MESH_EDGEBREAKER_ENCODING) return nullptr;
+            throw FileError(file, "Draco encoding failed: " + status.error_msg_string());
+        }
         draco::DecoderBuffer decoderBuffer;
         decoderBuffer.Init(encoded.data(), encoded.size());
         auto decoded = draco::Decoder().DecodeMeshFromBuffer(&decoderBuffer);
@@ -158,9 +169,14 @@ Json writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const
             throw FileError(file, "Draco cannot decode what it encoded: " + decoded.status().error_msg_string());
         return std::move(decoded).value();
     };
+    auto complete = [&](const std::unique_ptr<draco::Mesh>& decoded) { return decoded && decoded->num_faces() == primitive.triangles.size(); };
     draco::EncoderBuffer encoded;
-    std::unique_ptr<draco::Mesh> result = encode(sequentialOnly ? draco::MESH_SEQUENTIAL_ENCODING : draco::MESH_EDGEBREAKER_ENCODING, encoded);
-    if (result->num_faces() != primitive.triangles.size() && !sequentialOnly) {
+    std::unique_ptr<draco::Mesh> result;
+    if (method != DracoMethod::Sequential) {
+        result = encode(draco::MESH_EDGEBREAKER_ENCODING, encoded);
+        if (!complete(result) && method == DracoMethod::EdgebreakerOrNothing) return std::nullopt;
+    }
+    if (!complete(result)) {
         encoded.Clear();
         result = encode(draco::MESH_SEQUENTIAL_ENCODING, encoded);
     }
@@ -354,19 +370,24 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         Json primitives = Json::array();
         for (const Primitive& primitive : scene.meshes[m].primitives) {
             if (primitive.triangles.empty()) continue;
-            auto emit = [&](const Primitive& part, bool draco, bool sequentialOnly) {
-                Json out = draco ? writeDracoPrimitive(builder, part, options, file, sequentialOnly) : writePlainPrimitive(builder, part);
-                if (part.material >= 0) out["material"] = part.material;
+            auto add = [&](Json out, int material) {
+                if (material >= 0) out["material"] = material;
                 primitives.push_back(std::move(out));
-                usedDraco = usedDraco || draco;
             };
             if (!options.draco) {
-                emit(primitive, false, false);
+                add(writePlainPrimitive(builder, primitive), primitive.material);
                 continue;
             }
+            usedDraco = true;
+            if (auto whole = writeDracoPrimitive(builder, primitive, options, file, DracoMethod::EdgebreakerOrNothing)) {
+                add(std::move(*whole), primitive.material);
+                continue;
+            }
+            // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
             const auto [kept, collapsing] = splitCollapsingTriangles(primitive, options.positionBits);
-            if (!kept.triangles.empty()) emit(kept, true, false);
-            if (!collapsing.triangles.empty()) emit(collapsing, true, true);
+            for (const auto& [part, method] : {std::pair{&kept, DracoMethod::EdgebreakerElseSequential},
+                                               std::pair{&collapsing, DracoMethod::Sequential}})
+                if (!part->triangles.empty()) add(*writeDracoPrimitive(builder, *part, options, file, method), part->material);
         }
         if (primitives.empty()) continue;
         Json mesh = {{"primitives", primitives}};
