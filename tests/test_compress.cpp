@@ -1,6 +1,7 @@
 // symcompress IN -o OUT and symdecompress --verify: round trips that must rebuild the original surface,
 // the report's keys, instancing where it pays, the Khronos validator on the output.
 #include "sample_scenes.hpp"
+#include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/tiles.hpp"
 #include "symcompress/scene_ops.hpp"
@@ -220,6 +221,29 @@ TEST_CASE("The input's own shared meshes stay shared: the subpass scene", "[comp
     CHECK(report["input_instances_kept"].get<int>() >= 50);
     CHECK(report["output_bytes"].get<double>() < 80000);
     CHECK(readScene(folder / "subpass.glb").meshes.size() >= 6);
+}
+
+TEST_CASE("Tiles stored as they are keep their attributes, whatever the other tiles of their material carry",
+          "[compress]") {
+    // Two different parts of one material, one with normals and one without: merged into one primitive the
+    // normals would have to go (a glTF primitive has them for every vertex or for none).
+    Primitive withNormals, without;
+    for (Primitive* part : {&withNormals, &without}) {
+        part->material = 0;
+        const double size = part == &without ? 2.0 : 1.0;
+        part->positions = {{0, 0, 0}, {size, 0, 0}, {0, size, 0}, {0, 0, size}};
+        part->triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+        for (auto& p : part->positions) p += Eigen::Vector3d(size * 5, 0, 0);
+    }
+    withNormals.normals.assign(4, Eigen::Vector3d::UnitZ());
+    Scene scene = sceneOfOneMesh("parts", withNormals);
+    scene.meshes[0].primitives.push_back(without);
+    scene.materials.emplace_back();
+    const CompressedScene compressed = compressScene(scene);
+    std::size_t trianglesWithNormals = 0;
+    for (const Mesh& mesh : compressed.scene.meshes)
+        for (const Primitive& p : mesh.primitives) trianglesWithNormals += p.normals.empty() ? 0 : p.triangles.size();
+    CHECK(trianglesWithNormals == 4);
 }
 
 TEST_CASE("Where nothing pays, the output is the Draco-alone file: the spider", "[compress]") {

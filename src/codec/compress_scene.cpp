@@ -14,6 +14,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 
 namespace symcompress {
 namespace {
@@ -78,22 +79,29 @@ bool reproduces(const Primitive& prototype, const Primitive& member, const Isome
     return true;
 }
 
-void append(Primitive& into, const Primitive& part) {
-    const auto offset = static_cast<std::uint32_t>(into.positions.size());
-    if (into.positions.empty()) {
-        into = part;
-        return;
+// Primitives gathered by material and by which attributes they carry, so that merging never drops an
+// attribute some of them have (a tile without normals next to tiles with them gets a primitive of its own).
+class PrimitivesByKind {
+public:
+    void add(const Primitive& part) {
+        Primitive& into = parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty()}];
+        const auto offset = static_cast<std::uint32_t>(into.positions.size());
+        into.material = part.material;
+        into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
+        into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
+        into.texcoords.insert(into.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
+        into.colors.insert(into.colors.end(), part.colors.begin(), part.colors.end());
+        for (const Triangle& t : part.triangles) into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
     }
-    // Keep an attribute only if both have it (the writer needs one per vertex or none).
-    if (into.normals.empty() != part.normals.empty()) into.normals.clear();
-    else into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
-    if (into.texcoords.empty() != part.texcoords.empty()) into.texcoords.clear();
-    else into.texcoords.insert(into.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
-    if (into.colors.empty() != part.colors.empty()) into.colors.clear();
-    else into.colors.insert(into.colors.end(), part.colors.begin(), part.colors.end());
-    into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
-    for (const Triangle& t : part.triangles) into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-}
+    bool empty() const { return parts_.empty(); }
+    void moveInto(Mesh& mesh) {
+        for (auto& [kind, primitive] : parts_) mesh.primitives.push_back(std::move(primitive));
+        parts_.clear();
+    }
+
+private:
+    std::map<std::tuple<int, bool, bool, bool>, Primitive> parts_;
+};
 
 // The name of the input node that draws tile t (empty when it has none): instance nodes keep it.
 std::string sourceName(const Scene& input, const SceneAnalysis& analysis, std::size_t t) {
@@ -147,15 +155,15 @@ std::vector<bool> planAssemblies(const Scene& input, const SceneAnalysis& analys
         if (triangles * options.bytesPerTriangle + options.bytesPerMesh + copies * options.bytesPerInstance >= apart) continue;
         const std::size_t index = stats.assemblies++;
         const Eigen::Vector3d center = classification.shapes[assembly.copies[0][0]].moments.centroid;
-        std::map<int, Primitive> byMaterial;
+        PrimitivesByKind parts;
         for (std::size_t t : assembly.copies[0]) {
             Primitive local = primitiveOf(t);
             for (auto& p : local.positions) p -= center;
-            append(byMaterial[local.material], local);
+            parts.add(local);
         }
         Mesh mesh;
         mesh.name = "assembly " + std::to_string(index) + " (" + std::to_string(assembly.copies[0].size()) + " tiles)";
-        for (auto& [material, primitive] : byMaterial) mesh.primitives.push_back(std::move(primitive));
+        parts.moveInto(mesh);
         out.meshes.push_back(std::move(mesh));
         Eigen::Matrix4d atCenter = Eigen::Matrix4d::Identity();
         atCenter.topRightCorner<3, 1>() = center;
@@ -259,9 +267,9 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         ++stats.inputInstancesKept;
         ++stats.instances;
     }
-    std::map<int, Primitive> unique;  // by material: tiles stored as they are
+    PrimitivesByKind unique;  // tiles stored as they are
     if (!options.instancing)
-        for (const Tile& tile : tiles) append(unique[tile.material], tilePrimitive(tile, soup));
+        for (const Tile& tile : tiles) unique.add(tilePrimitive(tile, soup));
     std::vector<bool> uniqueTile(tiles.size(), !options.instancing);  // stored as it is
     const double tolerance = options.tolerance * analysis.classification.sceneDiagonal;
     reportProgress(options, "planning", analysis.classification.classes.size(), "classes");
@@ -308,7 +316,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
                 apart.push_back(std::move(member));
             }
         }
-        for (const Primitive& member : apart) append(unique[member.material], member);
+        for (const Primitive& member : apart) unique.add(member);
         if (placed.empty()) continue;
 
         // The prototype's symmetries that also carry its attributes onto themselves: the group its
@@ -337,7 +345,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
             if (placed.size() > 1) stats.notWorthInstancing += placed.size();
             for (std::size_t i : placed) {
                 uniqueTile[c.members[i]] = true;
-                append(unique[prototype.material], i == 0 ? prototype : tilePrimitive(tiles[c.members[i]], soup));
+                unique.add(i == 0 ? prototype : tilePrimitive(tiles[c.members[i]], soup));
             }
             continue;
         }
@@ -380,7 +388,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
                                    "') not kept: their tiles are stored as they are in one mesh per material");
         Mesh mesh;
         mesh.name = "unique tiles";
-        for (auto& [material, primitive] : unique) mesh.primitives.push_back(std::move(primitive));
+        unique.moveInto(mesh);
         out.meshes.push_back(std::move(mesh));
         addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(), "unique tiles");
     }
