@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <map>
 #include <random>
 
@@ -244,6 +245,16 @@ TEST_CASE("Tiles stored as they are keep their attributes, whatever the other ti
     for (const Mesh& mesh : compressed.scene.meshes)
         for (const Primitive& p : mesh.primitives) trianglesWithNormals += p.normals.empty() ? 0 : p.triangles.size();
     CHECK(trianglesWithNormals == 4);
+}
+
+TEST_CASE("Compressing to .gltf leaves the .gltf and its .bin, and nothing of the ablation's trial files", "[compress][cli]") {
+    TemporaryFolder folder;
+    const auto input = writePlainGlb(samples::makeBoltsScene(), folder, "bolts");
+    REQUIRE(runCommand(kSymcompress + " -q " + quoted(input) + " -o " + quoted(folder / "small.gltf")).status == 0);
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(folder.path())) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    CHECK(names == std::vector<std::string>{"bolts.glb", "small.bin", "small.gltf"});
 }
 
 TEST_CASE("Where nothing pays, the output is the Draco-alone file: the spider", "[compress]") {

@@ -312,9 +312,10 @@ int runCompress(const CompressRequest& request) {
         const fs::path temporary = request.output.parent_path() / (".symcompress-ablation-" + request.output.filename().string());
         CompressedScene plan = planCompression(scene, analysis, variant);
         writeScene(plan.scene, temporary, write, {request.input});
+        const std::uintmax_t size = sceneBytes(temporary);  // with a .gltf's .bin
         std::error_code error;
-        const std::uintmax_t size = fs::file_size(temporary, error);
         fs::remove(temporary, error);
+        if (formatFromExtension(temporary) == FileFormat::Gltf) fs::remove(fs::path(temporary).replace_extension(".bin"), error);
         variants.push_back({name, std::move(plan), size});
     };
     CompressOptions plain = options, instancingOnly = options;
