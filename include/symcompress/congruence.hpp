@@ -29,6 +29,7 @@ struct TileShape {
     MomentCoefficients moments;
     CongruenceDescriptor descriptor;
     Eigen::Matrix3d secondMoments = Eigen::Matrix3d::Zero();  // integral of s s^T about the centroid
+    Eigen::Vector3d principalMoments = Eigen::Vector3d::Zero();  // its eigenvalues, ascending
     SymmetryGroup symmetry;  // detected on class prototypes; a member's is its prototype's, carried over by J
 };
 

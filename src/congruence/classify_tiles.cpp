@@ -43,8 +43,8 @@ constexpr double kMaxTileTolerance = 1e-3;
 // The principal second moments agree within `epsilon` of the largest: invariants like the descriptor,
 // and as cheap to compare, but they also tell apart shapes whose band energies happen to agree.
 bool samePrincipalMoments(const TileShape& a, const TileShape& b, double epsilon) {
-    const Eigen::Vector3d x = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(a.secondMoments, Eigen::EigenvaluesOnly).eigenvalues();
-    const Eigen::Vector3d y = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(b.secondMoments, Eigen::EigenvaluesOnly).eigenvalues();
+    const Eigen::Vector3d& x = a.principalMoments;
+    const Eigen::Vector3d& y = b.principalMoments;
     return (x - y).cwiseAbs().maxCoeff() <= epsilon * std::max(x[2], y[2]);
 }
 
@@ -92,6 +92,9 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
             shape.moments = momentCoefficients(surface);
             shape.descriptor = computeCongruenceDescriptor(shape.moments);
             shape.secondMoments = secondMomentsOf(surface);
+            // Once per tile: the pairs compare them for every candidate class.
+            shape.principalMoments =
+                Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(shape.secondMoments, Eigen::EigenvaluesOnly).eigenvalues();
         });
     });
 
