@@ -4,6 +4,8 @@
 #   bench/compare_peers.sh [BUILD_DIR [KEEP_DIR]]      (KEEP_DIR keeps each input's reports and peer TSV)
 #   PEERS_FLAGS="-n" bench/compare_peers.sh            (flags for peers.sh, default "-t 120"; -n skips the
 #                                                        decode check, but then no peer has a dev_rel)
+# Needs the peers installed as ../shared/bench/README.md says (apt-get install draco gltfpack assimp-utils;
+# npm ci --prefix ../shared/bench/node, which scripts/install-deps.sh does).
 # symcompress runs with default options; its deviation is symdecompress --verify's max_deviation
 # (relative to the bbox diagonal), "bound" is the allowed_deviation it prints (1e-5 + quantisation).
 # Peers get the input itself (.gltf/.glb) or `symcompress convert --no-draco` of it (OBJ/PLY/STL/X3D);
