@@ -5,6 +5,7 @@
 #include "symcompress/assembly.hpp"
 #include "symcompress/fundamental_region.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "../io/rounded.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -378,19 +379,19 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         }
     }
     if (!unique.empty()) {
-        // One mesh per material for every tile stored as it is: the names of the nodes it came from are lost.
+        // One mesh per material for every tile stored as it is, drawn by one node: it takes the name of
+        // the node its tiles came from when that is a single one; otherwise the names are lost.
         std::set<std::string> merged;
         for (std::size_t t = 0; t < tiles.size(); ++t)
             if (uniqueTile[t])
                 if (std::string name = sourceName(input, analysis, t); !name.empty()) merged.insert(name);
-        if (!merged.empty())
+        if (merged.size() > 1)
             out.warnings.push_back(std::to_string(merged.size()) + " node names (e.g. '" + *merged.begin() +
                                    "') not kept: their tiles are stored as they are in one mesh per material");
         Mesh mesh;
-        mesh.name = "unique tiles";
         unique.moveInto(mesh);
         out.meshes.push_back(std::move(mesh));
-        addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(), "unique tiles");
+        addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(), merged.size() == 1 ? *merged.begin() : "");
     }
     for (const Mesh& mesh : out.meshes)
         for (const Primitive& p : mesh.primitives) stats.trianglesStored += p.triangles.size();
@@ -411,8 +412,10 @@ SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance) {
 }
 
 std::string SurfaceDigest::json() const {
-    auto vector = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
-    nlohmann::json digest{{"triangles", triangles}, {"area", area}, {"tolerance", tolerance}};
+    // Nine digits: far below any tolerance the digest is checked with, and half the text of seventeen.
+    auto number = [](double x) { return rounded(x, 9); };
+    auto vector = [&](const Eigen::Vector3d& v) { return nlohmann::json{number(v.x()), number(v.y()), number(v.z())}; };
+    nlohmann::json digest{{"triangles", triangles}, {"area", number(area)}, {"tolerance", number(tolerance)}};
     if (!bounds.isEmpty()) digest["bbox"] = {{"min", vector(bounds.min())}, {"max", vector(bounds.max())}};
     return nlohmann::json{{"symcompress_digest", digest}}.dump();
 }

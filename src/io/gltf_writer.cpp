@@ -36,7 +36,8 @@ public:
     // Appends bytes (4-byte aligned) as a new buffer view; returns its index.
     int addBufferView(const void* data, std::size_t size, int target = 0) {
         while (binary_.size() % 4) binary_.push_back(0);
-        Json view = {{"buffer", 0}, {"byteOffset", binary_.size()}, {"byteLength", size}};
+        Json view = {{"buffer", 0}, {"byteLength", size}};
+        if (!binary_.empty()) view["byteOffset"] = binary_.size();
         if (target) view["target"] = target;
         const auto* bytes = static_cast<const unsigned char*>(data);
         binary_.insert(binary_.end(), bytes, bytes + size);
@@ -71,8 +72,13 @@ public:
             lo[i % components] = std::min(lo[i % components], flat[i]);
             hi[i % components] = std::max(hi[i % components], flat[i]);
         }
-        accessor["min"] = lo;
-        accessor["max"] = hi;
+        auto shortest = [](const std::vector<float>& values) {
+            Json out = Json::array();
+            for (float value : values) out.push_back(asFloat32(value));
+            return out;
+        };
+        accessor["min"] = shortest(lo);
+        accessor["max"] = shortest(hi);
     }
 
     std::vector<unsigned char>& binary() { return binary_; }
@@ -210,7 +216,6 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
                 {"indices", builder.addAccessor({{"componentType", indexType},
                                                  {"count", result->num_faces() * 3},
                                                  {"type", "SCALAR"}})},
-                {"mode", 4},
                 {"extensions",
                  {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", dracoAttributes}}}}}};
     return out;
@@ -238,12 +243,13 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     }
     indices["count"] = primitive.triangles.size() * 3;
     indices["type"] = "SCALAR";
-    return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}, {"mode", 4}};
+    return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
 }
 
 // Writes only a node's nonzero parts. A rigid transform (a node per instance: the common case, where its
 // size counts) as translation, rotation quaternion and, for a mirror, scale [-1, 1, 1]: about half the
-// bytes of a matrix; any other affine transform as a matrix. Numbers cut as rounded.hpp says.
+// bytes of a matrix; any other affine transform as a matrix. Numbers cut as rounded.hpp says: the
+// translation to float32, which is what a glTF reader keeps of it.
 Json writeNode(const Node& node, const std::vector<int>& meshIndex) {
     Json out = Json::object();
     if (!node.name.empty()) out["name"] = node.name;
@@ -254,13 +260,14 @@ Json writeNode(const Node& node, const std::vector<int>& meshIndex) {
         const Eigen::Matrix3d rotation = mirror ? Eigen::Matrix3d(linear * Eigen::Vector3d(-1, 1, 1).asDiagonal()) : linear;
         Eigen::Quaterniond q(rotation);
         if (q.w() < 0) q.coeffs() *= -1;
-        if (!translation.isZero(0))
-            out["translation"] = {rounded(translation.x(), kPlacementDigits), rounded(translation.y(), kPlacementDigits), rounded(translation.z(), kPlacementDigits)};
-        if (!rotation.isIdentity(1e-12)) out["rotation"] = {rounded(q.x(), kRotationDigits), rounded(q.y(), kRotationDigits), rounded(q.z(), kRotationDigits), rounded(q.w(), kRotationDigits)};
+        const Eigen::Vector3d t = translation.unaryExpr(&asFloat32);
+        const Eigen::Vector4d r = q.coeffs().unaryExpr([](double x) { return roundedDecimals(x, kRotationDecimals); });
+        if (!t.isZero(0)) out["translation"] = {t.x(), t.y(), t.z()};
+        if (r != Eigen::Vector4d(0, 0, 0, 1)) out["rotation"] = {r.x(), r.y(), r.z(), r.w()};
         if (mirror) out["scale"] = {-1, 1, 1};
     } else {
         std::vector<double> matrix(16);
-        for (int i = 0; i < 16; ++i) matrix[i] = rounded(node.transform(i % 4, i / 4), kPlacementDigits);
+        for (int i = 0; i < 16; ++i) matrix[i] = asFloat32(node.transform(i % 4, i / 4));
         matrix[3] = matrix[7] = matrix[11] = 0;  // glTF requires an affine matrix
         matrix[15] = 1;
         out["matrix"] = matrix;
@@ -289,10 +296,13 @@ std::vector<int> firstOfSameImage(const std::vector<Texture>& textures) {
 // textures of the same image.
 Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, const Scene& scene,
                    const std::vector<int>& sameImage, std::vector<int>& textureIndex) {
-    Json pbr = {{"baseColorFactor", {material.baseColorFactor[0], material.baseColorFactor[1],
-                                     material.baseColorFactor[2], material.baseColorFactor[3]}},
-                {"metallicFactor", material.metallicFactor},
-                {"roughnessFactor", material.roughnessFactor}};
+    // Factors as float32 text, and left out where they are glTF's defaults.
+    Json pbr = Json::object();
+    if (material.baseColorFactor != Eigen::Vector4d::Ones())
+        pbr["baseColorFactor"] = {asFloat32(material.baseColorFactor[0]), asFloat32(material.baseColorFactor[1]),
+                                  asFloat32(material.baseColorFactor[2]), asFloat32(material.baseColorFactor[3])};
+    if (material.metallicFactor != 1) pbr["metallicFactor"] = asFloat32(material.metallicFactor);
+    if (material.roughnessFactor != 1) pbr["roughnessFactor"] = asFloat32(material.roughnessFactor);
     const int texture = material.baseColorTexture >= 0 ? sameImage[material.baseColorTexture] : -1;
     if (texture >= 0 && !scene.textures[texture].bytes.empty()) {
         if (textureIndex[texture] < 0) {
@@ -307,13 +317,14 @@ Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, c
         }
         pbr["baseColorTexture"] = {{"index", textureIndex[texture]}};
     }
-    Json out = {{"pbrMetallicRoughness", pbr}};
+    Json out = Json::object();
+    if (!pbr.empty()) out["pbrMetallicRoughness"] = pbr;
     if (!material.name.empty()) out["name"] = material.name;
     if (!material.emissiveFactor.isZero())
-        out["emissiveFactor"] = {material.emissiveFactor[0], material.emissiveFactor[1], material.emissiveFactor[2]};
+        out["emissiveFactor"] = {asFloat32(material.emissiveFactor[0]), asFloat32(material.emissiveFactor[1]), asFloat32(material.emissiveFactor[2])};
     if (material.alphaMode == Material::AlphaMode::Mask) {
         out["alphaMode"] = "MASK";
-        out["alphaCutoff"] = material.alphaCutoff;
+        out["alphaCutoff"] = asFloat32(material.alphaCutoff);
     } else if (material.alphaMode == Material::AlphaMode::Blend) {
         out["alphaMode"] = "BLEND";
     }

@@ -1,7 +1,9 @@
-// Numbers cut to a number of significant digits before they are printed: node transforms are written
-// once per instance, so their digits count.
+// Numbers cut before they are printed: node transforms are written once per instance and accessor bounds
+// once per primitive, so their digits count in small files.
 #pragma once
 
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -14,8 +16,25 @@ inline double rounded(double value, int digits) {
     return std::strtod(text, nullptr);
 }
 
-// Digits kept: a translation or scale as float32 holds it; a rotation to 1e-7 rad.
+// `value` to `decimals` places after the point: for numbers of magnitude at most 1 (quaternions, axes),
+// where tiny components are noise that must print as 0, not as 1e-16.
+inline double roundedDecimals(double value, int decimals) {
+    const double scale = std::pow(10.0, decimals);
+    return std::round(value * scale) / scale + 0.0;  // + 0.0: no "-0"
+}
+
+// The double that prints as the shortest text reading back as float(value): a reader that takes the
+// number as float32 (as glTF does) gets exactly float(value), in at most 9 digits instead of 17.
+inline double asFloat32(double value) {
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof text - 1, static_cast<float>(value));
+    *result.ptr = '\0';
+    return std::strtod(text, nullptr);
+}
+
+// Places kept in a rotation (quaternion or axis and angle): 1e-7, about float32's resolution at 1.
+constexpr int kRotationDecimals = 7;
+// Significant digits of a translation or scale written as text (X3D): what float32 holds.
 constexpr int kPlacementDigits = 9;
-constexpr int kRotationDigits = 7;
 
 }  // namespace symcompress

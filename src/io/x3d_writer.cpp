@@ -29,11 +29,12 @@ void appendNumber(std::string& out, double value) {
     out.append(buffer, result.ptr);
 }
 
-template <typename Vector>
-void appendVector(std::string& out, const Vector& v, int components, int digits = 0) {
+// Each component cut by `round` (rounded.hpp) before it is printed.
+template <typename Vector, typename Round = double (*)(double)>
+void appendVector(std::string& out, const Vector& v, int components, Round round = [](double x) { return x; }) {
     for (int c = 0; c < components; ++c) {
         if (c) out += ' ';
-        appendNumber(out, digits > 0 ? rounded(v[c], digits) : v[c]);
+        appendNumber(out, round(v[c]));
     }
 }
 
@@ -77,23 +78,25 @@ void appendTransformFields(std::string& out, const Eigen::Matrix4d& matrix) {
     if (u.determinant() < 0) u.col(2) = -u.col(2), scale[2] = -scale[2];
     const Eigen::AngleAxisd rotation(u * v.transpose()), orientation(v);
     const Eigen::Vector3d translation = matrix.topRightCorner<3, 1>();
+    auto placement = [](double x) { return rounded(x, kPlacementDigits); };
+    auto turn = [](double x) { return roundedDecimals(x, kRotationDecimals); };
     if (!translation.isZero(0)) {
         out += " translation='";
-        appendVector(out, translation, 3, kPlacementDigits);
+        appendVector(out, translation, 3, placement);
         out += "'";
     }
     auto appendRotation = [&](const char* field, const Eigen::AngleAxisd& value) {
-        if (std::abs(value.angle()) < 1e-15) return;
+        if (turn(value.angle()) == 0) return;
         out += std::string(" ") + field + "='";
-        appendVector(out, value.axis(), 3, kRotationDigits);
+        appendVector(out, value.axis(), 3, turn);
         out += ' ';
-        appendNumber(out, rounded(value.angle(), kRotationDigits));
+        appendNumber(out, turn(value.angle()));
         out += "'";
     };
     appendRotation("rotation", rotation);
     if (!scale.isApprox(Eigen::Vector3d::Ones(), 1e-15)) {
         out += " scale='";
-        appendVector(out, scale, 3, kPlacementDigits);
+        appendVector(out, scale, 3, placement);
         out += "'";
         appendRotation("scaleOrientation", orientation);
     }

@@ -1,0 +1,88 @@
+// The glTF writer's numbers: each as short as what a reader keeps of it (float32 for positions and
+// translations, 1e-7 for rotations), and defaults left out; the file reads back to the same scene.
+#include "io/rounded.hpp"
+#include "symcompress/io.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cstring>
+
+using namespace symcompress;
+using namespace symcompress::testing;
+
+namespace {
+
+// The JSON chunk of a GLB file.
+nlohmann::json glbJson(const std::filesystem::path& file) {
+    const std::string bytes = readTextFile(file);
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+}  // namespace
+
+TEST_CASE("Rounding helpers: float32 text reads back to the same float; rotation noise prints as 0", "[io]") {
+    for (double value : {0.1, 1.0 / 3.0, -123456.789, 0.03323778510093689, 6.4000000953674316, 1e-30}) {
+        const double shortened = asFloat32(value);
+        CHECK(static_cast<float>(shortened) == static_cast<float>(value));
+        CHECK(nlohmann::json(shortened).dump().size() <= 16);  // at most 9 digits, sign, point and exponent
+    }
+    CHECK(nlohmann::json(asFloat32(0.800000011920929)).dump() == "0.8");
+    CHECK(roundedDecimals(-3.047421e-10, 7) == 0.0);
+    CHECK(nlohmann::json(roundedDecimals(-3.047421e-10, 7)).dump() == "0.0");  // not "-0.0"
+    CHECK(roundedDecimals(0.70710678118, 7) == 0.7071068);
+}
+
+TEST_CASE("Written glTF nodes and materials carry no needless digits and no defaults", "[io]") {
+    Scene scene;
+    scene.materials.emplace_back();
+    scene.materials[0].baseColorFactor = {0.8f, 0.8f, 0.8f, 1};
+    scene.meshes.emplace_back();
+    Primitive triangle;
+    triangle.positions = {{0, 0, 0}, {1.0 / 3.0, 0, 0}, {0, 0.1, 0}};
+    triangle.triangles = {{0, 1, 2}};
+    triangle.material = 0;
+    scene.meshes[0].primitives.push_back(triangle);
+    // A node turned by 1e-9 rad (noise from a rotation solve) and moved by float32-rounded values; a mirror
+    // turned by 90 degrees.
+    Node noisy, mirror;
+    noisy.mesh = mirror.mesh = 0;
+    noisy.transform.topLeftCorner<3, 3>() = Eigen::AngleAxisd(1e-9, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    noisy.transform.topRightCorner<3, 1>() = Eigen::Vector3d(double(0.1f), double(9.44278356f), 0);
+    mirror.transform.topLeftCorner<3, 3>() =
+        Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix() * Eigen::Vector3d(-1, 1, 1).asDiagonal();
+    scene.nodes = {noisy, mirror};
+    scene.roots = {0, 1};
+
+    TemporaryFolder folder;
+    for (bool draco : {true, false}) {
+        WriteOptions options;
+        options.draco = draco;
+        const auto file = folder / (draco ? "draco.glb" : "plain.glb");
+        writeScene(scene, file, options);
+        const nlohmann::json root = glbJson(file);
+        INFO(root.dump());
+        CHECK_FALSE(root["nodes"][0].contains("rotation"));
+        CHECK(root["nodes"][0]["translation"].dump() == "[0.1,9.442783,0.0]");
+        CHECK(root["nodes"][1]["rotation"].dump() == "[0.0,0.0,0.7071068,0.7071068]");
+        CHECK(root["nodes"][1]["scale"].dump() == "[-1,1,1]");
+        CHECK(root["materials"][0].dump() == R"({"pbrMetallicRoughness":{"baseColorFactor":[0.8,0.8,0.8,1.0]}})");
+        // Draco's bounds are those of the quantized positions it decodes to.
+        if (!draco) CHECK(root["accessors"][0]["max"].dump() == "[0.33333334,0.1,0.0]");
+        for (const auto& bound : root["accessors"][0]["max"]) CHECK(bound.dump().size() <= 10);
+        CHECK_FALSE(root["meshes"][0]["primitives"][0].contains("mode"));
+        CHECK_FALSE(root["bufferViews"][0].contains("byteOffset"));
+
+        const Scene back = readScene(file);
+        REQUIRE(back.nodes.size() == 2);
+        CHECK(back.nodes[0].transform.isApprox(scene.nodes[0].transform, 1e-7));
+        CHECK(back.nodes[1].transform.isApprox(scene.nodes[1].transform, 1e-7));
+        CHECK(back.materials[0].baseColorFactor.isApprox(scene.materials[0].baseColorFactor, 1e-7));
+        CHECK(back.materials[0].metallicFactor == 1);
+    }
+}
