@@ -111,9 +111,14 @@ TEST_CASE("Baked copies are stored once and drawn by instances, mirrors included
 }
 
 TEST_CASE("Tiles that recur together are stored once per group: the room's bookshelves", "[compress]") {
+    // The room with a box on one table: its mirror symmetry is broken, so the scene's symmetry does not
+    // apply, and the repeated assemblies do.
+    Scene scene = samples::makeRoomScene();
+    samples::appendMesh(scene.meshes[0].primitives[0], samples::boxMesh({1.3, 0.7, 0.9}, {0.2, 0.3, 0.1}));
     TemporaryFolder folder;
-    const auto input = writePlainGlb(samples::makeRoomScene(), folder, "room");
+    const auto input = writePlainGlb(scene, folder, "room");
     const nlohmann::json report = compressAndVerify(input, folder, "room-compressed");
+    CHECK(report["scene_group"] == "C1");
     // The 4 bookshelves of 188 boxes each pay for a mesh and 4 nodes; tables and chairs of 12-triangle
     // boxes cost less stored as they are than a node per copy.
     CHECK(report["assemblies"] == 1);
@@ -122,6 +127,29 @@ TEST_CASE("Tiles that recur together are stored once per group: the room's books
     CHECK(report["triangles_stored"] == report["triangles_in"].get<std::size_t>() - 3 * 188 * 12);
     CHECK(report["bytes_per_instance"].get<double>() < 100);  // a mirror, a translation and the name "room"
     CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());
+}
+
+TEST_CASE("A scene symmetric as a whole is stored as one part of it, drawn once per symmetry: room and chess board",
+          "[compress]") {
+    TemporaryFolder folder;
+    struct Case {
+        const char* name;
+        Scene scene;
+        const char* group;
+        std::size_t tilesOnPlanes;  // tiles that the group maps onto themselves, stored apart
+    };
+    for (const Case& c : {Case{"room", samples::makeRoomScene(), "C2v", 5}, Case{"chess", samples::makeChessScene(), "C2", 0}}) {
+        INFO(c.name);
+        const auto input = writePlainGlb(c.scene, folder, c.name);
+        const nlohmann::json report = compressAndVerify(input, folder, std::string(c.name) + "-compressed");
+        CHECK(report["scene_group"] == c.group);
+        const std::size_t order = std::string(c.group) == "C2v" ? 4 : 2;
+        CHECK(report["tiles_in_scene_symmetry"] == report["tiles"].get<std::size_t>() - c.tilesOnPlanes);
+        CHECK(report["instances"] == order);
+        // The part holds 1/order of the tiles in symmetric orbits (the tiles are equal in size per orbit).
+        CHECK(report["triangles_stored"].get<std::size_t>() < report["triangles_in"].get<std::size_t>() / order + 100);
+        CHECK(report["output_bytes"].get<double>() < 0.9 * report["ablation"]["draco_alone"].get<double>());
+    }
 }
 
 TEST_CASE("symcompress prints the size report, and no progress line when stderr is not a terminal", "[compress][cli]") {

@@ -17,6 +17,12 @@ namespace symcompress {
 // symmetry of their prototype. `tolerance` is relative to the scene's diagonal, as for the classes.
 SymmetryGroup assemblySymmetries(const TileClassification& classification, double tolerance);
 
+// For each element e of an assembly's group (assemblySymmetries), images[e][t] is the tile that e (about
+// the group's centroid) maps tile t onto: one of t's class, where the map is a symmetry of their
+// prototype seen from their placements; the number of tiles when there is none.
+std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group,
+                                                 double tolerance);
+
 // Tiles that recur together in one relative placement: the parts of a chair, a table with its legs, a
 // whole copied object. Copy 0 is the assembly as stored; copy j is placement j of it.
 // Invariant: copies[j][i] is the tile that placement j puts tile copies[0][i] onto (a tile of the same

@@ -43,6 +43,8 @@ struct CompressionStats {
     std::size_t assemblies = 0;           // repeated assemblies stored once (tiles that recur together)
     std::size_t assemblyCopies = 0;       // nodes drawing them
     std::size_t tilesInAssemblies = 0;    // tiles those nodes draw
+    std::string sceneGroup = "C1";        // the scene's symmetry group, where one part of the scene is stored for all
+    std::size_t tilesInSceneSymmetry = 0; // tiles drawn by that part's nodes
     std::size_t inputInstancesKept = 0;   // nodes of the input's own shared meshes, kept (KeptInstance)
     double maxDeviation = 0;              // of the placements used, relative to the diagonal
     double secondsTiles = 0, secondsClasses = 0, secondsPlan = 0;

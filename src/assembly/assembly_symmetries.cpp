@@ -15,6 +15,70 @@ struct PlacedTile {
     Eigen::Vector3d centroid;
 };
 
+// The tiles of a classification by class and centroid, and the assembly's area-weighted centroid.
+class TileLocator {
+public:
+    TileLocator(const TileClassification& classification, double distance)
+        : classification_(classification), distance_(distance), tiles_(classification.shapes.size()),
+          byX_(classification.classes.size()) {
+        double area = 0;
+        Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+        for (std::size_t k = 0; k < classification.classes.size(); ++k) {
+            const CongruenceClass& c = classification.classes[k];
+            for (std::size_t i = 0; i < c.members.size(); ++i) {
+                const std::size_t t = c.members[i];
+                const auto& moments = classification.shapes[t].moments;
+                tiles_[t] = {k, c.placements[i], moments.centroid};
+                byX_[k].emplace_back(moments.centroid.x(), t);
+                area += moments.area;
+                weighted += moments.area * moments.centroid;
+            }
+            std::sort(byX_[k].begin(), byX_[k].end());
+        }
+        center_ = area > 0 ? Eigen::Vector3d(weighted / area) : Eigen::Vector3d::Zero();
+    }
+
+    const Eigen::Vector3d& center() const { return center_; }
+    const PlacedTile& operator[](std::size_t t) const { return tiles_[t]; }
+    std::size_t size() const { return tiles_.size(); }
+
+    // The tile of `classIndex` whose centroid is at p, if any (else size()).
+    std::size_t at(std::size_t classIndex, const Eigen::Vector3d& p) const {
+        const auto& sorted = byX_[classIndex];
+        for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair{p.x() - distance_, std::size_t(0)});
+             it != sorted.end() && it->first <= p.x() + distance_; ++it)
+            if ((tiles_[it->second].centroid - p).norm() <= distance_) return it->second;
+        return size();
+    }
+
+    // The symmetries of a class's prototype (the identity only when its group was not computed).
+    const std::vector<Symmetry>& groupOf(std::size_t classIndex) const {
+        const auto& elements = classification_.shapes[classification_.classes[classIndex].prototype].symmetry.elements;
+        return elements.empty() ? identityOnly_ : elements;
+    }
+
+    // Whether linear (about the center) maps tile t onto tile u: J_u^-1 A J_t is in the prototype's group.
+    bool mapsOnto(const Eigen::Matrix3d& linear, std::size_t t, std::size_t u) const {
+        const Eigen::Matrix3d relative = tiles_[u].placement.linear.transpose() * linear * tiles_[t].placement.linear;
+        const auto& group = groupOf(tiles_[t].classIndex);
+        return std::any_of(group.begin(), group.end(), [&](const Symmetry& g) { return (g.linear - relative).norm() < kSameLinear; });
+    }
+
+    // The tile that linear (about the center) maps tile t onto, or size() when it maps it onto none.
+    std::size_t image(const Eigen::Matrix3d& linear, std::size_t t) const {
+        const std::size_t u = at(tiles_[t].classIndex, center_ + linear * (tiles_[t].centroid - center_));
+        return u < size() && mapsOnto(linear, t, u) ? u : size();
+    }
+
+private:
+    const TileClassification& classification_;
+    double distance_;
+    std::vector<PlacedTile> tiles_;
+    std::vector<std::vector<std::pair<double, std::size_t>>> byX_;  // per class, members by centroid x
+    Eigen::Vector3d center_;
+    const std::vector<Symmetry> identityOnly_{Symmetry{}};
+};
+
 }  // namespace
 
 SymmetryGroup assemblySymmetries(const TileClassification& classification, double tolerance) {
@@ -24,41 +88,9 @@ SymmetryGroup assemblySymmetries(const TileClassification& classification, doubl
     const std::size_t tileCount = classification.shapes.size();
     if (tileCount == 0) return result;
     const double distance = tolerance * classification.sceneDiagonal;
-
-    // Each tile with its class and placement; the assembly's area-weighted centroid.
-    std::vector<PlacedTile> tiles(tileCount);
-    double area = 0;
-    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
-    for (std::size_t k = 0; k < classification.classes.size(); ++k) {
-        const CongruenceClass& c = classification.classes[k];
-        for (std::size_t i = 0; i < c.members.size(); ++i) {
-            const std::size_t t = c.members[i];
-            tiles[t] = {k, c.placements[i], classification.shapes[t].moments.centroid};
-            area += classification.shapes[t].moments.area;
-            weighted += classification.shapes[t].moments.area * classification.shapes[t].moments.centroid;
-        }
-    }
-    const Eigen::Vector3d center = area > 0 ? Eigen::Vector3d(weighted / area) : Eigen::Vector3d::Zero();
+    const TileLocator tiles(classification, distance);
+    const Eigen::Vector3d center = tiles.center();
     result.centroid = center;
-
-    // The tile of `classIndex` whose centroid is at p, if any.
-    auto tileAt = [&](std::size_t classIndex, const Eigen::Vector3d& p) -> std::size_t {
-        for (std::size_t t : classification.classes[classIndex].members)
-            if ((tiles[t].centroid - p).norm() <= distance) return t;
-        return tileCount;
-    };
-    // Whether linear (about the centroid) maps tile t onto tile u: J_u^-1 A J_t is in the prototype's group.
-    // A tile whose group was not computed has the identity only.
-    const std::vector<Symmetry> identityOnly{Symmetry{}};
-    auto groupOf = [&](std::size_t classIndex) -> const std::vector<Symmetry>& {
-        const auto& elements = classification.shapes[classification.classes[classIndex].prototype].symmetry.elements;
-        return elements.empty() ? identityOnly : elements;
-    };
-    auto mapsOnto = [&](const Eigen::Matrix3d& linear, std::size_t t, std::size_t u) {
-        const Eigen::Matrix3d relative = tiles[u].placement.linear.transpose() * linear * tiles[t].placement.linear;
-        const auto& group = groupOf(tiles[t].classIndex);
-        return std::any_of(group.begin(), group.end(), [&](const Symmetry& g) { return (g.linear - relative).norm() < kSameLinear; });
-    };
 
     // The anchor: the tile with the fewest candidate maps.
     std::size_t anchor = 0, fewest = std::numeric_limits<std::size_t>::max();
@@ -68,7 +100,7 @@ SymmetryGroup assemblySymmetries(const TileClassification& classification, doubl
         if (candidates < fewest) fewest = candidates, anchor = t;
     }
     const CongruenceClass& anchorClass = classification.classes[tiles[anchor].classIndex];
-    const auto& anchorGroup = groupOf(tiles[anchor].classIndex);
+    const auto& anchorGroup = tiles.groupOf(tiles[anchor].classIndex);
     const double anchorRadius = (tiles[anchor].centroid - center).norm();
 
     std::vector<Eigen::Matrix3d> found;
@@ -81,10 +113,7 @@ SymmetryGroup assemblySymmetries(const TileClassification& classification, doubl
             if (std::any_of(found.begin(), found.end(), [&](const Eigen::Matrix3d& f) { return (f - linear).norm() < kSameLinear; }))
                 continue;
             bool all = true;
-            for (std::size_t t = 0; t < tileCount && all; ++t) {
-                const std::size_t u = tileAt(tiles[t].classIndex, center + linear * (tiles[t].centroid - center));
-                all = u < tileCount && mapsOnto(linear, t, u);
-            }
+            for (std::size_t t = 0; t < tileCount && all; ++t) all = tiles.image(linear, t) < tileCount;
             if (all) found.push_back(linear);
         }
     }
@@ -100,6 +129,15 @@ SymmetryGroup assemblySymmetries(const TileClassification& classification, doubl
             if (other.kind == Symmetry::Kind::Rotation && std::abs(std::abs(other.axis.dot(s.axis)) - 1) < 1e-6) ++s.fold;
     }
     return result;
+}
+
+std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group,
+                                                 double tolerance) {
+    const TileLocator tiles(classification, tolerance * classification.sceneDiagonal);
+    std::vector<std::vector<std::size_t>> images(group.elements.size(), std::vector<std::size_t>(tiles.size()));
+    for (std::size_t e = 0; e < group.elements.size(); ++e)
+        for (std::size_t t = 0; t < tiles.size(); ++t) images[e][t] = tiles.image(group.elements[e].linear, t);
+    return images;
 }
 
 }  // namespace symcompress

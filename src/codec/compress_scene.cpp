@@ -121,10 +121,99 @@ void addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const s
     out.nodes.push_back(std::move(node));
 }
 
+// The primitive with its positions only: what `reproduces` compares when attributes are ignored.
+Primitive geometryOf(Primitive primitive) {
+    primitive.normals.clear();
+    primitive.texcoords.clear();
+    primitive.colors.clear();
+    return primitive;
+}
+
+// The scene's own symmetry: the group G of the whole assembly of tiles (paper 6.3). The tiles of G's free
+// orbits (which G moves onto |G| distinct tiles) are stored once, for one fundamental part of the scene,
+// as one mesh drawn by a node per element of G: a room of mirrored quadrants costs one quadrant. From each
+// orbit the tile nearest a point that no element fixes is taken, so the part is one Dirichlet domain of G,
+// in one piece. Tiles on G's planes and axes are left to the other mechanisms. Returns which tiles it draws.
+std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const CompressOptions& options, Scene& out,
+                                    CompressionStats& stats) {
+    const std::vector<Tile>& tiles = analysis.tiles;
+    const TileClassification& classification = analysis.classification;
+    std::vector<bool> drawn(tiles.size(), false);
+    const SymmetryGroup group = assemblySymmetries(classification, options.tolerance);
+    const std::size_t order = group.elements.size();
+    if (order < 2) return drawn;
+    const std::vector<std::vector<std::size_t>> images = tileImages(classification, group, options.tolerance);
+    const Eigen::Vector3d center = group.centroid;
+    auto about = [&](std::size_t e) {
+        Isometry map;
+        map.linear = group.elements[e].linear;
+        map.translation = center - map.linear * center;
+        return map;
+    };
+    const double tolerance = options.tolerance * classification.sceneDiagonal;
+    auto reproducedBy = [&](std::size_t from, std::size_t to, const Isometry& map) {
+        Primitive a = tilePrimitive(tiles[from], analysis.soup), b = tilePrimitive(tiles[to], analysis.soup);
+        return options.geometryOnly ? reproduces(geometryOf(std::move(a)), geometryOf(std::move(b)), map, tolerance)
+                                    : reproduces(a, b, map, tolerance);
+    };
+    const Eigen::Vector3d generic = center + classification.sceneDiagonal * Eigen::Vector3d(0.5377, 0.8314, 0.1403);
+
+    std::vector<bool> seen(tiles.size(), false);
+    std::vector<std::size_t> part, orbitTiles;
+    double storedTriangles = 0, apart = 0;
+    for (std::size_t t = 0; t < tiles.size(); ++t) {
+        if (seen[t]) continue;
+        std::set<std::size_t> orbit;
+        for (std::size_t e = 0; e < order; ++e) orbit.insert(images[e][t]);
+        for (std::size_t u : orbit)
+            if (u < tiles.size()) seen[u] = true;
+        if (orbit.size() < order || *orbit.rbegin() >= tiles.size()) continue;  // on a plane or axis of G
+        const std::size_t representative = *std::min_element(orbit.begin(), orbit.end(), [&](std::size_t a, std::size_t b) {
+            return (classification.shapes[a].moments.centroid - generic).norm() < (classification.shapes[b].moments.centroid - generic).norm();
+        });
+        bool verified = true;
+        for (std::size_t e = 1; e < order && verified; ++e) verified = reproducedBy(representative, images[e][representative], about(e));
+        if (!verified) continue;
+        part.push_back(representative);
+        orbitTiles.insert(orbitTiles.end(), orbit.begin(), orbit.end());
+        const double n = double(tiles[representative].mesh.triangles.size());
+        storedTriangles += n;
+        apart += double(order) * std::min(n * options.bytesPerTriangle, options.bytesPerInstance);
+    }
+    // Once with a node per element, against the cheaper of a node or the triangles for every tile; a mesh
+    // of its own costs extra only when some tiles are left for another mesh.
+    const double meshCost = orbitTiles.size() < tiles.size() ? options.bytesPerMesh : 0;
+    if (part.empty() || storedTriangles * options.bytesPerTriangle + meshCost + double(order) * options.bytesPerInstance >= apart)
+        return drawn;
+    PrimitivesByKind parts;
+    for (std::size_t t : part) {
+        Primitive local = tilePrimitive(tiles[t], analysis.soup);
+        for (auto& p : local.positions) p -= center;
+        parts.add(local);
+    }
+    Mesh mesh;
+    mesh.name = "1/" + std::to_string(order) + " of the scene (" + group.name + ")";
+    parts.moveInto(mesh);
+    out.meshes.push_back(std::move(mesh));
+    for (std::size_t e = 0; e < order; ++e) {
+        Eigen::Matrix4d node = Eigen::Matrix4d::Identity();
+        node.topLeftCorner<3, 3>() = group.elements[e].linear;
+        node.topRightCorner<3, 1>() = center;
+        addRootNode(out, int(out.meshes.size()) - 1, node, "");
+    }
+    for (std::size_t t : orbitTiles) drawn[t] = true;
+    stats.sceneGroup = group.name;
+    stats.tilesInSceneSymmetry = orbitTiles.size();
+    stats.instances += order;
+    stats.maxDeviation = std::max(stats.maxDeviation, options.tolerance);  // each copy verified vertex by vertex
+    return drawn;
+}
+
 // The repeated assemblies worth storing once: each becomes one mesh (its first copy, about its anchor's
-// centroid) drawn by a node per copy. Returns which tiles they draw.
-std::vector<bool> planAssemblies(const Scene& input, const SceneAnalysis& analysis, const CompressOptions& options, Scene& out,
-                                 CompressionStats& stats) {
+// centroid) drawn by a node per copy; an assembly with a tile already `drawn` is left out. Marks the
+// tiles they draw in `drawn`.
+void planAssemblies(const Scene& input, const SceneAnalysis& analysis, const CompressOptions& options, Scene& out,
+                    CompressionStats& stats, std::vector<bool>& drawn) {
     const std::vector<Tile>& tiles = analysis.tiles;
     const TileClassification& classification = analysis.classification;
     const double tolerance = options.tolerance * classification.sceneDiagonal;
@@ -143,8 +232,11 @@ std::vector<bool> planAssemblies(const Scene& input, const SceneAnalysis& analys
     for (const CongruenceClass& c : classification.classes)
         for (std::size_t i = 0; i < c.members.size(); ++i) classDeviation[c.members[i]] = c.deviations[i];
 
-    std::vector<bool> inAssembly(tiles.size(), false);
     for (const RepeatedAssembly& assembly : findRepeatedAssemblies(tiles, classification, assemblyOptions)) {
+        if (std::any_of(assembly.copies.begin(), assembly.copies.end(), [&](const std::vector<std::size_t>& copy) {
+                return std::any_of(copy.begin(), copy.end(), [&](std::size_t t) { return bool(drawn[t]); });
+            }))
+            continue;
         // Once with a node per copy, against the cheaper of a node or the triangles for every tile of every copy.
         const double copies = double(assembly.copies.size());
         double triangles = 0, apart = 0;
@@ -173,7 +265,7 @@ std::vector<bool> planAssemblies(const Scene& input, const SceneAnalysis& analys
                         sourceName(input, analysis, assembly.copies[j][0]));
             double worst = 0;
             for (std::size_t i = 0; i < assembly.copies[j].size(); ++i) {
-                inAssembly[assembly.copies[j][i]] = true;
+                drawn[assembly.copies[j][i]] = true;
                 worst = std::max(worst, classDeviation[assembly.copies[0][i]] + classDeviation[assembly.copies[j][i]]);
             }
             if (j > 0) stats.maxDeviation = std::max(stats.maxDeviation, assembly.deviation + worst);
@@ -182,7 +274,6 @@ std::vector<bool> planAssemblies(const Scene& input, const SceneAnalysis& analys
         stats.instances += assembly.copies.size();
         stats.tilesInAssemblies += assembly.copies.size() * assembly.copies[0].size();
     }
-    return inAssembly;
 }
 
 double since(std::chrono::steady_clock::time_point start) {
@@ -274,22 +365,25 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     std::vector<bool> uniqueTile(tiles.size(), !options.instancing);  // stored as it is
     const double tolerance = options.tolerance * analysis.classification.sceneDiagonal;
     reportProgress(options, "planning", analysis.classification.classes.size(), "classes");
-    const std::vector<bool> inAssembly = options.instancing && options.assemblies
-                                             ? planAssemblies(input, analysis, options, out, stats)
-                                             : std::vector<bool>(tiles.size(), false);
+    // Tiles drawn by a shared mesh of the scene's symmetry or of a repeated assembly.
+    std::vector<bool> drawn(tiles.size(), false);
+    if (options.instancing && options.assemblies) {
+        drawn = planSceneSymmetry(analysis, options, out, stats);
+        planAssemblies(input, analysis, options, out, stats, drawn);
+    }
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         const CongruenceClass& c = classification.classes[k];
         ++stats.classes;
         if (classification.shapes[c.prototype].symmetry.order() > 1) ++stats.symmetricClasses;
         const Primitive prototype = tilePrimitive(tiles[c.prototype], soup);
-        // Indices into c.members drawn from the prototype's mesh (members in assemblies are drawn there).
+        // Indices into c.members drawn from the prototype's mesh (members already drawn are left out).
         std::vector<std::size_t> placed;
-        if (!inAssembly[c.prototype]) placed.push_back(0);
+        if (!drawn[c.prototype]) placed.push_back(0);
         std::vector<Isometry> placements = c.placements;
         std::vector<Primitive> apart;  // members stored as they are
         const TileShape& shape = classification.shapes[c.prototype];
         for (std::size_t i = 1; i < c.members.size(); ++i) {
-            if (inAssembly[c.members[i]]) continue;
+            if (drawn[c.members[i]]) continue;
             Primitive member = tilePrimitive(tiles[c.members[i]], soup);
             if (options.geometryOnly) {
                 placed.push_back(i);

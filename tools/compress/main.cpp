@@ -376,6 +376,8 @@ int runCompress(const CompressRequest& request) {
                           {"assemblies", stats.assemblies},
                           {"assembly_copies", stats.assemblyCopies},
                           {"tiles_in_assemblies", stats.tilesInAssemblies},
+                          {"scene_group", stats.sceneGroup},
+                          {"tiles_in_scene_symmetry", stats.tilesInSceneSymmetry},
                           {"input_instances_kept", stats.inputInstancesKept},
                           {"bytes_per_instance", instanceBytes},
                           {"ablation",
@@ -404,6 +406,9 @@ int runCompress(const CompressRequest& request) {
                 stats.classes, stats.instancedClasses, stats.instances);
     std::printf("  symmetric       %zu classes, %zu stored as their fundamental region\n", stats.symmetricClasses,
                 stats.regionClasses);
+    if (stats.tilesInSceneSymmetry)
+        std::printf("  scene symmetry  %s: one part of the scene stored for %zu tiles\n", stats.sceneGroup.c_str(),
+                    stats.tilesInSceneSymmetry);
     if (stats.assemblies)
         std::printf("  assemblies      %zu groups of tiles that recur together, stored once for %zu copies (%zu tiles)\n",
                     stats.assemblies, stats.assemblyCopies, stats.tilesInAssemblies);
