@@ -12,11 +12,6 @@ namespace symcompress {
 namespace {
 
 constexpr double kDistinctEigenvalues = 1e-4;  // relative gap above which principal axes are a frame
-// A gap this large (relative, and in units of the tolerance relative to the tile) no asymmetry within the
-// tolerance can close: a congruent tile's principal frame is then one of the 8 sign choices, and when none
-// of them passes, no other frame will (as in the detector's own shortcut).
-constexpr double kCertainFrame = 1e-3;
-constexpr double kCertainFramePerTolerance = 50;
 constexpr double kSameValue = 1e-3;            // relative agreement of moment values at matched directions
 constexpr double kNoiseVariation = 1e-5;       // as in the detector: flatter functions have no directions
 
@@ -99,7 +94,8 @@ std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& from
     if (gap > kDistinctEigenvalues * values[2]) {
         principalCandidates(fromAxes.eigenvectors(), toAxes.eigenvectors(), candidates);
         if (auto found = firstPassing(candidates)) return found;
-        if (gap > std::max(kCertainFrame, kCertainFramePerTolerance * tolerance / from.diagonal) * values[2]) return std::nullopt;
+        // A congruent tile's principal frame is then one of the 8 sign choices: when none passes, no frame will.
+        if (principalAxesAreCertain(values, tolerance / from.diagonal)) return std::nullopt;
     }
     // Degenerate principal axes: the critical directions of each order in turn (a low order may be
     // invariant about an axis, M_4 of a 6-fold part, and its critical points then lie anywhere on circles).

@@ -53,11 +53,6 @@ constexpr std::size_t kMaxRefinedFolds = 8;
 constexpr double kGenericTurn = 0.3819660112501051;
 // How far, relative to the diagonal, a candidate from the moments may be from a symmetry before refinement.
 constexpr double kPreliminaryMargin = 2e-4;
-// Principal second moments this far apart (relative to the largest, and in units of the tolerance) cannot
-// be made equal by any asymmetry within the tolerance: every symmetry then maps each principal axis onto
-// itself, so the axes to try are those three (a subgroup of D2h about them), with no search.
-constexpr double kDistinctPrincipal = 1e-3;
-constexpr double kDistinctPrincipalPerTolerance = 50;
 
 Eigen::Matrix3d mirrorWithNormal(const Eigen::Vector3d& n) { return Eigen::Matrix3d::Identity() - 2 * n * n.transpose(); }
 Eigen::Matrix3d rotationAbout(const Eigen::Vector3d& axis, double angle) {
@@ -150,8 +145,7 @@ std::optional<std::vector<Eigen::Vector3d>> distinctPrincipalAxes(const MomentCo
             m(i, j) = m(j, i) = f.value((unit.col(i) + unit.col(j)).normalized()) - (m(i, i) + m(j, j)) / 2;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(m);
     const Eigen::Vector3d values = solver.eigenvalues();
-    const double gap = std::min(values[1] - values[0], values[2] - values[1]);
-    if (!(gap > std::max(kDistinctPrincipal, kDistinctPrincipalPerTolerance * tolerance) * std::abs(values[2]))) return std::nullopt;
+    if (!principalAxesAreCertain(values, tolerance)) return std::nullopt;  // else a subgroup of D2h about them
     return std::vector<Eigen::Vector3d>{solver.eigenvectors().col(0), solver.eigenvectors().col(1), solver.eigenvectors().col(2)};
 }
 
