@@ -132,8 +132,9 @@ Primitive geometryOf(Primitive primitive) {
 // The scene's own symmetry: the group G of the whole assembly of tiles (paper 6.3). The tiles of G's free
 // orbits (which G moves onto |G| distinct tiles) are stored once, for one fundamental part of the scene,
 // as one mesh drawn by a node per element of G: a room of mirrored quadrants costs one quadrant. From each
-// orbit the tile nearest a point that no element fixes is taken, so the part is one Dirichlet domain of G,
-// in one piece. Tiles on G's planes and axes are left to the other mechanisms. Returns which tiles it draws.
+// orbit the tile nearest a point that no element fixes is taken: the part is the tiles of one Dirichlet
+// domain of G, a compact region. Tiles on G's planes and axes are left to the other mechanisms. Returns
+// which tiles it draws.
 std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const CompressOptions& options, Scene& out,
                                     CompressionStats& stats) {
     const std::vector<Tile>& tiles = analysis.tiles;
