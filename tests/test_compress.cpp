@@ -48,6 +48,20 @@ std::filesystem::path writePlainGlb(const Scene& scene, const TemporaryFolder& f
     return file;
 }
 
+// Open edges (used by one triangle) after welding at 1e-6 of the diagonal, far below a 14-bit step.
+std::ptrdiff_t openEdges(const TriangleMesh& mesh) {
+    Eigen::AlignedBox3d box;
+    for (const auto& p : mesh.positions) box.extend(p);
+    const auto representative = weldPositions(mesh.positions, 1e-6 * box.diagonal().norm());
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+    for (const Triangle& t : mesh.triangles)
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t a = representative[t[i]], b = representative[t[(i + 1) % 3]];
+            if (a != b) ++uses[{std::min(a, b), std::max(a, b)}];
+        }
+    return std::count_if(uses.begin(), uses.end(), [](const auto& entry) { return entry.second == 1; });
+}
+
 }  // namespace
 
 TEST_CASE("Every shared model, compressed, rebuilds its original surface", "[compress][models]") {
@@ -189,21 +203,47 @@ TEST_CASE("Seams of a fundamental region stay closed after quantization: the cup
     const nlohmann::json report = compressAndVerify(input, folder, "cup-small");
     REQUIRE(report["region_classes"] == 1);
 
-    // Open edges (used by one triangle) after welding at 1e-6 of the diagonal, far below a 14-bit step.
-    auto openEdges = [](const TriangleMesh& mesh) {
-        Eigen::AlignedBox3d box;
-        for (const auto& p : mesh.positions) box.extend(p);
-        const auto representative = weldPositions(mesh.positions, 1e-6 * box.diagonal().norm());
-        std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-        for (const Triangle& t : mesh.triangles)
-            for (int i = 0; i < 3; ++i) {
-                const std::uint32_t a = representative[t[i]], b = representative[t[(i + 1) % 3]];
-                if (a != b) ++uses[{std::min(a, b), std::max(a, b)}];
-            }
-        return std::count_if(uses.begin(), uses.end(), [](const auto& entry) { return entry.second == 1; });
-    };
     REQUIRE(openEdges(worldMesh(turned)) == 0);
     CHECK(openEdges(worldMesh(readScene(folder / "cup-small.glb"))) == 0);
+}
+
+TEST_CASE("Seams of a fundamental region stay closed after quantization: a square ring, D4h, whose region is off its axis",
+          "[compress]") {
+    // A square ring: its region (1/16) lies between the planes y = 0 and x = y, away from the axis. On Draco's default grid (the region's box) x and y have different
+    // origins, and the copies across x = y come apart by up to a step; on a power-of-two grid through the
+    // centre, signed permutations (every element of D4h in its axis frame) map grid points onto grid points.
+    // A torus of 4 straight sides around z, each cut into 24 steps, and 32 segments around its tube: large
+    // enough (6144 triangles) for its region to pay for 16 nodes.
+    TriangleMesh ring;
+    const int around = 4, steps = 24, tube = 32;
+    auto corner = [&](int s, int i) {
+        const double a = 2 * M_PI * s / around, b = 2 * M_PI * (i + 0.5) / tube, radius = 1 + 0.37 * std::cos(b);
+        return Eigen::Vector3d(radius * std::cos(a), radius * std::sin(a), 0.37 * std::sin(b));
+    };
+    for (int s = 0; s < around; ++s)
+        for (int k = 0; k < steps; ++k)
+            for (int i = 0; i < tube; ++i)
+                ring.positions.push_back(corner(s, i) + (corner(s + 1, i) - corner(s, i)) * double(k) / steps);
+    const int columns = around * steps;
+    auto at = [&](int c, int i) { return std::uint32_t((c % columns) * tube + i % tube); };
+    for (int c = 0; c < columns; ++c)
+        for (int i = 0; i < tube; ++i) {
+            ring.triangles.push_back({at(c, i), at(c + 1, i), at(c + 1, i + 1)});
+            ring.triangles.push_back({at(c, i), at(c + 1, i + 1), at(c, i + 1)});
+        }
+    // Turned and moved, so that nothing is on the coordinate planes by accident.
+    const Eigen::Matrix3d turn = Eigen::Quaterniond(0.8, 0.1, -0.4, 0.3).normalized().toRotationMatrix();
+    ring = samples::transformed(ring, turn, Eigen::Vector3d(3.1, -0.7, 2.3));
+    Primitive part;
+    part.positions = ring.positions;
+    part.triangles = ring.triangles;
+    const Scene scene = sceneOfOneMesh("ring", part);
+    TemporaryFolder folder;
+    const auto input = writePlainGlb(scene, folder, "ring");
+    const nlohmann::json report = compressAndVerify(input, folder, "ring-small");
+    REQUIRE(report["region_classes"] == 1);
+    REQUIRE(openEdges(worldMesh(scene)) == 0);
+    CHECK(openEdges(worldMesh(readScene(folder / "ring-small.glb"))) == 0);
 }
 
 TEST_CASE("Every sample, compressed to GLB and X3D, rebuilds its original surface; the bolts use both mechanisms",

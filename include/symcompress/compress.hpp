@@ -19,6 +19,10 @@ struct CompressOptions {
     bool regions = true;        // store symmetric tiles as their fundamental regions where that pays
     bool assemblies = true;     // store tiles that recur together once per group, drawn by one node per copy
     bool keepInputInstances = true;  // meshes the input draws from several nodes, scaled, stay shared as they are
+    // Draco's position bits when the output is quantized (Draco glTF), else 0. A fundamental region whose
+    // instances are signed permutations in its frame is then stored on a power-of-two grid through its
+    // centre (seamPreservingGrid), in units of the grid's step, so that its seams stay closed.
+    int seamGridBits = 0;
     int threads = 0;
     // Called as each stage starts, with what it works on (e.g. "classifying", 873 tiles); may be empty.
     std::function<void(const char* stage, std::size_t count, const char* unit)> progress;

@@ -109,14 +109,6 @@ Eigen::Matrix4d instanceTransform(const FundamentalRegion& region, std::size_t k
 // every copy faces the same way as the tile. Seam vertices are not welded.
 Primitive rebuildFromRegion(const FundamentalRegion& region);
 
-// A Draco-style quantization grid: value = origin + q * range / (2^bits - 1), q in [0, 2^bits - 1]
-// (draco::Encoder::SetAttributeExplicitQuantization takes origin and range as floats).
-struct QuantizationGrid {
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-    double range = 1;
-    int bits = 14;
-};
-
 // The grid covering the region's positions whose step is a power of two and whose points include the
 // origin of region coordinates (the tile's centre under RegionFrame::Aligned) in every coordinate; origin
 // and range are exact in float. Signed permutation instances then map grid points onto grid points, so

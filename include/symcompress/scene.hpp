@@ -73,6 +73,14 @@ struct Material {
 };
 
 // Triangles of one material with their per-vertex attributes.
+// A Draco-style quantization grid: value = origin + q * range / (2^bits - 1), q in [0, 2^bits - 1]
+// (draco::Encoder::SetAttributeExplicitQuantization takes origin and range as floats).
+struct QuantizationGrid {
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    double range = 1;
+    int bits = 14;
+};
+
 struct Primitive {
     std::vector<Eigen::Vector3d> positions;
     std::vector<Eigen::Vector3d> normals;    // empty or one per vertex
@@ -80,6 +88,9 @@ struct Primitive {
     std::vector<Eigen::Vector4d> colors;     // COLOR_0 as linear RGBA; empty or one per vertex
     std::vector<Triangle> triangles;
     int material = -1;  // index into Scene::materials, -1 for the default material
+    // Where positions must be quantized on a given grid (the seams of a fundamental region's copies stay
+    // closed on it; fundamental_region.hpp), else nothing: a compressing writer then fits its own grid.
+    std::optional<QuantizationGrid> positionGrid;
 };
 
 struct Mesh {

@@ -446,6 +446,11 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
             continue;
         }
         const bool useRegion = regional < instanced;
+        if (useRegion && options.seamGridBits > 0 && region->signedPermutationFrame) {
+            RegionInGridSteps onGrid = inGridSteps(*region, seamPreservingGrid(*region, options.seamGridBits));
+            region = std::move(onGrid.region);
+            region->region.positionGrid = onGrid.grid;
+        }
         // The shared mesh is stored about the prototype's centroid (a small range for quantization); a
         // region in its aligned frame, also about the centroid (see RegionFrame::Aligned).
         Mesh mesh;

@@ -110,20 +110,26 @@ struct DracoAttributeIds {
 };
 
 // The primitive's triangles split in two: those Draco's edgebreaker keeps, and those whose corners its
-// quantization of positions (`bits` over the box's largest side) puts on one point, which it would drop.
-// The second part goes to the sequential method, so that a few slivers do not cost a whole mesh its
-// edgebreaker compression (vertex arrays are shared; Draco takes only the corners its triangles use).
+// quantization of positions (`bits` over the box's largest side, or the primitive's own grid) puts on one
+// point, which it would drop. The second part goes to the sequential method, so that a few slivers do not
+// cost a whole mesh its edgebreaker compression (vertex arrays are shared; Draco takes only the corners
+// its triangles use).
 std::pair<Primitive, Primitive> splitCollapsingTriangles(const Primitive& primitive, int bits) {
-    Eigen::AlignedBox3d box;
-    for (const Triangle& t : primitive.triangles)
-        for (std::uint32_t v : t) box.extend(primitive.positions[v]);
-    const double range = box.sizes().maxCoeff();
-    const double scale = range > 0 ? double((1u << bits) - 1) / range : 0;
+    QuantizationGrid grid;
+    if (primitive.positionGrid) {
+        grid = *primitive.positionGrid;
+    } else {
+        Eigen::AlignedBox3d box;
+        for (const Triangle& t : primitive.triangles)
+            for (std::uint32_t v : t) box.extend(primitive.positions[v]);
+        grid = {box.min(), box.sizes().maxCoeff(), bits};
+    }
+    const double scale = grid.range > 0 ? double((1u << grid.bits) - 1) / grid.range : 0;
     std::pair<Primitive, Primitive> parts{primitive, primitive};
     parts.first.triangles.clear();
     parts.second.triangles.clear();
     for (const Triangle& t : primitive.triangles) {
-        auto onGrid = [&](std::uint32_t v) -> Eigen::Array3d { return (((primitive.positions[v] - box.min()) * scale).array() + 0.5).floor(); };
+        auto onGrid = [&](std::uint32_t v) -> Eigen::Array3d { return (((primitive.positions[v] - grid.origin) * scale).array() + 0.5).floor(); };
         const Eigen::Array3d qa = onGrid(t[0]), qb = onGrid(t[1]), qc = onGrid(t[2]);
         const bool collapses = (qa == qb).all() || (qb == qc).all() || (qa == qc).all();
         (collapses ? parts.second : parts.first).triangles.push_back(t);
@@ -159,7 +165,12 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
         const int speed = std::clamp(10 - options.compressionLevel, 0, 10);
         encoder.SetSpeedOptions(speed, speed);
         encoder.SetEncodingMethod(encoding);
-        encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.positionBits);
+        if (const auto& grid = primitive.positionGrid) {
+            const float origin[3] = {float(grid->origin.x()), float(grid->origin.y()), float(grid->origin.z())};
+            encoder.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, grid->bits, 3, origin, float(grid->range));
+        } else {
+            encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.positionBits);
+        }
         encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options.normalBits);
         encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, options.texcoordBits);
         encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, options.colorBits);
@@ -246,25 +257,29 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
 }
 
-// Writes only a node's nonzero parts. A rigid transform (a node per instance: the common case, where its
-// size counts) as translation, rotation quaternion and, for a mirror, scale [-1, 1, 1]: about half the
-// bytes of a matrix; any other affine transform as a matrix. Numbers cut as rounded.hpp says: the
-// translation to float32, which is what a glTF reader keeps of it.
+// Writes only a node's nonzero parts. A rigid transform, possibly uniformly scaled (a node per instance:
+// the common case, where its size counts), as translation, rotation quaternion and, for a scale or a
+// mirror, scale [±s, s, s]: about half the bytes of a matrix; any other affine transform as a matrix.
+// Numbers cut as rounded.hpp says: the translation to float32, which is what a glTF reader keeps of it.
 Json writeNode(const Node& node, const std::vector<int>& meshIndex) {
     Json out = Json::object();
     if (!node.name.empty()) out["name"] = node.name;
     const Eigen::Matrix3d linear = node.transform.topLeftCorner<3, 3>();
     const Eigen::Vector3d translation = node.transform.topRightCorner<3, 1>();
     const bool mirror = linear.determinant() < 0;
-    if ((linear.transpose() * linear - Eigen::Matrix3d::Identity()).norm() < 1e-9) {
-        const Eigen::Matrix3d rotation = mirror ? Eigen::Matrix3d(linear * Eigen::Vector3d(-1, 1, 1).asDiagonal()) : linear;
+    const double scale = std::cbrt(std::abs(linear.determinant()));
+    const Eigen::Matrix3d unit = scale > 0 ? Eigen::Matrix3d(linear / scale) : linear;
+    if (scale > 0 && (unit.transpose() * unit - Eigen::Matrix3d::Identity()).norm() < 1e-9) {
+        const Eigen::Matrix3d rotation = mirror ? Eigen::Matrix3d(unit * Eigen::Vector3d(-1, 1, 1).asDiagonal()) : unit;
         Eigen::Quaterniond q(rotation);
         if (q.w() < 0) q.coeffs() *= -1;
         const Eigen::Vector3d t = translation.unaryExpr(&asFloat32);
         const Eigen::Vector4d r = q.coeffs().unaryExpr([](double x) { return roundedDecimals(x, kRotationDecimals); });
+        const double s = asFloat32(scale);
         if (!t.isZero(0)) out["translation"] = {t.x(), t.y(), t.z()};
         if (r != Eigen::Vector4d(0, 0, 0, 1)) out["rotation"] = {r.x(), r.y(), r.z(), r.w()};
-        if (mirror) out["scale"] = {-1, 1, 1};
+        if (s == 1 && mirror) out["scale"] = {-1, 1, 1};
+        if (s != 1) out["scale"] = {mirror ? -s : s, s, s};
     } else {
         std::vector<double> matrix(16);
         for (int i = 0; i < 16; ++i) matrix[i] = asFloat32(node.transform(i % 4, i / 4));
