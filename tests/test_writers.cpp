@@ -2,6 +2,7 @@
 // translations, 1e-7 for rotations), and defaults left out; the file reads back to the same scene.
 #include "io/rounded.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -9,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cstring>
 
 using namespace symcompress;
@@ -85,4 +87,52 @@ TEST_CASE("Written glTF nodes and materials carry no needless digits and no defa
         CHECK(back.materials[0].baseColorFactor.isApprox(scene.materials[0].baseColorFactor, 1e-7));
         CHECK(back.materials[0].metallicFactor == 1);
     }
+}
+
+TEST_CASE("A node that shears is written as TRS nodes, as glTF requires, and draws the same", "[io]") {
+    // X3D's scaleOrientation gives such transforms (the Chevy Tahoe's parts); glTF requires node matrices to
+    // decompose into translation, rotation and scale, and glTF Transform reads one that does not wrongly.
+    Scene scene;
+    scene.meshes.emplace_back();
+    Primitive triangle;
+    triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 1}};
+    triangle.triangles = {{0, 1, 2}};
+    scene.meshes[0].primitives.push_back(triangle);
+    Node shear, child, stretched;
+    shear.name = "shear";
+    shear.transform.topLeftCorner<3, 3>() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix() *
+                                            Eigen::Vector3d(0.5, -2, 3).asDiagonal() *
+                                            Eigen::AngleAxisd(-1.1, Eigen::Vector3d(3, -1, 2).normalized()).toRotationMatrix();
+    shear.transform.topRightCorner<3, 1>() = Eigen::Vector3d(1, 2, 3);
+    shear.mesh = 0;
+    shear.children = {1};
+    child.mesh = 0;
+    child.transform.topRightCorner<3, 1>() = Eigen::Vector3d(0, 5, 0);
+    // Non-uniform scale along turned axes, mirrored: TRS holds it in one node.
+    stretched.mesh = 0;
+    stretched.transform.topLeftCorner<3, 3>() =
+        Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix() * Eigen::Vector3d(1, -2, 4).asDiagonal();
+    scene.nodes = {shear, child, stretched};
+    scene.roots = {0, 2};
+
+    TemporaryFolder folder;
+    const auto file = folder / "shear.glb";
+    writeScene(scene, file, WriteOptions{});
+    const nlohmann::json root = glbJson(file);
+    INFO(root["nodes"].dump());
+    CHECK(root["nodes"].size() == 4);  // the shearing node split in two
+    for (const auto& node : root["nodes"]) CHECK_FALSE(node.contains("matrix"));
+    CHECK(root["nodes"][0]["name"] == "shear");
+    CHECK_FALSE(root["nodes"][0].contains("mesh"));
+    CHECK(root["nodes"][2]["scale"].size() == 3);
+    const Scene back = readScene(file);
+    const std::vector<Eigen::Matrix4d> before = worldTransforms(scene), after = worldTransforms(back);
+    std::vector<Eigen::Matrix4d> drawingBefore, drawingAfter;
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n)
+        if (scene.nodes[n].mesh >= 0) drawingBefore.push_back(before[n]);
+    for (std::size_t n = 0; n < back.nodes.size(); ++n)
+        if (back.nodes[n].mesh >= 0) drawingAfter.push_back(after[n]);
+    REQUIRE(drawingAfter.size() == drawingBefore.size());
+    for (const Eigen::Matrix4d& m : drawingBefore)  // the split node's mesh moves to its new child, last
+        CHECK(std::any_of(drawingAfter.begin(), drawingAfter.end(), [&](const Eigen::Matrix4d& a) { return a.isApprox(m, 1e-6); }));
 }

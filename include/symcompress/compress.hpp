@@ -113,9 +113,12 @@ struct SurfaceComparison {
     double maxDeviation = 0;  // two-sided vertex-to-surface distance, relative to the reference's diagonal
     double areaRatio = 0;     // rebuilt area / reference area
     bool sameBounds = false;  // within maxDeviation's tolerance
+    // Share of the rebuilt area turned over: triangles with no reference triangle facing their way
+    // within the tolerance of their centroid (a copy placed upside down, a mirror drawn inside out).
+    double flippedArea = 0;
 };
 
-// The rebuilt surface against the reference: vertex-to-surface both ways (d_A), area, bounds.
+// The rebuilt surface against the reference: vertex-to-surface both ways (d_A), area, bounds, orientation.
 SurfaceComparison compareSurfaces(const TriangleMesh& rebuilt, const TriangleMesh& reference, double boundsTolerance);
 
 }  // namespace symcompress

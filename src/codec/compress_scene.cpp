@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -48,7 +49,48 @@ std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vect
     }
 }
 
-// Whether the prototype placed by j reproduces the member one vertex to one vertex, attributes included.
+// The surface's orientation, independent of how it is cut into triangles: its vector area S = ∫ n dA and
+// M = ∫ n (x - c)^T dA about its area centroid c (for a closed part, its volume times the identity).
+struct OrientedMoments {
+    Eigen::Vector3d area = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d first = Eigen::Matrix3d::Zero();
+};
+
+OrientedMoments orientedMoments(const Primitive& part) {
+    double total = 0;
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+    for (const Triangle& t : part.triangles) {
+        const Eigen::Vector3d &a = part.positions[t[0]], &b = part.positions[t[1]], &c = part.positions[t[2]];
+        const double area = 0.5 * (b - a).cross(c - a).norm();
+        total += area;
+        weighted += area * (a + b + c) / 3;
+    }
+    const Eigen::Vector3d centre = total > 0 ? Eigen::Vector3d(weighted / total) : Eigen::Vector3d::Zero();
+    OrientedMoments moments;
+    for (const Triangle& t : part.triangles) {
+        const Eigen::Vector3d &a = part.positions[t[0]], &b = part.positions[t[1]], &c = part.positions[t[2]];
+        const Eigen::Vector3d vectorArea = 0.5 * (b - a).cross(c - a);
+        moments.area += vectorArea;
+        moments.first += vectorArea * ((a + b + c) / 3 - centre).transpose();
+    }
+    return moments;
+}
+
+// Whether the member faces the way the prototype placed by j does (a mirrored placement is drawn with
+// its winding reversed, as glTF and X3D viewers do for a negative determinant, so both map as j): a flat
+// part turned over matches its copy as a point set, not in orientation. Parts that look the same both
+// ways (two-faced sheets) pass.
+bool sameOrientation(const Primitive& prototype, const Primitive& member, const Isometry& j, double radius) {
+    const OrientedMoments p = orientedMoments(prototype), m = orientedMoments(member);
+    const Eigen::Vector3d expectedArea = j.linear * p.area;
+    const Eigen::Matrix3d expectedFirst = j.linear * p.first * j.linear.transpose();
+    const double difference = (m.area - expectedArea).norm() + (m.first - expectedFirst).norm() / radius;
+    const double size = p.area.norm() + p.first.norm() / radius;
+    return difference <= 0.5 * size;
+}
+
+// Whether the prototype placed by j reproduces the member one vertex to one vertex, attributes included,
+// facing the same way.
 bool reproduces(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance) {
     if (prototype.triangles.size() != member.triangles.size() || prototype.positions.size() != member.positions.size() ||
         prototype.normals.empty() != member.normals.empty() || prototype.texcoords.empty() != member.texcoords.empty() ||
@@ -77,7 +119,9 @@ bool reproduces(const Primitive& prototype, const Primitive& member, const Isome
         for (auto it = first; it != last && !found; ++it) found = same(it->second, v);
         if (!found) return false;
     }
-    return true;
+    Eigen::AlignedBox3d box;
+    for (const auto& p : member.positions) box.extend(p);
+    return sameOrientation(prototype, member, j, std::max(box.diagonal().norm(), tolerance));
 }
 
 // Primitives gathered by material and by which attributes they carry, so that merging never drops an
@@ -129,6 +173,13 @@ Primitive geometryOf(Primitive primitive) {
     return primitive;
 }
 
+// `reproduces`, on positions and faces only with --geometry-only.
+bool reproducesAsAsked(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance,
+                       const CompressOptions& options) {
+    return options.geometryOnly ? reproduces(geometryOf(prototype), geometryOf(member), j, tolerance)
+                                : reproduces(prototype, member, j, tolerance);
+}
+
 // The scene's own symmetry: the group G of the whole assembly of tiles (paper 6.3). The tiles of G's free
 // orbits (which G moves onto |G| distinct tiles) are stored once, for one fundamental part of the scene,
 // as one mesh drawn by a node per element of G: a room of mirrored quadrants costs one quadrant. From each
@@ -153,9 +204,8 @@ std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const Compres
     };
     const double tolerance = options.tolerance * classification.sceneDiagonal;
     auto reproducedBy = [&](std::size_t from, std::size_t to, const Isometry& map) {
-        Primitive a = tilePrimitive(tiles[from], analysis.soup), b = tilePrimitive(tiles[to], analysis.soup);
-        return options.geometryOnly ? reproduces(geometryOf(std::move(a)), geometryOf(std::move(b)), map, tolerance)
-                                    : reproduces(a, b, map, tolerance);
+        return reproducesAsAsked(tilePrimitive(tiles[from], analysis.soup), tilePrimitive(tiles[to], analysis.soup), map,
+                                 tolerance, options);
     };
     const Eigen::Vector3d generic = center + classification.sceneDiagonal * Eigen::Vector3d(0.5377, 0.8314, 0.1403);
 
@@ -225,10 +275,9 @@ void planAssemblies(const Scene& input, const SceneAnalysis& analysis, const Com
     };
     AssemblyOptions assemblyOptions;
     assemblyOptions.tolerance = options.tolerance;
-    if (!options.geometryOnly)
-        assemblyOptions.accept = [&](std::size_t from, std::size_t to, const Isometry& map) {
-            return reproduces(primitiveOf(from), primitiveOf(to), map, tolerance);
-        };
+    assemblyOptions.accept = [&](std::size_t from, std::size_t to, const Isometry& map) {
+        return reproducesAsAsked(primitiveOf(from), primitiveOf(to), map, tolerance, options);
+    };
     std::vector<double> classDeviation(tiles.size(), 0);
     for (const CongruenceClass& c : classification.classes)
         for (std::size_t i = 0; i < c.members.size(); ++i) classDeviation[c.members[i]] = c.deviations[i];
@@ -386,19 +435,15 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         for (std::size_t i = 1; i < c.members.size(); ++i) {
             if (drawn[c.members[i]]) continue;
             Primitive member = tilePrimitive(tiles[c.members[i]], soup);
-            if (options.geometryOnly) {
-                placed.push_back(i);
-                continue;
-            }
             // Every J g (g in the prototype's group) places the geometry (paper property 4); the
-            // attributes pick among them.
+            // attributes and the faces' orientation pick among them.
             bool found = false;
             for (const Symmetry& g : shape.symmetry.elements) {
                 Isometry candidate;
                 candidate.linear = c.placements[i].linear * g.linear;
                 candidate.translation = c.placements[i].linear * (shape.moments.centroid - g.linear * shape.moments.centroid) +
                                         c.placements[i].translation;
-                if (reproduces(prototype, member, candidate, tolerance)) {
+                if (reproducesAsAsked(prototype, member, candidate, tolerance, options)) {
                     placements[i] = candidate;
                     found = true;
                     break;
@@ -425,7 +470,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
                 Isometry about;
                 about.linear = g.linear;
                 about.translation = center - g.linear * center;
-                if (options.geometryOnly || reproduces(prototype, prototype, about, tolerance)) group.push_back(g.linear);
+                if (reproducesAsAsked(prototype, prototype, about, tolerance, options)) group.push_back(g.linear);
             }
             if (group.size() > 1) region = regionOf(prototype, group, center, tolerance);
         }

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 
 #include <cstdio>
 #include <cstdlib>
@@ -257,38 +258,59 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
 }
 
-// Writes only a node's nonzero parts. A rigid transform, possibly uniformly scaled (a node per instance:
-// the common case, where its size counts), as translation, rotation quaternion and, for a scale or a
-// mirror, scale [±s, s, s]: about half the bytes of a matrix; any other affine transform as a matrix.
-// Numbers cut as rounded.hpp says: the translation to float32, which is what a glTF reader keeps of it.
-Json writeNode(const Node& node, const std::vector<int>& meshIndex) {
+// A linear map as glTF's R * S: a rotation, then a scale along the rotated axes (a mirror as one negative
+// scale). Nothing when the map shears (L^T L is not diagonal), which TRS cannot hold.
+std::optional<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> asRotationAndScale(const Eigen::Matrix3d& linear) {
+    const Eigen::Matrix3d gram = linear.transpose() * linear;
+    const double size = gram.diagonal().maxCoeff();
+    if (!(size > 0) || (gram - Eigen::Matrix3d(gram.diagonal().asDiagonal())).norm() > 1e-9 * size) return std::nullopt;
+    Eigen::Vector3d scale = gram.diagonal().cwiseSqrt();
+    if ((scale.array() <= 0).any()) return std::nullopt;
+    if (linear.determinant() < 0) scale.x() = -scale.x();
+    return std::pair{Eigen::Matrix3d(linear * scale.cwiseInverse().asDiagonal()), scale};
+}
+
+// A node's fields: translation (float32, what a glTF reader keeps of it), rotation quaternion to 1e-7 and
+// scale, each left out when it does nothing. Instance nodes are the common case, where their size counts:
+// a rigid or uniformly scaled transform takes about half the bytes of a matrix.
+Json transformFields(const Eigen::Vector3d& translation, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& scale) {
     Json out = Json::object();
-    if (!node.name.empty()) out["name"] = node.name;
+    Eigen::Quaterniond q(rotation);
+    if (q.w() < 0) q.coeffs() *= -1;
+    const Eigen::Vector3d t = translation.unaryExpr(&asFloat32), s = scale.unaryExpr(&asFloat32);
+    const Eigen::Vector4d r = q.coeffs().unaryExpr([](double x) { return roundedDecimals(x, kRotationDecimals); });
+    if (!t.isZero(0)) out["translation"] = {t.x(), t.y(), t.z()};
+    if (r != Eigen::Vector4d(0, 0, 0, 1)) out["rotation"] = {r.x(), r.y(), r.z(), r.w()};
+    if (s == Eigen::Vector3d(-1, 1, 1)) out["scale"] = {-1, 1, 1};  // a mirror: the common case, short
+    else if (s != Eigen::Vector3d::Ones()) out["scale"] = {s.x(), s.y(), s.z()};
+    return out;
+}
+
+// Writes a node. glTF requires node matrices to decompose into TRS, so a transform that shears (X3D's
+// scaleOrientation, a turned child of a non-uniformly scaled parent) is split by the SVD L = U Σ V^T:
+// this node takes translation, U and Σ, and a new child, appended to `extra` (its index is firstExtra +
+// its position there), takes V^T with the mesh and the children.
+Json writeNode(const Node& node, const std::vector<int>& meshIndex, std::size_t firstExtra, std::vector<Json>& extra) {
     const Eigen::Matrix3d linear = node.transform.topLeftCorner<3, 3>();
     const Eigen::Vector3d translation = node.transform.topRightCorner<3, 1>();
-    const bool mirror = linear.determinant() < 0;
-    const double scale = std::cbrt(std::abs(linear.determinant()));
-    const Eigen::Matrix3d unit = scale > 0 ? Eigen::Matrix3d(linear / scale) : linear;
-    if (scale > 0 && (unit.transpose() * unit - Eigen::Matrix3d::Identity()).norm() < 1e-9) {
-        const Eigen::Matrix3d rotation = mirror ? Eigen::Matrix3d(unit * Eigen::Vector3d(-1, 1, 1).asDiagonal()) : unit;
-        Eigen::Quaterniond q(rotation);
-        if (q.w() < 0) q.coeffs() *= -1;
-        const Eigen::Vector3d t = translation.unaryExpr(&asFloat32);
-        const Eigen::Vector4d r = q.coeffs().unaryExpr([](double x) { return roundedDecimals(x, kRotationDecimals); });
-        const double s = asFloat32(scale);
-        if (!t.isZero(0)) out["translation"] = {t.x(), t.y(), t.z()};
-        if (r != Eigen::Vector4d(0, 0, 0, 1)) out["rotation"] = {r.x(), r.y(), r.z(), r.w()};
-        if (s == 1 && mirror) out["scale"] = {-1, 1, 1};
-        if (s != 1) out["scale"] = {mirror ? -s : s, s, s};
+    Json out;
+    Json* drawing = &out;  // the node that carries the mesh and the children
+    if (const auto trs = asRotationAndScale(linear)) {
+        out = transformFields(translation, trs->first, trs->second);
     } else {
-        std::vector<double> matrix(16);
-        for (int i = 0; i < 16; ++i) matrix[i] = asFloat32(node.transform(i % 4, i / 4));
-        matrix[3] = matrix[7] = matrix[11] = 0;  // glTF requires an affine matrix
-        matrix[15] = 1;
-        out["matrix"] = matrix;
+        Eigen::JacobiSVD<Eigen::Matrix3d> svd(linear, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        Eigen::Matrix3d u = svd.matrixU(), v = svd.matrixV();
+        Eigen::Vector3d sigma = svd.singularValues();
+        if (v.determinant() < 0) v.col(2) = -v.col(2), u.col(2) = -u.col(2);
+        if (u.determinant() < 0) u.col(2) = -u.col(2), sigma[2] = -sigma[2];
+        out = transformFields(translation, u, sigma);
+        out["children"] = {firstExtra + extra.size()};
+        extra.push_back(transformFields(Eigen::Vector3d::Zero(), v.transpose(), Eigen::Vector3d::Ones()));
+        drawing = &extra.back();
     }
-    if (node.mesh >= 0 && meshIndex[node.mesh] >= 0) out["mesh"] = meshIndex[node.mesh];
-    if (!node.children.empty()) out["children"] = node.children;
+    if (!node.name.empty()) out["name"] = node.name;
+    if (node.mesh >= 0 && meshIndex[node.mesh] >= 0) (*drawing)["mesh"] = meshIndex[node.mesh];
+    if (!node.children.empty()) (*drawing)["children"] = node.children;
     return out;
 }
 
@@ -421,7 +443,9 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         root["meshes"].push_back(mesh);
         meshIndex[m] = static_cast<int>(root["meshes"].size()) - 1;
     }
-    for (const Node& node : scene.nodes) root["nodes"].push_back(writeNode(node, meshIndex));
+    std::vector<Json> extraNodes;
+    for (const Node& node : scene.nodes) root["nodes"].push_back(writeNode(node, meshIndex, scene.nodes.size(), extraNodes));
+    for (Json& node : extraNodes) root["nodes"].push_back(std::move(node));
     root["scenes"] = {{{"nodes", scene.roots}}};
     root["scene"] = 0;
     if (usedDraco) {

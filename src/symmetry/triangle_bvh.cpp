@@ -72,7 +72,7 @@ void TriangleBvh::build(std::uint32_t node, std::uint32_t begin, std::uint32_t e
 }
 
 double TriangleBvh::squaredDistance(const Eigen::Vector3d& p, double bound, Eigen::Vector3d* closest,
-                                    std::uint32_t* triangle) const {
+                                    std::uint32_t* triangle, const Eigen::Vector3d* facing) const {
     if (nodes_.empty()) return bound;
     double best = bound;
     std::uint32_t stack[128];
@@ -84,6 +84,10 @@ double TriangleBvh::squaredDistance(const Eigen::Vector3d& p, double bound, Eige
         if (node.count > 0) {
             for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
                 const Triangle& tri = mesh_.triangles[order_[i]];
+                if (facing && (mesh_.positions[tri[1]] - mesh_.positions[tri[0]])
+                                      .cross(mesh_.positions[tri[2]] - mesh_.positions[tri[0]])
+                                      .dot(*facing) <= 0)
+                    continue;
                 const Eigen::Vector3d q =
                     closestPointOnTriangle(p, mesh_.positions[tri[0]], mesh_.positions[tri[1]], mesh_.positions[tri[2]]);
                 const double d = (q - p).squaredNorm();

@@ -22,9 +22,10 @@ public:
 
     // The closest point of the surface to p and its squared distance, searching only closer than
     // sqrt(bound) (bound: a squared distance). Returns bound itself when nothing is closer.
-    // Optionally the closest point and the index of its triangle.
+    // Optionally the closest point and the index of its triangle; with `facing`, only among the triangles
+    // whose normal (by their winding) points to the same side as it.
     double squaredDistance(const Eigen::Vector3d& p, double bound, Eigen::Vector3d* closest = nullptr,
-                           std::uint32_t* triangle = nullptr) const;
+                           std::uint32_t* triangle = nullptr, const Eigen::Vector3d* facing = nullptr) const;
 
     bool empty() const { return order_.empty(); }
 
