@@ -124,6 +124,55 @@ TEST_CASE("Baked copies are stored once and drawn by instances, mirrors included
     CHECK(report["ablation"]["instancing"].get<double>() * 3 < report["ablation"]["draco_alone"].get<double>());
 }
 
+TEST_CASE("Copies turned over face the way they do: flat cards, and a rebuild turned inside out is not verified",
+          "[compress]") {
+    // A flat card (a 30 x 30 grid of one-sided quads, its inner vertices moved in the plane so that only the
+    // mirror in its own plane is a symmetry) is the same point set turned over: a placement that matches
+    // positions only may draw a copy facing away. Every other copy is turned over.
+    Primitive card;
+    std::mt19937_64 random(3);
+    std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+    const int n = 30;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+            const bool inner = i > 0 && i < n && j > 0 && j < n;
+            card.positions.push_back({0.1 * (i + (inner ? jitter(random) : 0)), 0.05 * (j + (inner ? jitter(random) : 0)), 0});
+        }
+    for (std::uint32_t i = 0; i < std::uint32_t(n); ++i)
+        for (std::uint32_t j = 0; j < std::uint32_t(n); ++j) {
+            const std::uint32_t a = i * (n + 1) + j;
+            card.triangles.push_back({a, a + n + 1, a + n + 2});
+            card.triangles.push_back({a, a + n + 2, a + 1});
+        }
+    Primitive cards;
+    for (int k = 0; k < 12; ++k) {
+        const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.4 * k, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                                     (k % 2 ? Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix()
+                                            : Eigen::Matrix3d::Identity());
+        TriangleMesh placed = samples::transformed(TriangleMesh{card.positions, card.triangles}, turn, Eigen::Vector3d(4.0 * k, 0, 0));
+        samples::appendMesh(cards, placed);
+    }
+    const Scene scene = sceneOfOneMesh("cards", cards);
+    TemporaryFolder folder;
+    const auto input = writePlainGlb(scene, folder, "cards");
+    const nlohmann::json report = compressAndVerify(input, folder, "cards-small");  // verified, orientation included
+    CHECK(report["instances"] == 12);
+
+    // The same rebuild against an original whose cards 1, 3, 5... are wound the other way: not verified.
+    Scene insideOut = scene;
+    auto& triangles = insideOut.meshes[0].primitives[0].triangles;
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        if ((t / card.triangles.size()) % 2) std::swap(triangles[t][1], triangles[t][2]);
+    const auto wrong = writePlainGlb(insideOut, folder, "cards-inside-out");
+    const CommandResult check = runCommand(kSymdecompress + " " + quoted(folder / "cards-small.glb") + " -o " +
+                                           quoted(folder / "flat.glb") + " --json --verify " + quoted(wrong));
+    INFO(check.output);
+    CHECK(check.status == 1);
+    const auto result = nlohmann::json::parse(check.output.substr(check.output.find('{')));
+    CHECK(result["flipped_area"].get<double>() == Approx(0.5).margin(0.01));
+    CHECK(result["verified"] == false);
+}
+
 TEST_CASE("Tiles that recur together are stored once per group: the room's bookshelves", "[compress]") {
     // The room with a box on one table: its mirror symmetry is broken, so the scene's symmetry does not
     // apply, and the repeated assemblies do.
