@@ -62,18 +62,21 @@ std::ptrdiff_t openEdges(const TriangleMesh& mesh) {
     return std::count_if(uses.begin(), uses.end(), [](const auto& entry) { return entry.second == 1; });
 }
 
+// The scene (one symmetric part) compressed as its fundamental region: no open edge after quantization.
+void checkRegionSeamsClosed(const Scene& scene, const std::string& name) {
+    TemporaryFolder folder;
+    const auto input = writePlainGlb(scene, folder, name);
+    const nlohmann::json report = compressAndVerify(input, folder, name + "-small");
+    REQUIRE(report["region_classes"] == 1);
+    REQUIRE(openEdges(worldMesh(scene)) == 0);
+    CHECK(openEdges(worldMesh(readScene(folder / (name + "-small.glb")))) == 0);
+}
+
 }  // namespace
 
 TEST_CASE("Every shared model, compressed, rebuilds its original surface", "[compress][models]") {
     TemporaryFolder folder;
-    for (const char* model :
-         {"assimp_spider/spider.obj", "cesium_milk_truck/CesiumMilkTruck.gltf", "cge_cat_x3d/scene.x3d",
-          "cge_grass_flowers/grass_flowers.x3d", "cge_sterile_room/sterile_room.gltf", "kenney_racing_forest/decoration-forest.glb",
-          "khronos_lantern/Lantern.gltf", "menger_sponge/Menger_sponge-Binary.stl", "oded_demosthenes/demosthenes-low-res.obj",
-          "oded_hammer/hammer.obj", "oded_koala/koala.obj", "oded_wingnut/wingnut.obj", "savage_chevy_tahoe/ChevyTahoe.x3d",
-          "stanford_bunny/bun_zipper.ply", "vianney_house_2/scene.gltf", "vulkan_geosphere/geosphere.gltf", "vulkan_rock/rock.gltf",
-          "vulkan_subpass_scene/subpass_scene_opaque.gltf", "vulkan_torusknot/torusknot.gltf", "xj3d_cad_teapot/teapot.x3d",
-          "xj3d_coffee_cup/coffeeCup.x3d"}) {
+    for (const std::string& model : sharedModels()) {
         INFO(model);
         // The sanitizer build (scripts/test.sh sets SYMCOMPRESS_QUICK) runs ten times slower: the models
         // above 20k triangles are left to the Release build there.
@@ -247,13 +250,7 @@ TEST_CASE("Seams of a fundamental region stay closed after quantization: the cup
     for (int root : cup.roots) cup.nodes[root].transform = turn * cup.nodes[root].transform;
     Scene turned = sceneOfOneMesh("cup", flattenScene(cup)[0].primitive);
     turned.materials = cup.materials;
-    TemporaryFolder folder;
-    const auto input = writePlainGlb(turned, folder, "cup");
-    const nlohmann::json report = compressAndVerify(input, folder, "cup-small");
-    REQUIRE(report["region_classes"] == 1);
-
-    REQUIRE(openEdges(worldMesh(turned)) == 0);
-    CHECK(openEdges(worldMesh(readScene(folder / "cup-small.glb"))) == 0);
+    checkRegionSeamsClosed(turned, "cup");
 }
 
 TEST_CASE("Seams of a fundamental region stay closed after quantization: a square ring, D4h, whose region is off its axis",
@@ -287,12 +284,7 @@ TEST_CASE("Seams of a fundamental region stay closed after quantization: a squar
     part.positions = ring.positions;
     part.triangles = ring.triangles;
     const Scene scene = sceneOfOneMesh("ring", part);
-    TemporaryFolder folder;
-    const auto input = writePlainGlb(scene, folder, "ring");
-    const nlohmann::json report = compressAndVerify(input, folder, "ring-small");
-    REQUIRE(report["region_classes"] == 1);
-    REQUIRE(openEdges(worldMesh(scene)) == 0);
-    CHECK(openEdges(worldMesh(readScene(folder / "ring-small.glb"))) == 0);
+    checkRegionSeamsClosed(scene, "ring");
 }
 
 TEST_CASE("Every sample, compressed to GLB and X3D, rebuilds its original surface; the bolts use both mechanisms",

@@ -132,15 +132,7 @@ TEST_CASE("Compressed output draws the input's surface in independent readers (g
     }
     TemporaryFolder folder;
     std::vector<std::filesystem::path> inputs;
-    for (const char* model :
-         {"assimp_spider/spider.obj", "cesium_milk_truck/CesiumMilkTruck.gltf", "cge_cat_x3d/scene.x3d",
-          "cge_grass_flowers/grass_flowers.x3d", "cge_sterile_room/sterile_room.gltf", "kenney_racing_forest/decoration-forest.glb",
-          "khronos_lantern/Lantern.gltf", "menger_sponge/Menger_sponge-Binary.stl", "oded_demosthenes/demosthenes-low-res.obj",
-          "oded_hammer/hammer.obj", "oded_koala/koala.obj", "oded_wingnut/wingnut.obj", "savage_chevy_tahoe/ChevyTahoe.x3d",
-          "stanford_bunny/bun_zipper.ply", "vianney_house_2/scene.gltf", "vulkan_geosphere/geosphere.gltf", "vulkan_rock/rock.gltf",
-          "vulkan_subpass_scene/subpass_scene_opaque.gltf", "vulkan_torusknot/torusknot.gltf", "xj3d_cad_teapot/teapot.x3d",
-          "xj3d_coffee_cup/coffeeCup.x3d"})
-        inputs.push_back(modelPath(model));
+    for (const std::string& model : sharedModels()) inputs.push_back(modelPath(model));
     for (const char* sample : {"bolts", "chess", "icosahedral", "lamp", "pliers", "room", "three_spheres"})
         inputs.push_back(std::filesystem::path(SYMCOMPRESS_SOURCE_DIR) / "samples" / (std::string(sample) + ".glb"));
     // symcompress leaves out triangles with two corners at one point (they draw nothing, and it says so):

@@ -10,11 +10,25 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace symcompress::testing {
 
 inline std::filesystem::path sharedDir() { return SYMCOMPRESS_SHARED_DIR; }
 inline std::filesystem::path modelPath(const std::string& relative) { return sharedDir() / "models" / relative; }
+
+// Every model of ../shared/models (MANIFEST.md), by its path there.
+inline const std::vector<std::string>& sharedModels() {
+    static const std::vector<std::string> models{
+        "assimp_spider/spider.obj", "cesium_milk_truck/CesiumMilkTruck.gltf", "cge_cat_x3d/scene.x3d",
+        "cge_grass_flowers/grass_flowers.x3d", "cge_sterile_room/sterile_room.gltf", "kenney_racing_forest/decoration-forest.glb",
+        "khronos_lantern/Lantern.gltf", "menger_sponge/Menger_sponge-Binary.stl", "oded_demosthenes/demosthenes-low-res.obj",
+        "oded_hammer/hammer.obj", "oded_koala/koala.obj", "oded_wingnut/wingnut.obj", "savage_chevy_tahoe/ChevyTahoe.x3d",
+        "stanford_bunny/bun_zipper.ply", "vianney_house_2/scene.gltf", "vulkan_geosphere/geosphere.gltf", "vulkan_rock/rock.gltf",
+        "vulkan_subpass_scene/subpass_scene_opaque.gltf", "vulkan_torusknot/torusknot.gltf", "xj3d_cad_teapot/teapot.x3d",
+        "xj3d_coffee_cup/coffeeCup.x3d"};
+    return models;
+}
 
 // A fresh folder under the system's temporary folder, removed when the object goes out of scope.
 class TemporaryFolder {
