@@ -39,6 +39,48 @@ nlohmann::json x3dCount(const std::filesystem::path& file) {
     return runJson("node " + quoted(sharedDir() / "bench/x3d_count.js") + " " + quoted(file) + " --json");
 }
 
+// Compressed to GLB and X3D, each input is drawn by others as it was (instances, mirrored nodes,
+// fundamental regions, assemblies, the scene's symmetry): the GLB decoded by glTF Transform against our
+// plain reading of the input; the X3D loaded by X_ITE with the triangles symdecompress expands (a region
+// cut by its planes has more triangles than the part) and the input's volume.
+void checkDrawnByOthers(const std::vector<std::filesystem::path>& inputs) {
+    if (!interopAvailable() || !x3dInteropAvailable()) {
+        WARN("skipped: the peers in ../shared/bench are not installed");
+        return;
+    }
+    TemporaryFolder folder;
+    // symcompress leaves out triangles with two corners at one point (they draw nothing, and it says so):
+    // the subpass scene's 4168, so its GLB has fewer triangles than the reference, the same surface.
+    for (const auto& input : inputs) {
+        INFO(input);
+        const auto reference = folder / "reference.glb";
+        convert(input, reference, "--no-draco");
+        double referenceVolume = 0;  // as glTF Transform reads the reference (the .glb comes first)
+        for (const char* extension : {".glb", ".x3d"}) {
+            const auto output = folder / (std::string("small") + extension);
+            const CommandResult compressed = runCommand(kSymcompress + " -q " + quoted(input) + " -o " + quoted(output));
+            REQUIRE(compressed.status == 0);
+            const auto expanded = runJson(std::string(SYMDECOMPRESS_CLI) + " " + quoted(output) + " -o " +
+                                          quoted(folder / "flat.glb") + " --json --verify " + quoted(input));
+            CHECK(expanded["verified"] == true);
+            if (std::string(extension) == ".glb") {
+                CHECK(validatorErrors(output).empty());
+                const auto decoded = decodeCheck(output, reference, true);
+                CHECK(decoded["tris"] == expanded["triangles"]);
+                CHECK(decoded["dev_rel"].get<double>() < 2e-4);
+                // Tiles stored as they are share one mesh per material, quantized over the whole scene: the
+                // sterile room's walls move by up to a 14-bit step of its 62 m, 1.1e-3 of its volume.
+                referenceVolume = decoded["ref_volume"].get<double>();
+                CHECK(decoded["volume"].get<double>() == Approx(referenceVolume).epsilon(2e-3));
+            } else {
+                const auto drawn = x3dCount(output);
+                CHECK(drawn["tris"] == expanded["triangles"]);
+                CHECK(drawn["volume"].get<double>() == Approx(referenceVolume).epsilon(1e-4));
+            }
+        }
+    }
+}
+
 }  // namespace
 
 TEST_CASE("GLB output passes the Khronos validator and decodes to the same triangles", "[interop][gltf]") {
@@ -120,49 +162,33 @@ TEST_CASE("X3D output loads in X_ITE with the same triangles and volume", "[inte
     }
 }
 
-TEST_CASE("Compressed output draws the input's surface in independent readers (glTF Transform, X_ITE)",
+// Whether a model is a scene file (glTF, X3D) rather than a scan or part (OBJ, PLY, STL).
+bool isSceneFile(const std::string& model) {
+    const std::string extension = std::filesystem::path(model).extension().string();
+    return extension == ".gltf" || extension == ".glb" || extension == ".x3d";
+}
+
+// Three test cases, so that CTest runs them side by side.
+TEST_CASE("Compressed scans and parts are drawn as they were by independent readers (glTF Transform, X_ITE)",
           "[interop][compress][models]") {
-    // Every shared model and bundled sample (instances, mirrored nodes, fundamental regions, assemblies,
-    // the scene's symmetry), read by others: the GLB decoded by glTF Transform against our plain reading of
-    // the input; the X3D loaded by X_ITE with the triangles symdecompress expands (a region cut by its
-    // planes has more triangles than the part) and the input's volume.
-    if (!interopAvailable() || !x3dInteropAvailable()) {
-        WARN("skipped: the peers in ../shared/bench are not installed");
-        return;
-    }
-    TemporaryFolder folder;
     std::vector<std::filesystem::path> inputs;
-    for (const std::string& model : sharedModels()) inputs.push_back(modelPath(model));
+    for (const std::string& model : sharedModels())
+        if (!isSceneFile(model)) inputs.push_back(modelPath(model));
+    checkDrawnByOthers(inputs);
+}
+
+TEST_CASE("Compressed glTF and X3D scenes are drawn as they were by independent readers (glTF Transform, X_ITE)",
+          "[interop][compress][models]") {
+    std::vector<std::filesystem::path> inputs;
+    for (const std::string& model : sharedModels())
+        if (isSceneFile(model)) inputs.push_back(modelPath(model));
+    checkDrawnByOthers(inputs);
+}
+
+TEST_CASE("Compressed samples are drawn as they were by independent readers (glTF Transform, X_ITE)",
+          "[interop][compress]") {
+    std::vector<std::filesystem::path> inputs;
     for (const char* sample : {"bolts", "chess", "icosahedral", "lamp", "pliers", "room", "three_spheres"})
         inputs.push_back(std::filesystem::path(SYMCOMPRESS_SOURCE_DIR) / "samples" / (std::string(sample) + ".glb"));
-    // symcompress leaves out triangles with two corners at one point (they draw nothing, and it says so):
-    // the subpass scene's 4168, so its GLB has fewer triangles than the reference, the same surface.
-    for (const auto& input : inputs) {
-        INFO(input);
-        const auto reference = folder / "reference.glb";
-        convert(input, reference, "--no-draco");
-        double referenceVolume = 0;  // as glTF Transform reads the reference (the .glb comes first)
-        for (const char* extension : {".glb", ".x3d"}) {
-            const auto output = folder / (std::string("small") + extension);
-            const CommandResult compressed = runCommand(kSymcompress + " -q " + quoted(input) + " -o " + quoted(output));
-            REQUIRE(compressed.status == 0);
-            const auto expanded = runJson(std::string(SYMDECOMPRESS_CLI) + " " + quoted(output) + " -o " +
-                                          quoted(folder / "flat.glb") + " --json --verify " + quoted(input));
-            CHECK(expanded["verified"] == true);
-            if (std::string(extension) == ".glb") {
-                CHECK(validatorErrors(output).empty());
-                const auto decoded = decodeCheck(output, reference, true);
-                CHECK(decoded["tris"] == expanded["triangles"]);
-                CHECK(decoded["dev_rel"].get<double>() < 2e-4);
-                // Tiles stored as they are share one mesh per material, quantized over the whole scene: the
-                // sterile room's walls move by up to a 14-bit step of its 62 m, 1.1e-3 of its volume.
-                referenceVolume = decoded["ref_volume"].get<double>();
-                CHECK(decoded["volume"].get<double>() == Approx(referenceVolume).epsilon(2e-3));
-            } else {
-                const auto drawn = x3dCount(output);
-                CHECK(drawn["tris"] == expanded["triangles"]);
-                CHECK(drawn["volume"].get<double>() == Approx(referenceVolume).epsilon(1e-4));
-            }
-        }
-    }
+    checkDrawnByOthers(inputs);
 }
