@@ -162,27 +162,29 @@ TEST_CASE("X3D output loads in X_ITE with the same triangles and volume", "[inte
     }
 }
 
-// Whether a model is a scene file (glTF, X3D) rather than a scan or part (OBJ, PLY, STL).
-bool isSceneFile(const std::string& model) {
-    const std::string extension = std::filesystem::path(model).extension().string();
-    return extension == ".gltf" || extension == ".glb" || extension == ".x3d";
+// The shared models whose files end with one of `extensions`.
+std::vector<std::filesystem::path> modelsWithExtension(std::initializer_list<const char*> extensions) {
+    std::vector<std::filesystem::path> inputs;
+    for (const std::string& model : sharedModels())
+        for (const char* extension : extensions)
+            if (std::filesystem::path(model).extension() == extension) inputs.push_back(modelPath(model));
+    return inputs;
 }
 
-// Three test cases, so that CTest runs them side by side.
+// Four test cases, so that CTest runs them side by side.
 TEST_CASE("Compressed scans and parts are drawn as they were by independent readers (glTF Transform, X_ITE)",
           "[interop][compress][models]") {
-    std::vector<std::filesystem::path> inputs;
-    for (const std::string& model : sharedModels())
-        if (!isSceneFile(model)) inputs.push_back(modelPath(model));
-    checkDrawnByOthers(inputs);
+    checkDrawnByOthers(modelsWithExtension({".obj", ".ply", ".stl"}));
 }
 
-TEST_CASE("Compressed glTF and X3D scenes are drawn as they were by independent readers (glTF Transform, X_ITE)",
+TEST_CASE("Compressed glTF scenes are drawn as they were by independent readers (glTF Transform, X_ITE)",
           "[interop][compress][models]") {
-    std::vector<std::filesystem::path> inputs;
-    for (const std::string& model : sharedModels())
-        if (isSceneFile(model)) inputs.push_back(modelPath(model));
-    checkDrawnByOthers(inputs);
+    checkDrawnByOthers(modelsWithExtension({".gltf", ".glb"}));
+}
+
+TEST_CASE("Compressed X3D scenes are drawn as they were by independent readers (glTF Transform, X_ITE)",
+          "[interop][compress][models]") {
+    checkDrawnByOthers(modelsWithExtension({".x3d"}));
 }
 
 TEST_CASE("Compressed samples are drawn as they were by independent readers (glTF Transform, X_ITE)",
