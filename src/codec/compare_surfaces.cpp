@@ -49,13 +49,6 @@ double flippedArea(const TriangleMesh& from, const TriangleBvh& to, double dista
         std::plus<double>());
 }
 
-double areaOf(const TriangleMesh& mesh) {
-    double area = 0;
-    for (const Triangle& t : mesh.triangles)
-        area += 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]).norm();
-    return area;
-}
-
 }  // namespace
 
 SurfaceComparison compareSurfaces(const TriangleMesh& rebuilt, const TriangleMesh& reference, double boundsTolerance) {
