@@ -90,14 +90,16 @@ int main(int argc, char** argv) {
         const Scene scene = samples::singleMeshScene("bench", std::move(baked), {0.7, 0.7, 0.7, 1});
         const std::size_t triangles = scene.meshes[0].primitives[0].triangles.size();
 
+        WriteOptions write;
+        CompressOptions options;  // as symcompress sets them for a Draco GLB
+        useGltfCosts(options, write);
         auto start = std::chrono::steady_clock::now();
-        const SceneAnalysis analysis = analyzeScene(scene);
+        const SceneAnalysis analysis = analyzeScene(scene, options);
         const double analyzeSeconds = since(start);
         start = std::chrono::steady_clock::now();
-        const CompressedScene compressed = planCompression(scene, analysis);
+        const CompressedScene compressed = planCompression(scene, analysis, options);
         const double planSeconds = since(start);
         start = std::chrono::steady_clock::now();
-        WriteOptions write;
         write.extrasJson = compressed.digest.json();
         writeScene(compressed.scene, output, write);
         const double writeSeconds = since(start);

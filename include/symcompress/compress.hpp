@@ -4,6 +4,7 @@
 #pragma once
 
 #include "symcompress/congruence.hpp"
+#include "symcompress/io.hpp"
 #include "symcompress/scene.hpp"
 #include "symcompress/scene_ops.hpp"
 
@@ -27,12 +28,16 @@ struct CompressOptions {
     // Called as each stage starts, with what it works on (e.g. "classifying", 873 tiles); may be empty.
     std::function<void(const char* stage, std::size_t count, const char* unit)> progress;
     // The cost model of the output format, in bytes: a stored triangle with its attributes, a node
-    // drawing a shared mesh, a shared mesh's own overhead. The defaults are Draco glTF as measured on the
-    // shared models (Draco stores the rock's 180 triangles in 250 bytes); X3D text costs far more per
-    // triangle (see useX3dCosts).
+    // drawing a shared mesh, a shared mesh's own overhead. The constants are a rough Draco glTF (bare
+    // positions); X3D text costs far more per triangle (see useX3dCosts).
     double bytesPerTriangle = 1.5;
     double bytesPerInstance = 120;
     double bytesPerMesh = 500;
+    // When set, what a part costs as a mesh of its own, measured by the output's writer (useGltfCosts):
+    // it takes the place of bytesPerTriangle and bytesPerMesh, which cannot tell a part with normals and
+    // texture coordinates (Draco: 8 bytes a triangle) from a bare one (2 to 4). Parts merged with others
+    // are then measured on a sample of the scene's parts stored together.
+    std::function<double(const Primitive&)> meshBytes;
 };
 
 struct CompressionStats {
@@ -71,6 +76,13 @@ inline void useX3dCosts(CompressOptions& options) {
     options.bytesPerTriangle = 40;
     options.bytesPerInstance = 150;
     options.bytesPerMesh = 200;
+}
+
+// The cost model and the seams' grid for glTF output written with `write`: every part measured by the
+// writer itself (gltfMeshBytes), Draco's positions on the grid its quantization uses.
+inline void useGltfCosts(CompressOptions& options, const WriteOptions& write) {
+    options.seamGridBits = write.draco ? write.positionBits : 0;
+    options.meshBytes = [write](const Primitive& part) { return double(gltfMeshBytes(part, write)); };
 }
 
 struct CompressedScene {

@@ -49,6 +49,10 @@ void writeScene(const Scene& scene, const std::filesystem::path& file, const Wri
                 const std::vector<std::filesystem::path>& inputs = {});
 
 void writeGltf(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);  // .gltf/.glb
+// What storing `primitive` as a mesh of its own adds to a glTF file written with `options`: its data (Draco's
+// or plain) and the JSON of its mesh, accessors and buffer views. The measure a compression plan weighs its
+// choices with (CompressOptions::meshBytes). Throws FileError where writeGltf would.
+std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& options);
 void writeX3d(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 void writeObj(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 void writePly(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);

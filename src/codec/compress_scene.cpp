@@ -128,7 +128,10 @@ bool reproduces(const Primitive& prototype, const Primitive& member, const Isome
 class PrimitivesByKind {
 public:
     void add(const Primitive& part) {
-        Primitive& into = parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty()}];
+        append(parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty()}], part);
+    }
+    // `part` appended to `into`, which carries the same attributes.
+    static void append(Primitive& into, const Primitive& part) {
         const auto offset = static_cast<std::uint32_t>(into.positions.size());
         into.material = part.material;
         into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
@@ -145,6 +148,101 @@ public:
 
 private:
     std::map<std::tuple<int, bool, bool, bool>, Primitive> parts_;
+};
+
+// The plan's measure of what storing parts costs, in bytes of output: CompressOptions::meshBytes where the
+// writer gives one, else its constants. A part's triangles merged into a mesh with other parts cost what
+// the scene's parts with the same attributes cost a triangle (measured on a sample of them together, as
+// Draco codes them: a box among boxes in far fewer bytes than alone); a part as a mesh of its own costs
+// what the writer measures for it, its class's prototype measured once.
+class StorageCosts {
+public:
+    StorageCosts(const SceneAnalysis& analysis, const CompressOptions& options)
+        : analysis_(analysis), options_(options), classOf_(analysis.tiles.size(), kNone) {
+        const auto& classes = analysis.classification.classes;
+        for (std::size_t k = 0; k < classes.size(); ++k)
+            for (std::size_t t : classes[k].members) classOf_[t] = k;
+        classMesh_.assign(classes.size(), -1);
+    }
+
+    double asMesh(const Primitive& part) const {
+        if (options_.meshBytes) return options_.meshBytes(part);
+        return double(part.triangles.size()) * options_.bytesPerTriangle + options_.bytesPerMesh;
+    }
+    double instance() const { return options_.bytesPerInstance; }
+
+    // Tile t's triangles in a mesh with other parts.
+    double merged(std::size_t t) { return double(analysis_.tiles[t].mesh.triangles.size()) * kindOf(t).perTriangle; }
+    // Tile t as a mesh of its own (its class's prototype).
+    double alone(std::size_t t) {
+        const std::size_t k = classOf_[t];
+        if (k == kNone) return asMesh(tilePrimitive(analysis_.tiles[t], analysis_.soup));
+        if (classMesh_[k] < 0) classMesh_[k] = asMesh(tilePrimitive(analysis_.tiles[analysis_.classification.classes[k].prototype], analysis_.soup));
+        return classMesh_[k];
+    }
+    // The cheaper way of storing tile t apart from a group of tiles: as it is, or drawn by its class's
+    // mesh (a node, and its share of the mesh).
+    double apart(std::size_t t) {
+        const std::size_t members = classOf_[t] == kNone ? 1 : analysis_.classification.classes[classOf_[t]].members.size();
+        return std::min(merged(t), instance() + alone(t) / double(members));
+    }
+    // A mesh of these tiles: their triangles, and with `overhead` that of a primitive per material and
+    // attributes.
+    double meshOf(const std::vector<std::size_t>& tiles, bool overhead = true) {
+        double bytes = 0;
+        std::set<std::pair<int, Attributes>> primitives;
+        for (std::size_t t : tiles) {
+            bytes += merged(t);
+            if (overhead && primitives.insert({analysis_.tiles[t].material, attributesOf(t)}).second) bytes += kindOf(t).overhead;
+        }
+        return bytes;
+    }
+
+private:
+    static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+    static constexpr std::size_t kSampleTriangles = 20000;
+    using Attributes = std::tuple<bool, bool, bool>;  // normals, texture coordinates, colours
+    struct KindCosts {
+        double perTriangle = 0, overhead = 0;
+    };
+
+    Attributes attributesOf(std::size_t t) const {
+        const WorldPrimitive& from = analysis_.soup[analysis_.tiles[t].sources.front().primitive];
+        return {!from.primitive.normals.empty(), !from.primitive.texcoords.empty(), !from.primitive.colors.empty()};
+    }
+    // Measured on tiles spread over the scene, up to kSampleTriangles, merged as the writer would.
+    const KindCosts& kindOf(std::size_t t) {
+        const Attributes attributes = attributesOf(t);
+        if (const auto known = kinds_.find(attributes); known != kinds_.end()) return known->second;
+        std::vector<std::size_t> same;
+        std::size_t triangles = 0;
+        for (std::size_t u = 0; u < analysis_.tiles.size(); ++u)
+            if (attributesOf(u) == attributes) {
+                same.push_back(u);
+                triangles += analysis_.tiles[u].mesh.triangles.size();
+            }
+        const std::size_t step = std::max<std::size_t>(1, triangles / kSampleTriangles);
+        Primitive sample;
+        for (std::size_t i = 0; i < same.size(); i += step) {
+            Primitive part = tilePrimitive(analysis_.tiles[same[i]], analysis_.soup);
+            part.material = -1;
+            PrimitivesByKind::append(sample, part);
+        }
+        Primitive one = sample;
+        one.triangles.resize(1);
+        KindCosts costs;
+        costs.overhead = asMesh(one);
+        costs.perTriangle = sample.triangles.size() > 1
+                                ? std::max(0.0, (asMesh(sample) - costs.overhead) / double(sample.triangles.size() - 1))
+                                : costs.overhead;
+        return kinds_[attributes] = costs;
+    }
+
+    const SceneAnalysis& analysis_;
+    const CompressOptions& options_;
+    std::vector<std::size_t> classOf_;
+    std::vector<double> classMesh_;  // < 0: not measured yet
+    std::map<Attributes, KindCosts> kinds_;
 };
 
 // The name of the input node that draws tile t (empty when it has none): instance nodes keep it.
@@ -185,8 +283,8 @@ bool reproducesAsAsked(const Primitive& prototype, const Primitive& member, cons
 // orbit the tile nearest a point that no element fixes is taken: the part is the tiles of one Dirichlet
 // domain of G, a compact region. Tiles on G's planes and axes are left to the other mechanisms. Returns
 // which tiles it draws.
-std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const CompressOptions& options, Scene& out,
-                                    CompressionStats& stats) {
+std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const CompressOptions& options, StorageCosts& costs,
+                                    Scene& out, CompressionStats& stats) {
     const std::vector<Tile>& tiles = analysis.tiles;
     const TileClassification& classification = analysis.classification;
     std::vector<bool> drawn(tiles.size(), false);
@@ -210,7 +308,7 @@ std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const Compres
 
     std::vector<bool> seen(tiles.size(), false);
     std::vector<std::size_t> part, orbitTiles;
-    double storedTriangles = 0, apart = 0;
+    double apart = 0;
     for (std::size_t t = 0; t < tiles.size(); ++t) {
         if (seen[t]) continue;
         std::set<std::size_t> orbit;
@@ -226,14 +324,11 @@ std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const Compres
         if (!verified) continue;
         part.push_back(representative);
         orbitTiles.insert(orbitTiles.end(), orbit.begin(), orbit.end());
-        const double n = double(tiles[representative].mesh.triangles.size());
-        storedTriangles += n;
-        apart += double(order) * std::min(n * options.bytesPerTriangle, options.bytesPerInstance);
+        apart += double(order) * costs.apart(representative);
     }
-    // Once with a node per element, against the cheaper of a node or the triangles for every tile; a mesh
-    // of its own costs extra only when some tiles are left for another mesh.
-    const double meshCost = orbitTiles.size() < tiles.size() ? options.bytesPerMesh : 0;
-    if (part.empty() || storedTriangles * options.bytesPerTriangle + meshCost + double(order) * options.bytesPerInstance >= apart)
+    // Once with a node per element, against storing every tile apart; a mesh of its own costs extra only
+    // when some tiles are left for another mesh.
+    if (part.empty() || costs.meshOf(part, orbitTiles.size() < tiles.size()) + double(order) * costs.instance() >= apart)
         return drawn;
     PrimitivesByKind parts;
     for (std::size_t t : part) {
@@ -262,8 +357,8 @@ std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const Compres
 // The repeated assemblies worth storing once: each becomes one mesh (its first copy, about its anchor's
 // centroid) drawn by a node per copy; an assembly with a tile already `drawn` is left out. Marks the
 // tiles they draw in `drawn`.
-void planAssemblies(const Scene& input, const SceneAnalysis& analysis, const CompressOptions& options, Scene& out,
-                    CompressionStats& stats, std::vector<bool>& drawn) {
+void planAssemblies(const Scene& input, const SceneAnalysis& analysis, const CompressOptions& options,
+                    StorageCosts& costs, Scene& out, CompressionStats& stats, std::vector<bool>& drawn) {
     const std::vector<Tile>& tiles = analysis.tiles;
     const TileClassification& classification = analysis.classification;
     const double tolerance = options.tolerance * classification.sceneDiagonal;
@@ -286,15 +381,11 @@ void planAssemblies(const Scene& input, const SceneAnalysis& analysis, const Com
                 return std::any_of(copy.begin(), copy.end(), [&](std::size_t t) { return bool(drawn[t]); });
             }))
             continue;
-        // Once with a node per copy, against the cheaper of a node or the triangles for every tile of every copy.
-        const double copies = double(assembly.copies.size());
-        double triangles = 0, apart = 0;
-        for (std::size_t t : assembly.copies[0]) {
-            const double n = double(tiles[t].mesh.triangles.size());
-            triangles += n;
-            apart += copies * std::min(n * options.bytesPerTriangle, options.bytesPerInstance);
-        }
-        if (triangles * options.bytesPerTriangle + options.bytesPerMesh + copies * options.bytesPerInstance >= apart) continue;
+        // Once with a node per copy, against storing every tile of every copy apart.
+        double apart = 0;
+        for (const std::vector<std::size_t>& copy : assembly.copies)
+            for (std::size_t t : copy) apart += costs.apart(t);
+        if (costs.meshOf(assembly.copies[0]) + double(assembly.copies.size()) * costs.instance() >= apart) continue;
         const std::size_t index = stats.assemblies++;
         const Eigen::Vector3d center = classification.shapes[assembly.copies[0][0]].moments.centroid;
         PrimitivesByKind parts;
@@ -317,7 +408,8 @@ void planAssemblies(const Scene& input, const SceneAnalysis& analysis, const Com
                 drawn[assembly.copies[j][i]] = true;
                 worst = std::max(worst, classDeviation[assembly.copies[0][i]] + classDeviation[assembly.copies[j][i]]);
             }
-            if (j > 0) stats.maxDeviation = std::max(stats.maxDeviation, assembly.deviation + worst);
+            // Every tile of every copy was also verified vertex by vertex (assemblyOptions.accept).
+            if (j > 0) stats.maxDeviation = std::max(stats.maxDeviation, std::min(assembly.deviation + worst, options.tolerance));
         }
         stats.assemblyCopies += assembly.copies.size();
         stats.instances += assembly.copies.size();
@@ -416,9 +508,10 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     reportProgress(options, "planning", analysis.classification.classes.size(), "classes");
     // Tiles drawn by a shared mesh of the scene's symmetry or of a repeated assembly.
     std::vector<bool> drawn(tiles.size(), false);
+    StorageCosts costs(analysis, options);
     if (options.instancing && options.assemblies) {
-        drawn = planSceneSymmetry(analysis, options, out, stats);
-        planAssemblies(input, analysis, options, out, stats, drawn);
+        drawn = planSceneSymmetry(analysis, options, costs, out, stats);
+        planAssemblies(input, analysis, options, costs, out, stats, drawn);
     }
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         const CongruenceClass& c = classification.classes[k];
@@ -475,11 +568,12 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         }
         // Store whichever costs least: every copy as it is, the tile once with a node per copy, or its
         // fundamental region once with a node per copy and group element.
-        const double copies = double(placed.size()), triangles = double(prototype.triangles.size());
-        const double asIs = copies * triangles * options.bytesPerTriangle;
-        const double instanced = triangles * options.bytesPerTriangle + copies * options.bytesPerInstance + options.bytesPerMesh;
-        const double regional = region ? double(region->region.triangles.size()) * options.bytesPerTriangle +
-                                             copies * double(region->instances.size()) * options.bytesPerInstance + options.bytesPerMesh
+        // (A single copy with no region is stored as it is without measuring: most classes of a big scene.)
+        const double copies = double(placed.size());
+        const bool single = placed.size() == 1 && !region;
+        const double asIs = single ? 0 : copies * costs.merged(c.prototype);
+        const double instanced = single ? 0 : costs.asMesh(prototype) + copies * costs.instance();
+        const double regional = region ? costs.asMesh(region->region) + copies * double(region->instances.size()) * costs.instance()
                                        : std::numeric_limits<double>::infinity();
         if (asIs <= std::min(instanced, regional)) {
             if (placed.size() > 1) stats.notWorthInstancing += placed.size();

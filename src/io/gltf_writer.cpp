@@ -393,7 +393,39 @@ std::string glbFile(const Json& root, std::vector<unsigned char> binary) {
     return out;
 }
 
+// Appends the glTF primitives that store `primitive` (one, or with Draco two when edgebreaker would drop
+// some triangles) to `primitives`.
+void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options, const fs::path& file,
+                    Json& primitives) {
+    auto add = [&](Json out, int material) {
+        if (material >= 0) out["material"] = material;
+        primitives.push_back(std::move(out));
+    };
+    if (!options.draco) {
+        add(writePlainPrimitive(builder, primitive), primitive.material);
+        return;
+    }
+    if (auto whole = writeDracoPrimitive(builder, primitive, options, file, DracoMethod::EdgebreakerOrNothing)) {
+        add(std::move(*whole), primitive.material);
+        return;
+    }
+    // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
+    const auto [kept, collapsing] = splitCollapsingTriangles(primitive, options.positionBits);
+    for (const auto& [part, method] : {std::pair{&kept, DracoMethod::EdgebreakerElseSequential},
+                                       std::pair{&collapsing, DracoMethod::Sequential}})
+        if (!part->triangles.empty()) add(*writeDracoPrimitive(builder, *part, options, file, method), part->material);
+}
+
 }  // namespace
+
+std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& options) {
+    if (primitive.triangles.empty()) return 0;
+    Json root = Json::object(), primitives = Json::array();
+    GltfBuilder builder(root);
+    writePrimitive(builder, primitive, options, "(a mesh measured for the plan)", primitives);
+    const Json mesh = {{"primitives", primitives}};
+    return root.dump().size() + mesh.dump().size() + builder.binary().size();
+}
 
 void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& options) {
     Json root = {{"asset", {{"version", "2.0"}, {"generator", "symcompress"}}}};
@@ -418,24 +450,8 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         Json primitives = Json::array();
         for (const Primitive& primitive : scene.meshes[m].primitives) {
             if (primitive.triangles.empty()) continue;
-            auto add = [&](Json out, int material) {
-                if (material >= 0) out["material"] = material;
-                primitives.push_back(std::move(out));
-            };
-            if (!options.draco) {
-                add(writePlainPrimitive(builder, primitive), primitive.material);
-                continue;
-            }
-            usedDraco = true;
-            if (auto whole = writeDracoPrimitive(builder, primitive, options, file, DracoMethod::EdgebreakerOrNothing)) {
-                add(std::move(*whole), primitive.material);
-                continue;
-            }
-            // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
-            const auto [kept, collapsing] = splitCollapsingTriangles(primitive, options.positionBits);
-            for (const auto& [part, method] : {std::pair{&kept, DracoMethod::EdgebreakerElseSequential},
-                                               std::pair{&collapsing, DracoMethod::Sequential}})
-                if (!part->triangles.empty()) add(*writeDracoPrimitive(builder, *part, options, file, method), part->material);
+            writePrimitive(builder, primitive, options, file, primitives);
+            usedDraco = options.draco;
         }
         if (primitives.empty()) continue;
         Json mesh = {{"primitives", primitives}};
