@@ -12,8 +12,10 @@ cmake --build build -j "$jobs"
 (cd build && ctest --output-on-failure -j "$jobs")
 
 # The sanitizer build skips the benchmarks, the slow interoperability checks run above, and the largest
-# models (SYMCOMPRESS_QUICK).
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSYMCOMPRESS_SANITIZE=ON -DSYMCOMPRESS_BUILD_BENCH=OFF >/dev/null
+# models (SYMCOMPRESS_QUICK). -O1 with line tables compiles in half the time of -O2 -g, and the
+# sanitizers' stack traces keep their file:line.
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DSYMCOMPRESS_SANITIZE=ON -DSYMCOMPRESS_BUILD_BENCH=OFF >/dev/null
 cmake --build build-asan -j "$jobs"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 SYMCOMPRESS_SKIP_INTEROP=1 SYMCOMPRESS_QUICK=1 \
    ctest --output-on-failure -j "$jobs")
