@@ -139,13 +139,16 @@ TEST_CASE("A node that shears is written as TRS nodes, as glTF requires, and dra
         CHECK(std::any_of(drawingAfter.begin(), drawingAfter.end(), [&](const Eigen::Matrix4d& a) { return a.isApprox(m, 1e-6); }));
 }
 
-TEST_CASE("gltfMeshBytes is what a mesh of its own adds to the written file, Draco or plain", "[io]") {
+TEST_CASE("gltfMeshBytes and x3dMeshBytes are what a mesh of its own adds to the written file", "[io]") {
     // A bolt with normals and texture coordinates: what the plan weighs a stored part with.
     Primitive part = samples::makeBolt();
     for (const Eigen::Vector3d& p : part.positions) {
         part.normals.push_back(p.normalized());
         part.texcoords.push_back({p.x(), p.y()});
     }
+    Primitive bare = part;
+    bare.normals.clear();
+    bare.texcoords.clear();
     Scene one;
     one.meshes.push_back({"", {part}});
     one.nodes.resize(1);
@@ -157,19 +160,24 @@ TEST_CASE("gltfMeshBytes is what a mesh of its own adds to the written file, Dra
     two.nodes[1].mesh = 1;
     two.roots = {0, 1};
     TemporaryFolder folder;
-    for (const bool draco : {true, false}) {
-        INFO("draco " << draco);
+    struct Case {
+        const char* extension;
+        bool draco;
+        double margin;  // the second node's own bytes: glTF {"mesh":1} and its root index; X3D a Transform
+    };
+    for (const Case& c : {Case{".glb", true, 24}, Case{".glb", false, 24}, Case{".x3d", false, 40}}) {
+        INFO(c.extension << " draco " << c.draco);
         WriteOptions options;
-        options.draco = draco;
-        writeScene(one, folder / "one.glb", options);
-        writeScene(two, folder / "two.glb", options);
-        const double added = double(std::filesystem::file_size(folder / "two.glb")) - double(std::filesystem::file_size(folder / "one.glb"));
-        // The second node ({"mesh":1}), its root index and the GLB's padding are not the mesh's.
-        CHECK(double(gltfMeshBytes(part, options)) == Approx(added).margin(24));
-        // Normals and texture coordinates are measured: Draco stores a bare bolt in far fewer bytes.
-        Primitive bare = part;
-        bare.normals.clear();
-        bare.texcoords.clear();
-        CHECK(gltfMeshBytes(bare, options) < 0.7 * double(gltfMeshBytes(part, options)));
+        options.draco = c.draco;
+        const auto first = folder / (std::string("one") + c.extension), second = folder / (std::string("two") + c.extension);
+        writeScene(one, first, options);
+        writeScene(two, second, options);
+        const double added = double(std::filesystem::file_size(second)) - double(std::filesystem::file_size(first));
+        const bool x3d = std::string(c.extension) == ".x3d";
+        const auto measure = [&](const Primitive& p) { return double(x3d ? x3dMeshBytes(p, options) : gltfMeshBytes(p, options)); };
+        CHECK(measure(part) == Approx(added).margin(c.margin));
+        CHECK(measure(part) < added);
+        // Normals and texture coordinates are measured: a bare bolt costs far fewer bytes.
+        CHECK(measure(bare) < 0.7 * measure(part));
     }
 }

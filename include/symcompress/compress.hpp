@@ -29,14 +29,14 @@ struct CompressOptions {
     std::function<void(const char* stage, std::size_t count, const char* unit)> progress;
     // The cost model of the output format, in bytes: a stored triangle with its attributes, a node
     // drawing a shared mesh, a shared mesh's own overhead. The constants are a rough Draco glTF (bare
-    // positions); X3D text costs far more per triangle (see useX3dCosts).
+    // positions).
     double bytesPerTriangle = 1.5;
     double bytesPerInstance = 120;
     double bytesPerMesh = 500;
-    // When set, what a part costs as a mesh of its own, measured by the output's writer (useGltfCosts):
-    // it takes the place of bytesPerTriangle and bytesPerMesh, which cannot tell a part with normals and
-    // texture coordinates (Draco: 8 bytes a triangle) from a bare one (2 to 4). Parts merged with others
-    // are then measured on a sample of the scene's parts stored together.
+    // When set, what a part costs as a mesh of its own, measured by the output's writer (useGltfCosts,
+    // useX3dCosts): it takes the place of bytesPerTriangle and bytesPerMesh, which cannot tell a part with
+    // normals and texture coordinates (Draco: 8 bytes a triangle) from a bare one (2 to 4). Parts merged
+    // with others are then measured on a sample of the scene's parts stored together.
     std::function<double(const Primitive&)> meshBytes;
 };
 
@@ -71,11 +71,11 @@ struct SurfaceDigest {
 
 SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance);
 
-// The cost model for X3D output (coordinates and indices as text, a Transform with a USE per instance).
-inline void useX3dCosts(CompressOptions& options) {
-    options.bytesPerTriangle = 40;
+// The cost model for X3D output written with `write`: every part measured by the writer itself
+// (x3dMeshBytes), a Transform with a USE per instance.
+inline void useX3dCosts(CompressOptions& options, const WriteOptions& write) {
     options.bytesPerInstance = 150;
-    options.bytesPerMesh = 200;
+    options.meshBytes = [write](const Primitive& part) { return double(x3dMeshBytes(part, write)); };
 }
 
 // The cost model and the seams' grid for glTF output written with `write`: every part measured by the

@@ -54,6 +54,8 @@ void writeGltf(const Scene& scene, const std::filesystem::path& file, const Writ
 // choices with (CompressOptions::meshBytes). Throws FileError where writeGltf would.
 std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& options);
 void writeX3d(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
+// gltfMeshBytes for X3D: the text of a Group holding `primitive`'s Shape (uncompressed, as in .x3d).
+std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options);
 void writeObj(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 void writePly(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 

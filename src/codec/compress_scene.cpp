@@ -150,6 +150,21 @@ private:
     std::map<std::tuple<int, bool, bool, bool>, Primitive> parts_;
 };
 
+// Triangle t of the part on its own: its three vertices with their attributes (writers store every
+// vertex a primitive lists, used or not).
+Primitive triangleOf(const Primitive& part, std::size_t t) {
+    Primitive one;
+    one.material = part.material;
+    for (std::uint32_t v : part.triangles[t]) {
+        one.positions.push_back(part.positions[v]);
+        if (!part.normals.empty()) one.normals.push_back(part.normals[v]);
+        if (!part.texcoords.empty()) one.texcoords.push_back(part.texcoords[v]);
+        if (!part.colors.empty()) one.colors.push_back(part.colors[v]);
+    }
+    one.triangles = {{0, 1, 2}};
+    return one;
+}
+
 // The plan's measure of what storing parts costs, in bytes of output: CompressOptions::meshBytes where the
 // writer gives one, else its constants. A part's triangles merged into a mesh with other parts cost what
 // the scene's parts with the same attributes cost a triangle (measured on a sample of them together, as
@@ -228,8 +243,7 @@ private:
             part.material = -1;
             PrimitivesByKind::append(sample, part);
         }
-        Primitive one = sample;
-        one.triangles.resize(1);
+        const Primitive one = triangleOf(sample, 0);
         KindCosts costs;
         costs.overhead = asMesh(one);
         costs.perTriangle = sample.triangles.size() > 1

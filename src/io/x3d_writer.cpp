@@ -281,6 +281,22 @@ std::string gzip(const std::string& text, const fs::path& file) {
 
 }  // namespace
 
+std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options) {
+    if (primitive.triangles.empty()) return 0;
+    // The file with a node drawing the mesh, less the file with the node alone.
+    Scene scene;
+    scene.meshes.push_back({"", {primitive}});
+    scene.meshes[0].primitives[0].material = -1;
+    scene.nodes.resize(1);
+    scene.nodes[0].mesh = 0;
+    scene.roots = {0};
+    WriteOptions plain = options;
+    plain.extrasJson.clear();
+    const std::size_t withMesh = X3dWriter(scene, plain).write().size();
+    scene.nodes[0].mesh = -1;
+    return withMesh - X3dWriter(scene, plain).write().size();
+}
+
 void writeX3d(const Scene& scene, const fs::path& file, const WriteOptions& options) {
     std::string text = X3dWriter(scene, options).write();
     std::string extension = file.extension().string();

@@ -288,7 +288,7 @@ int runCompress(const CompressRequest& request) {
     if (!request.quiet)
         for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     CompressOptions options = request.options;
-    if (formatFromExtension(request.output) == FileFormat::X3d) useX3dCosts(options);
+    if (formatFromExtension(request.output) == FileFormat::X3d) useX3dCosts(options, request.write);
     else useGltfCosts(options, request.write);
     options.progress = [&progress](const char* stage, std::size_t count, const char* unit) { progress.stage(stage, count, unit); };
     const SceneAnalysis analysis = analyzeScene(scene, options);
