@@ -192,7 +192,10 @@ public:
     double alone(std::size_t t) {
         const std::size_t k = classOf_[t];
         if (k == kNone) return asMesh(tilePrimitive(analysis_.tiles[t], analysis_.soup));
-        if (classMesh_[k] < 0) classMesh_[k] = asMesh(tilePrimitive(analysis_.tiles[analysis_.classification.classes[k].prototype], analysis_.soup));
+        if (classMesh_[k] < 0) {
+            const std::size_t prototype = analysis_.classification.classes[k].prototype;
+            classMesh_[k] = asMesh(tilePrimitive(analysis_.tiles[prototype], analysis_.soup));
+        }
         return classMesh_[k];
     }
     // The cheaper way of storing tile t apart from a group of tiles: as it is, or drawn by its class's
