@@ -71,6 +71,24 @@ public:
         const Eigen::Vector3d helper = std::abs(axis.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
         u_ = axis.cross(helper).normalized();
         v_ = axis.cross(u_);
+        // The Fourier factors of modeAmplitudes, e^(-2 pi i m k / azimuths), row m.
+        for (int m = 0; m < azimuths_ / 2; ++m)
+            for (int k = 0; k < azimuths_; ++k) twiddles_.push_back(std::polar(1.0, -2 * kPi * m * k / azimuths_));
+        // The points `change` compares at, off the azimuths of modeAmplitudes, and the functions there:
+        // the same for every map tried about this axis.
+        for (double theta : kRingAngles)
+            for (double ring : {theta, kPi - theta})
+                for (int k = 0; k < azimuths_; ++k) changePoints_.push_back(direction(ring, 2 * kPi * (k + 0.37) / azimuths_));
+        for (const MomentFunction& f : functions_) {
+            std::vector<double> values;
+            double scale = 0;
+            for (const Eigen::Vector3d& w : changePoints_) {
+                values.push_back(f.value(w));
+                scale = std::max(scale, std::abs(values.back()));
+            }
+            changeValues_.push_back(std::move(values));
+            changeScales_.push_back(scale);
+        }
     }
 
     Eigen::Vector3d direction(double theta, double phi) const {
@@ -81,23 +99,26 @@ public:
     // functions and rings, in units of the functions' tolerances.
     std::vector<double> modeAmplitudes() const {
         std::vector<double> amplitude(azimuths_ / 2, 0.0);
+        std::vector<Eigen::Vector3d> points;  // ring after ring, the same for every function
+        for (double theta : kRingAngles)
+            for (double ring : {theta, kPi - theta})
+                for (int k = 0; k < azimuths_; ++k) points.push_back(direction(ring, 2 * kPi * k / azimuths_));
         for (std::size_t i = 0; i < functions_.size(); ++i)
-            for (double theta : kRingAngles)
-                for (double ring : {theta, kPi - theta}) {
-                    std::vector<double> values(azimuths_);
-                    double energy = 0;
-                    for (int k = 0; k < azimuths_; ++k) {
-                        values[k] = functions_[i].value(direction(ring, 2 * kPi * k / azimuths_));
-                        energy += values[k] * values[k];
-                    }
-                    for (int m = 1; m < azimuths_ / 2; ++m) {
-                        std::complex<double> mode = 0;
-                        for (int k = 0; k < azimuths_; ++k) mode += values[k] * std::polar(1.0, -2 * kPi * m * k / azimuths_);
-                        // Parseval: the pair (m, -m) carries 2 |mode|^2 / K of the ring's energy.
-                        const double relative = std::sqrt(2 * std::norm(mode) / (azimuths_ * energy));
-                        amplitude[m] = std::max(amplitude[m], relative / tolerances_[i]);
-                    }
+            for (std::size_t first = 0; first < points.size(); first += std::size_t(azimuths_)) {
+                std::vector<double> values(azimuths_);
+                double energy = 0;
+                for (int k = 0; k < azimuths_; ++k) {
+                    values[k] = functions_[i].value(points[first + std::size_t(k)]);
+                    energy += values[k] * values[k];
                 }
+                for (int m = 1; m < azimuths_ / 2; ++m) {
+                    std::complex<double> mode = 0;
+                    for (int k = 0; k < azimuths_; ++k) mode += values[k] * twiddles_[std::size_t(m * azimuths_ + k)];
+                    // Parseval: the pair (m, -m) carries 2 |mode|^2 / K of the ring's energy.
+                    const double relative = std::sqrt(2 * std::norm(mode) / (azimuths_ * energy));
+                    amplitude[m] = std::max(amplitude[m], relative / tolerances_[i]);
+                }
+            }
         return amplitude;
     }
 
@@ -105,16 +126,10 @@ public:
     double change(const Eigen::Matrix3d& linear) const {
         double largest = 0;
         for (std::size_t i = 0; i < functions_.size(); ++i) {
-            double difference = 0, scale = 0;
-            for (double theta : kRingAngles)
-                for (double ring : {theta, kPi - theta})
-                    for (int k = 0; k < azimuths_; ++k) {
-                        const Eigen::Vector3d w = direction(ring, 2 * kPi * (k + 0.37) / azimuths_);
-                        const double value = functions_[i].value(w);
-                        difference = std::max(difference, std::abs(functions_[i].value(linear * w) - value));
-                        scale = std::max(scale, std::abs(value));
-                    }
-            largest = std::max(largest, difference / scale / tolerances_[i]);
+            double difference = 0;
+            for (std::size_t j = 0; j < changePoints_.size(); ++j)
+                difference = std::max(difference, std::abs(functions_[i].value(linear * changePoints_[j]) - changeValues_[i][j]));
+            largest = std::max(largest, difference / changeScales_[i] / tolerances_[i]);
         }
         return largest;
     }
@@ -124,6 +139,10 @@ private:
     const std::vector<double>& tolerances_;
     Eigen::Vector3d axis_, u_, v_;
     int azimuths_;
+    std::vector<std::complex<double>> twiddles_;
+    std::vector<Eigen::Vector3d> changePoints_;
+    std::vector<std::vector<double>> changeValues_;  // per function, at changePoints_
+    std::vector<double> changeScales_;               // per function, its largest magnitude there
 };
 
 std::vector<int> divisorsDescending(int n) {
