@@ -69,9 +69,11 @@ public:
 
     // At a unit direction w.
     double value(const Eigen::Vector3d& w) const { return polynomial_(w); }
-    Eigen::Vector3d tangentialGradient(const Eigen::Vector3d& w) const;
+    // With `euclidean`, also the gradient in space, which tangentialHessian then need not evaluate again.
+    Eigen::Vector3d tangentialGradient(const Eigen::Vector3d& w, Eigen::Vector3d* euclidean = nullptr) const;
     // The Riemannian Hessian as a 3x3 matrix that acts on the tangent plane at w (w is in its kernel).
     Eigen::Matrix3d tangentialHessian(const Eigen::Vector3d& w) const;
+    Eigen::Matrix3d tangentialHessian(const Eigen::Vector3d& w, const Eigen::Vector3d& euclideanGradient) const;
 
     // The root-mean-square variation of the function over the sphere relative to its mean: near 0, the
     // order tells nothing about axes (e.g. M_2 of a cube).

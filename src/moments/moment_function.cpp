@@ -25,17 +25,21 @@ MomentFunction::MomentFunction(const MomentCoefficients& coefficients, int order
     }
 }
 
-Eigen::Vector3d MomentFunction::tangentialGradient(const Eigen::Vector3d& w) const {
+Eigen::Vector3d MomentFunction::tangentialGradient(const Eigen::Vector3d& w, Eigen::Vector3d* euclidean) const {
     const Eigen::Vector3d gradient(gradient_[0](w), gradient_[1](w), gradient_[2](w));
+    if (euclidean) *euclidean = gradient;
     return gradient - gradient.dot(w) * w;
 }
 
 Eigen::Matrix3d MomentFunction::tangentialHessian(const Eigen::Vector3d& w) const {
+    return tangentialHessian(w, Eigen::Vector3d(gradient_[0](w), gradient_[1](w), gradient_[2](w)));
+}
+
+Eigen::Matrix3d MomentFunction::tangentialHessian(const Eigen::Vector3d& w, const Eigen::Vector3d& gradient) const {
     // Riemannian Hessian on the unit sphere: P (D^2 G - (w . grad G) I) P, P = I - w w^T.
     Eigen::Matrix3d hessian;
     for (int a = 0; a < 3; ++a)
         for (int b = a; b < 3; ++b) hessian(a, b) = hessian(b, a) = hessian_[a][b](w);
-    const Eigen::Vector3d gradient(gradient_[0](w), gradient_[1](w), gradient_[2](w));
     const Eigen::Matrix3d projector = Eigen::Matrix3d::Identity() - w * w.transpose();
     return projector * (hessian - gradient.dot(w) * Eigen::Matrix3d::Identity()) * projector;
 }

@@ -34,14 +34,15 @@ void tangentFrame(const Eigen::Vector3d& w, Eigen::Vector3d& e1, Eigen::Vector3d
 bool newtonCriticalPoint(const MomentFunction& f, Eigen::Vector3d start, Eigen::Vector3d& critical) {
     Eigen::Vector3d w = start.normalized();
     for (int iteration = 0; iteration < kIterations; ++iteration) {
-        const Eigen::Vector3d g = f.tangentialGradient(w);
+        Eigen::Vector3d euclidean;
+        const Eigen::Vector3d g = f.tangentialGradient(w, &euclidean);
         const double scale = std::abs(f.value(w)) * f.order();
         if (g.norm() <= 1e-13 * scale) break;
         Eigen::Vector3d e1, e2;
         tangentFrame(w, e1, e2);
         Eigen::Matrix<double, 3, 2> e;
         e << e1, e2;
-        const Eigen::Matrix2d h = e.transpose() * f.tangentialHessian(w) * e;
+        const Eigen::Matrix2d h = e.transpose() * f.tangentialHessian(w, euclidean) * e;
         const Eigen::Vector2d g2 = e.transpose() * g;
         Eigen::Vector2d step;
         if (std::abs(h.determinant()) > 1e-14 * h.squaredNorm()) step = -h.inverse() * g2;
