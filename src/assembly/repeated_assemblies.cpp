@@ -229,9 +229,12 @@ private:
                 Isometry map;
                 map.linear = to.placement.linear * g.linear * from.placement.linear.transpose();
                 map.translation = to.centroid - map.linear * from.centroid;
-                if (options_.accept && !options_.accept(a, anchors[i], map)) continue;
+                // A map that grows no tile beyond the anchor makes no assembly: only the others are worth
+                // the (costly) check that the anchor's copy is acceptable.
                 const std::size_t grown = grow(a, {a, anchors[i]}, {Isometry{}, map}).copies[0].size();
-                if (grown > best.tiles) best = {anchors[i], map, grown};
+                if (grown < 2 || grown <= best.tiles) continue;
+                if (options_.accept && !options_.accept(a, anchors[i], map)) continue;
+                best = {anchors[i], map, grown};
             }
             if (best.tiles > 0) copies.push_back(best);
         }
