@@ -81,6 +81,15 @@ void checkDrawnByOthers(const std::vector<std::filesystem::path>& inputs) {
     }
 }
 
+// The shared models whose files end with one of `extensions`.
+std::vector<std::filesystem::path> modelsWithExtension(std::initializer_list<const char*> extensions) {
+    std::vector<std::filesystem::path> inputs;
+    for (const std::string& model : sharedModels())
+        for (const char* extension : extensions)
+            if (std::filesystem::path(model).extension() == extension) inputs.push_back(modelPath(model));
+    return inputs;
+}
+
 }  // namespace
 
 TEST_CASE("GLB output passes the Khronos validator and decodes to the same triangles", "[interop][gltf]") {
@@ -160,15 +169,6 @@ TEST_CASE("X3D output loads in X_ITE with the same triangles and volume", "[inte
         CHECK(after["volume"].get<double>() == Approx(reference["volume"].get<double>()).epsilon(1e-5));
         CHECK(after["distinct"].get<int>() < after["shapes"].get<int>());  // shared meshes stay shared (DEF/USE)
     }
-}
-
-// The shared models whose files end with one of `extensions`.
-std::vector<std::filesystem::path> modelsWithExtension(std::initializer_list<const char*> extensions) {
-    std::vector<std::filesystem::path> inputs;
-    for (const std::string& model : sharedModels())
-        for (const char* extension : extensions)
-            if (std::filesystem::path(model).extension() == extension) inputs.push_back(modelPath(model));
-    return inputs;
 }
 
 // Four test cases, so that CTest runs them side by side.

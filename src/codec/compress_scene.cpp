@@ -585,14 +585,14 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         }
         // Store whichever costs least: every copy as it is, the tile once with a node per copy, or its
         // fundamental region once with a node per copy and group element.
-        // (A single copy with no region is stored as it is without measuring: most classes of a big scene.)
+        // A single copy with no region is stored as it is without measuring (most classes of a big scene).
+        constexpr double kNever = std::numeric_limits<double>::infinity();
         const double copies = double(placed.size());
         const bool single = placed.size() == 1 && !region;
-        const double asIs = single ? 0 : copies * costs.merged(c.prototype);
-        const double instanced = single ? 0 : costs.asMesh(prototype) + copies * costs.instance();
-        const double regional = region ? costs.asMesh(region->region) + copies * double(region->instances.size()) * costs.instance()
-                                       : std::numeric_limits<double>::infinity();
-        if (asIs <= std::min(instanced, regional)) {
+        const double instanced = single ? kNever : costs.alone(c.prototype) + copies * costs.instance();
+        const double regional =
+            region ? costs.asMesh(region->region) + copies * double(region->instances.size()) * costs.instance() : kNever;
+        if (single || copies * costs.merged(c.prototype) <= std::min(instanced, regional)) {
             if (placed.size() > 1) stats.notWorthInstancing += placed.size();
             for (std::size_t i : placed) {
                 uniqueTile[c.members[i]] = true;
