@@ -58,4 +58,10 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
 // The Schoenflies name of a finite group of orthogonal matrices (given whole, identity included).
 std::string pointGroupName(const std::vector<Eigen::Matrix3d>& group);
 
+// Every subgroup of a finite group of orthogonal matrices (given whole, identity first), the trivial
+// group and the group itself included, each as the sorted indices of its elements, in order of discovery
+// (the trivial group first). Products are matched to elements within `tolerance` on every entry; throws
+// std::invalid_argument when the identity is not first or a product matches no element.
+std::vector<std::vector<std::size_t>> subgroupsOf(const std::vector<Eigen::Matrix3d>& group, double tolerance = 1e-6);
+
 }  // namespace symcompress
