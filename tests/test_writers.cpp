@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <set>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -180,4 +181,45 @@ TEST_CASE("gltfMeshBytes and x3dMeshBytes are what a mesh of its own adds to the
         // Normals and texture coordinates are measured: a bare bolt costs far fewer bytes.
         CHECK(measure(bare) < 0.7 * measure(part));
     }
+}
+
+TEST_CASE("gltfNodeBytes and x3dNodeBytes are what a node drawing a stored mesh adds to the written file", "[io]") {
+    // Instance nodes as a plan makes them: rigid, mirrored, scaled to grid steps, named or not.
+    Scene one;
+    one.meshes.push_back({"", {samples::makeBolt()}});
+    one.nodes.resize(1);
+    one.nodes[0].mesh = 0;
+    one.roots = {0};
+    Eigen::Matrix4d turned = Eigen::Matrix4d::Identity(), mirrored, onGrid;
+    turned.topLeftCorner<3, 3>() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    turned.topRightCorner<3, 1>() = Eigen::Vector3d(1.25, -3.5, 0.123456789);
+    mirrored = turned;
+    mirrored.col(0) *= -1;
+    onGrid = turned;
+    onGrid.topLeftCorner<3, 3>() *= 1.0 / 256;
+    TemporaryFolder folder;
+    std::set<std::size_t> sizes;
+    for (const Eigen::Matrix4d& transform : {turned, mirrored, onGrid})
+        for (const char* name : {"", "Wheel.001"}) {
+            Node node;
+            node.transform = transform;
+            node.name = name;
+            node.mesh = 0;
+            Scene two = one;
+            two.nodes.push_back(node);
+            two.roots = {0, 1};
+            for (const char* extension : {".glb", ".x3d"}) {
+                INFO(extension << " name '" << name << "'\n" << transform);
+                const auto first = folder / (std::string("one") + extension), second = folder / (std::string("two") + extension);
+                writeScene(one, first);
+                writeScene(two, second);
+                const double added = double(std::filesystem::file_size(second)) - double(std::filesystem::file_size(first));
+                const bool x3d = std::string(extension) == ".x3d";
+                const std::size_t measured = x3d ? x3dNodeBytes(node) : gltfNodeBytes(node);
+                // GLB pads its JSON chunk to 4 bytes.
+                CHECK(double(measured) == Approx(added).margin(x3d ? 0 : 4));
+                sizes.insert(measured);
+            }
+        }
+    CHECK(sizes.size() >= 6);  // the transform and the name are what is measured
 }

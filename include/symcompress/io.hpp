@@ -53,9 +53,14 @@ void writeGltf(const Scene& scene, const std::filesystem::path& file, const Writ
 // or plain) and the JSON of its mesh, accessors and buffer views. The measure a compression plan weighs its
 // choices with (CompressOptions::meshBytes). Throws FileError where writeGltf would.
 std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& options);
+// What a node drawing a mesh stored already adds to a glTF file: its transform, name and index (children
+// not counted). The measure a plan weighs each instance with (CompressOptions::nodeBytes).
+std::size_t gltfNodeBytes(const Node& node);
 void writeX3d(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 // gltfMeshBytes for X3D: the text of a Group holding `primitive`'s Shape (uncompressed, as in .x3d).
 std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options);
+// gltfNodeBytes for X3D: a Transform around a USE of the mesh.
+std::size_t x3dNodeBytes(const Node& node);
 void writeObj(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 void writePly(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 

@@ -427,6 +427,16 @@ std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& option
     return root.dump().size() + mesh.dump().size() + builder.binary().size();
 }
 
+std::size_t gltfNodeBytes(const Node& node) {
+    Node drawing = node;
+    drawing.mesh = 0;
+    drawing.children.clear();
+    std::vector<Json> extra;
+    std::size_t bytes = writeNode(drawing, {0}, 1, extra).dump().size() + 1;  // and its comma
+    for (const Json& child : extra) bytes += child.dump().size() + 1;
+    return bytes + 3;  // its index in the scene's list of nodes, typically
+}
+
 void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& options) {
     Json root = {{"asset", {{"version", "2.0"}, {"generator", "symcompress"}}}};
     if (!options.extrasJson.empty()) {

@@ -297,6 +297,24 @@ std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options
     return withMesh - X3dWriter(scene, plain).write().size();
 }
 
+std::size_t x3dNodeBytes(const Node& node) {
+    // A file whose one mesh a first node draws, with and without `node` drawing it again (a USE).
+    Scene scene;
+    Primitive triangle;
+    triangle.positions = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()};
+    triangle.triangles = {{0, 1, 2}};
+    scene.meshes.push_back({"", {triangle}});
+    scene.nodes.resize(2);
+    scene.nodes[0].mesh = 0;
+    scene.nodes[1] = node;
+    scene.nodes[1].mesh = 0;
+    scene.nodes[1].children.clear();
+    scene.roots = {0, 1};
+    const std::size_t withNode = X3dWriter(scene, {}).write().size();
+    scene.roots = {0};
+    return withNode - X3dWriter(scene, {}).write().size();
+}
+
 void writeX3d(const Scene& scene, const fs::path& file, const WriteOptions& options) {
     std::string text = X3dWriter(scene, options).write();
     std::string extension = file.extension().string();
