@@ -38,6 +38,9 @@ struct CompressOptions {
     // normals and texture coordinates (Draco: 8 bytes a triangle) from a bare one (2 to 4). Parts merged
     // with others are then measured on a sample of the scene's parts stored together.
     std::function<double(const Primitive&)> meshBytes;
+    // When set, what a node drawing a shared mesh costs, measured by the writer (its transform and name):
+    // a rigid placement costs less than a mirrored or scaled one. Else bytesPerInstance.
+    std::function<double(const Node&)> nodeBytes;
 };
 
 struct CompressionStats {
@@ -76,6 +79,7 @@ SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance);
 inline void useX3dCosts(CompressOptions& options, const WriteOptions& write) {
     options.bytesPerInstance = 150;
     options.meshBytes = [write](const Primitive& part) { return double(x3dMeshBytes(part, write)); };
+    options.nodeBytes = [](const Node& node) { return double(x3dNodeBytes(node)); };
 }
 
 // The cost model and the seams' grid for glTF output written with `write`: every part measured by the
@@ -83,6 +87,7 @@ inline void useX3dCosts(CompressOptions& options, const WriteOptions& write) {
 inline void useGltfCosts(CompressOptions& options, const WriteOptions& write) {
     options.seamGridBits = write.draco ? write.positionBits : 0;
     options.meshBytes = [write](const Primitive& part) { return double(gltfMeshBytes(part, write)); };
+    options.nodeBytes = [](const Node& node) { return double(gltfNodeBytes(node)); };
 }
 
 struct CompressedScene {
