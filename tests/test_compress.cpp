@@ -397,6 +397,21 @@ TEST_CASE("symcompress refuses to overwrite its input and reports bad input with
     CHECK(wrong.status == 1);
 }
 
+TEST_CASE("Texture coordinates no texture reads are dropped on request, and said so: the torus knot", "[compress]") {
+    // Its material has no texture. Without texture coordinates it is symmetric in all it stores (C3).
+    TemporaryFolder folder;
+    const auto input = modelPath("vulkan_torusknot/torusknot.gltf");
+    const nlohmann::json kept = compressAndVerify(input, folder, "kept");
+    CHECK(kept["region_classes"] == 0);
+    CHECK_FALSE(readScene(folder / "kept.glb").meshes.at(0).primitives.at(0).texcoords.empty());
+    const nlohmann::json dropped = compressAndVerify(input, folder, "dropped", "--drop-unused-texcoords");
+    CHECK(dropped["warnings"].dump().find("texture coordinates of 1 primitives dropped") != std::string::npos);
+    for (const Mesh& mesh : readScene(folder / "dropped.glb").meshes)
+        for (const Primitive& primitive : mesh.primitives) CHECK(primitive.texcoords.empty());
+    CHECK(dropped["region_classes"] == 1);
+    CHECK(dropped["output_bytes"].get<double>() < 0.6 * kept["output_bytes"].get<double>());
+}
+
 TEST_CASE("A subgroup's region is stored where a node per element of the whole group costs more", "[compress]") {
     // One closed surface of revolution, 48 sectors (C48v, 96 elements), drawn once: 96 nodes cost more
     // than the part, a region of a few mirror planes does not. The planes pass through its meridians, so

@@ -128,3 +128,30 @@ TEST_CASE("validateScene names each broken invariant", "[scene]") {
         CHECK_THROWS_WITH(validateScene(scene), Catch::Contains("material"));
     }
 }
+
+TEST_CASE("dropUnreadTexcoords keeps texture coordinates only where a texture reads them", "[scene]") {
+    Primitive textured = unitTriangle();
+    textured.texcoords = {{0, 0}, {1, 0}, {0, 1}};
+    Scene scene;
+    scene.textures.resize(2);
+    scene.textures[0].bytes = {0x89, 'P', 'N', 'G'};  // textures[1]: an image that could not be read
+    scene.materials.resize(3);
+    scene.materials[0].baseColorTexture = 0;
+    scene.materials[1].baseColorTexture = 1;
+    // Materials: reads an image, names a missing image, has no texture, none at all (-1); the last
+    // primitive has no texture coordinates to drop.
+    Mesh mesh;
+    for (int material : {0, 1, 2, -1}) {
+        mesh.primitives.push_back(textured);
+        mesh.primitives.back().material = material;
+    }
+    mesh.primitives.push_back(unitTriangle());
+    scene.meshes.push_back(mesh);
+    CHECK(dropUnreadTexcoords(scene) == 3);
+    const auto& kept = scene.meshes[0].primitives;
+    CHECK(kept[0].texcoords == textured.texcoords);
+    for (std::size_t p = 1; p < kept.size(); ++p) CHECK(kept[p].texcoords.empty());
+    CHECK(kept[0].normals == textured.normals);  // nothing else is touched
+    CHECK(dropUnreadTexcoords(scene) == 0);
+    validateScene(scene);
+}

@@ -254,6 +254,7 @@ struct CompressRequest {
     fs::path input, output, report;
     CompressOptions options;
     WriteOptions write;
+    bool dropUnusedTexcoords = false;
     bool quiet = false;
 };
 
@@ -283,7 +284,11 @@ int runCompress(const CompressRequest& request) {
     const auto start = Clock::now();
     ProgressLine progress(!request.quiet);
     progress.stage("reading");
-    const Scene scene = readScene(request.input);
+    Scene scene = readScene(request.input);
+    if (request.dropUnusedTexcoords)
+        if (const std::size_t dropped = dropUnreadTexcoords(scene))
+            scene.warnings.push_back(request.input.filename().string() + ": texture coordinates of " + std::to_string(dropped) +
+                                     " primitives dropped (--drop-unused-texcoords): no texture reads them");
     const double readSeconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (!request.quiet)
         for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
@@ -492,6 +497,8 @@ int main(int argc, char** argv) {
                        "instancing only: no fundamental regions");
     compress->add_flag("--geometry-only", compressRequest.options.geometryOnly,
                        "instance congruent tiles even when their normals, texture coordinates or colours differ");
+    compress->add_flag("--drop-unused-texcoords", compressRequest.dropUnusedTexcoords,
+                       "drop texture coordinates that no texture reads (as glTF-Transform's optimize and gltfpack do)");
     compress->add_option("--report", compressRequest.report, "also write the size report as JSON");
     compress->add_option("--threads", compressRequest.options.threads, "threads (0: all cores)")->capture_default_str();
     compress->add_flag("-q,--quiet", compressRequest.quiet, "print nothing but errors");
