@@ -20,6 +20,7 @@
 # Ratios are symcompress bytes / peer bytes: below 1 means symcompress is smaller.
 #   REUSE_PEERS=1 bench/compare_peers.sh BUILD_DIR KEEP_DIR   (the peers' tables already in KEEP_DIR are
 #                                                              reused: only symcompress runs again)
+#   SC_FLAGS="--drop-unused-texcoords" bench/compare_peers.sh  (extra options for symcompress)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$here/build}"
@@ -29,6 +30,7 @@ out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 keep="${2:-$out}"
 peers_flags="${PEERS_FLAGS:--t 120}"
+sc_flags="${SC_FLAGS:-}"
 mkdir -p "$keep"
 python3 "$bench/make_toy_scene.py" "$out/toy.glb" >/dev/null
 echo "| model | input bytes | symcompress bytes | symcompress dev (bound) | best peer (recipe) bytes | its dev_rel | Draco transcoder bytes | ratio sc/best peer | ratio sc/Draco transcoder |"
@@ -37,7 +39,8 @@ for name in $(cd "$models" && ls */*.gltf */*.glb */*.x3d */*.obj */*.ply */*.st
   case "$name" in samples/*) in="$here/$name" ;; toy.glb) in="$out/$name" ;; *) in="$models/$name" ;; esac
   tag="${name//\//_}"
   echo "compare_peers: $name" >&2
-  "$build/symcompress" "$in" -o "$out/sc.glb" -q --report "$keep/$tag.report.json" ||
+  # shellcheck disable=SC2086  # SC_FLAGS is a list of options
+  "$build/symcompress" "$in" -o "$out/sc.glb" -q --report "$keep/$tag.report.json" $sc_flags ||
     { echo "| $name | symcompress FAILED | | | | | | | |"; continue; }
   "$build/symdecompress" "$out/sc.glb" -o "$out/flat.glb" --verify "$in" --json >"$keep/$tag.verify.json" || true
   peer_in="$in"
