@@ -147,3 +147,64 @@ TEST_CASE("Each kind of bad input gives one clear error naming the file", "[io][
         }
     }
 }
+
+TEST_CASE("Node animations are read and written back; channels the scene cannot hold are left out with a warning",
+          "[io]") {
+    SECTION("the milk truck's turning wheels, through convert") {
+        const Scene truck = readScene(modelPath("cesium_milk_truck/CesiumMilkTruck.gltf"));
+        CHECK_FALSE(hasWarning(truck, "animation"));
+        REQUIRE(truck.animations.size() == 1);
+        const auto& channels = truck.animations[0].channels;
+        REQUIRE(channels.size() == 2);
+        for (const AnimationChannel& channel : channels) {
+            CHECK(channel.path == AnimationChannel::Path::Rotation);
+            CHECK(channel.interpolation == AnimationChannel::Interpolation::Linear);
+            CHECK(truck.nodes[std::size_t(channel.node)].mesh >= 0);  // a wheel
+            CHECK(channel.times.size() > 1);
+            CHECK(channel.values.size() == 4 * channel.times.size());
+        }
+        TemporaryFolder folder;
+        for (const char* name : {"truck.glb", "truck.gltf"}) {
+            writeScene(truck, folder / name);
+            const Scene back = readScene(folder / name);
+            INFO(name);
+            REQUIRE(back.animations.size() == 1);
+            REQUIRE(back.animations[0].channels.size() == 2);
+            for (std::size_t c = 0; c < 2; ++c) {
+                const AnimationChannel &a = channels[c], &b = back.animations[0].channels[c];
+                CHECK(a.node == b.node);
+                CHECK(a.path == b.path);
+                CHECK(a.times == b.times);    // float32 in both files
+                CHECK(a.values == b.values);
+            }
+        }
+    }
+    SECTION("a channel without a node, one of morph weights and a good one") {
+        // A triangle, then 2 key times and 2 translations, in one embedded buffer.
+        TemporaryFolder folder;
+        const auto file = folder / "animated.gltf";
+        writeTextFile(file, R"({"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": 68, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAABAAAAAAAAAAAA="}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 8},
+                            {"buffer": 0, "byteOffset": 44, "byteLength": 24}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                          {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                          {"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC3"}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}],
+            "animations": [{"name": "slide", "samplers": [{"input": 1, "output": 2, "interpolation": "STEP"}],
+                            "channels": [{"sampler": 0, "target": {"node": 5, "path": "translation"}},
+                                         {"sampler": 0, "target": {"node": 0, "path": "weights"}},
+                                         {"sampler": 0, "target": {"node": 0, "path": "translation"}}]}]})");
+        const Scene scene = readScene(file);
+        CHECK(hasWarning(scene, "animation 0 channel 0 ignored: it targets no node"));
+        CHECK(hasWarning(scene, "1 animation channels of morph target weights ignored"));
+        REQUIRE(scene.animations.size() == 1);
+        CHECK(scene.animations[0].name == "slide");
+        REQUIRE(scene.animations[0].channels.size() == 1);
+        const AnimationChannel& channel = scene.animations[0].channels[0];
+        CHECK(channel.node == 0);
+        CHECK(channel.interpolation == AnimationChannel::Interpolation::Step);
+        CHECK(channel.times == std::vector<double>{0, 1});
+        CHECK(channel.values == std::vector<double>{0, 0, 0, 2, 0, 0});
+    }
+}

@@ -4,6 +4,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 using namespace symcompress;
 
 namespace {
@@ -154,4 +156,28 @@ TEST_CASE("dropUnreadTexcoords keeps texture coordinates only where a texture re
     CHECK(kept[0].normals == textured.normals);  // nothing else is touched
     CHECK(dropUnreadTexcoords(scene) == 0);
     validateScene(scene);
+}
+
+TEST_CASE("validateScene checks animation channels", "[scene]") {
+    Scene scene = sceneWithOneMesh(unitTriangle());
+    scene.nodes.resize(1);
+    scene.nodes[0].mesh = 0;
+    scene.roots = {0};
+    AnimationChannel channel;
+    channel.node = 0;
+    channel.path = AnimationChannel::Path::Rotation;
+    channel.times = {0, 1};
+    channel.values = {0, 0, 0, 1, 0, 0, 1, 0};
+    scene.animations.push_back({"turn", {channel}});
+    validateScene(scene);
+    auto expectBroken = [&](auto&& breakIt, const char* problem) {
+        Scene broken = scene;
+        breakIt(broken.animations[0].channels[0]);
+        INFO(problem);
+        CHECK_THROWS_WITH(validateScene(broken), Catch::Contains(problem));
+    };
+    expectBroken([](AnimationChannel& c) { c.node = 3; }, "node index out of range");
+    expectBroken([](AnimationChannel& c) { c.path = AnimationChannel::Path::Scale; }, "8 values for 2 keys");
+    expectBroken([](AnimationChannel& c) { c.interpolation = AnimationChannel::Interpolation::CubicSpline; }, "8 values for 2 keys");
+    expectBroken([](AnimationChannel& c) { c.values[2] = std::nan(""); }, "NaN");
 }

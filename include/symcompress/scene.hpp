@@ -7,7 +7,9 @@
 // - Primitive::material is -1 (default material) or an index into Scene::materials;
 // - Node::mesh is -1 or an index into Scene::meshes; Node::children index into Scene::nodes and the
 //   node graph is a forest (a node is the child of at most one node, no cycles);
-// - Material::baseColorTexture is -1 or an index into Scene::textures.
+// - Material::baseColorTexture is -1 or an index into Scene::textures;
+// - every AnimationChannel targets a node of Scene::nodes, has finite times and values, and as many
+//   values as its times, path and interpolation ask for.
 // Geometry is double precision; readers convert whatever the file stores.
 #pragma once
 
@@ -105,12 +107,30 @@ struct Node {
     std::vector<int> children;                                // indices into Scene::nodes
 };
 
+// A keyframed transform of one node (glTF's animation channel with its sampler), kept as read so that a
+// glTF writer gives it back. The node's own transform is its rest pose, what every other stage draws.
+struct AnimationChannel {
+    int node = -1;  // index into Scene::nodes
+    enum class Path { Translation, Rotation, Scale } path = Path::Translation;
+    enum class Interpolation { Linear, Step, CubicSpline } interpolation = Interpolation::Linear;
+    std::vector<double> times;   // seconds, not decreasing
+    // Per key: 3 values (translation, scale) or 4 (rotation quaternion x, y, z, w); cubic splines store
+    // in-tangent, value and out-tangent for each key.
+    std::vector<double> values;
+};
+
+struct Animation {
+    std::string name;
+    std::vector<AnimationChannel> channels;
+};
+
 struct Scene {
     std::vector<Texture> textures;
     std::vector<Material> materials;
     std::vector<Mesh> meshes;
     std::vector<Node> nodes;
     std::vector<int> roots;             // the nodes drawn, in order
+    std::vector<Animation> animations;
     std::vector<std::string> warnings;  // what the reader could not carry through, one line each
     std::string extrasJson;             // glTF asset.extras as read (where symcompress keeps its digest)
 };

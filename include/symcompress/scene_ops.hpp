@@ -40,7 +40,7 @@ std::vector<WorldPrimitive> flattenScene(const Scene& scene);
 TriangleMesh worldMesh(const Scene& scene);
 
 // The same drawing as one mesh under one root node with the identity transform: every instance
-// expanded, materials and textures kept.
+// expanded, materials and textures kept, animations left out (a warning says so).
 Scene expandInstances(const Scene& scene);
 
 // The world transform of every node (identity for nodes that are not reachable from the roots).

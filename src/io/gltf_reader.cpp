@@ -49,6 +49,7 @@ private:
                               std::vector<std::uint32_t>& indices, const std::string& where) const;
     Eigen::Matrix4d nodeTransform(const tinygltf::Node& node) const;
     void readMaterials(Scene& scene);
+    void readAnimations(Scene& scene);
     void warnAbout(const std::string& warning) { warnings_.insert(warning); }
 
     fs::path file_;
@@ -408,6 +409,65 @@ void GltfReader::readMaterials(Scene& scene) {
     }
 }
 
+// Node transform channels are kept; a channel the scene model cannot hold (morph weights, a target other
+// than a node) or a broken one is left out with a warning.
+void GltfReader::readAnimations(Scene& scene) {
+    std::size_t weights = 0;
+    for (std::size_t a = 0; a < model_.animations.size(); ++a) {
+        const tinygltf::Animation& source = model_.animations[a];
+        Animation animation;
+        animation.name = source.name;
+        for (std::size_t c = 0; c < source.channels.size(); ++c) {
+            const tinygltf::AnimationChannel& channel = source.channels[c];
+            const std::string where = "animation " + std::to_string(a) + " channel " + std::to_string(c);
+            if (channel.target_path == "weights") {
+                ++weights;
+                continue;
+            }
+            AnimationChannel out;
+            out.node = channel.target_node;
+            if (out.node < 0 || out.node >= static_cast<int>(scene.nodes.size())) {
+                warnAbout(where + " ignored: it targets no node of the file");
+                continue;
+            }
+            if (channel.target_path == "translation") out.path = AnimationChannel::Path::Translation;
+            else if (channel.target_path == "rotation") out.path = AnimationChannel::Path::Rotation;
+            else if (channel.target_path == "scale") out.path = AnimationChannel::Path::Scale;
+            else {
+                warnAbout(where + " ignored: unknown path '" + channel.target_path + "'");
+                continue;
+            }
+            if (channel.sampler < 0 || channel.sampler >= static_cast<int>(source.samplers.size())) {
+                warnAbout(where + " ignored: its sampler does not exist");
+                continue;
+            }
+            const tinygltf::AnimationSampler& sampler = source.samplers[channel.sampler];
+            if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") out.interpolation = AnimationChannel::Interpolation::Linear;
+            else if (sampler.interpolation == "STEP") out.interpolation = AnimationChannel::Interpolation::Step;
+            else if (sampler.interpolation == "CUBICSPLINE") out.interpolation = AnimationChannel::Interpolation::CubicSpline;
+            else {
+                warnAbout(where + " ignored: unknown interpolation '" + sampler.interpolation + "'");
+                continue;
+            }
+            out.times = readAccessor(sampler.input, 1, "animation input");
+            out.values = readAccessor(sampler.output, out.path == AnimationChannel::Path::Rotation ? 4 : 3, "animation output");
+            const std::size_t perKey = (out.path == AnimationChannel::Path::Rotation ? 4 : 3) *
+                                       (out.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1);
+            const auto finite = [](double v) { return std::isfinite(v); };
+            if (out.times.empty() || out.values.size() != out.times.size() * perKey)
+                warnAbout(where + " ignored: its keys and values do not match");
+            else if (!std::all_of(out.times.begin(), out.times.end(), finite) || !std::all_of(out.values.begin(), out.values.end(), finite))
+                warnAbout(where + " ignored: NaN or infinite keys or values");
+            else if (!std::is_sorted(out.times.begin(), out.times.end()))
+                warnAbout(where + " ignored: its key times decrease");
+            else
+                animation.channels.push_back(std::move(out));
+        }
+        if (!animation.channels.empty()) scene.animations.push_back(std::move(animation));
+    }
+    if (weights) warnAbout(std::to_string(weights) + " animation channels of morph target weights ignored");
+}
+
 Scene GltfReader::read() {
     Scene scene;
     readMaterials(scene);
@@ -446,7 +506,7 @@ Scene GltfReader::read() {
             if (parentCount[n] == 0) scene.roots.push_back(n);
     }
     if (model_.scenes.size() > 1) warnAbout(std::to_string(model_.scenes.size() - 1) + " scenes besides the default one ignored");
-    if (!model_.animations.empty()) warnAbout(std::to_string(model_.animations.size()) + " animations ignored");
+    readAnimations(scene);
     if (!model_.skins.empty()) warnAbout(std::to_string(model_.skins.size()) + " skins ignored");
     if (!model_.lights.empty()) warnAbout(std::to_string(model_.lights.size()) + " KHR_lights_punctual lights ignored");
     for (const auto& [mode, count] : skippedModes_)

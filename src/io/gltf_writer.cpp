@@ -58,9 +58,13 @@ public:
         flat.reserve(values.size() * components);
         for (const Vector& value : values)
             for (int c = 0; c < components; ++c) flat.push_back(static_cast<float>(value[c]));
-        Json accessor = {{"bufferView", addBufferView(flat.data(), flat.size() * sizeof(float), kArrayBuffer)},
+        return addFloatAccessor(flat, components, type, withBounds, kArrayBuffer);
+    }
+    // The same over values already flat; `target` 0 for data that is not a vertex attribute (animations).
+    int addFloatAccessor(const std::vector<float>& flat, int components, const char* type, bool withBounds, int target) {
+        Json accessor = {{"bufferView", addBufferView(flat.data(), flat.size() * sizeof(float), target)},
                          {"componentType", kFloat},
-                         {"count", values.size()},
+                         {"count", flat.size() / std::size_t(components)},
                          {"type", type}};
         if (withBounds) addBounds(accessor, flat, components);
         return addAccessor(std::move(accessor));
@@ -427,6 +431,26 @@ std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& option
     return root.dump().size() + mesh.dump().size() + builder.binary().size();
 }
 
+// Animation channels as glTF samplers (float keys and values in buffer views of their own) and channels.
+Json writeAnimation(const Animation& animation, GltfBuilder& builder) {
+    Json channels = Json::array(), samplers = Json::array();
+    for (const AnimationChannel& channel : animation.channels) {
+        const bool rotation = channel.path == AnimationChannel::Path::Rotation;
+        const std::vector<float> times(channel.times.begin(), channel.times.end()),
+            values(channel.values.begin(), channel.values.end());
+        Json sampler = {{"input", builder.addFloatAccessor(times, 1, "SCALAR", true, 0)},
+                        {"output", builder.addFloatAccessor(values, rotation ? 4 : 3, rotation ? "VEC4" : "VEC3", false, 0)}};
+        if (channel.interpolation == AnimationChannel::Interpolation::Step) sampler["interpolation"] = "STEP";
+        if (channel.interpolation == AnimationChannel::Interpolation::CubicSpline) sampler["interpolation"] = "CUBICSPLINE";
+        const char* path = rotation ? "rotation" : channel.path == AnimationChannel::Path::Scale ? "scale" : "translation";
+        channels.push_back({{"sampler", samplers.size()}, {"target", {{"node", channel.node}, {"path", path}}}});
+        samplers.push_back(std::move(sampler));
+    }
+    Json out = {{"channels", channels}, {"samplers", samplers}};
+    if (!animation.name.empty()) out["name"] = animation.name;
+    return out;
+}
+
 std::size_t gltfNodeBytes(const Node& node) {
     Node drawing = node;
     drawing.mesh = 0;
@@ -474,6 +498,7 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     for (Json& node : extraNodes) root["nodes"].push_back(std::move(node));
     root["scenes"] = {{{"nodes", scene.roots}}};
     root["scene"] = 0;
+    for (const Animation& animation : scene.animations) root["animations"].push_back(writeAnimation(animation, builder));
     if (usedDraco) {
         root["extensionsUsed"] = {"KHR_draco_mesh_compression"};
         root["extensionsRequired"] = {"KHR_draco_mesh_compression"};

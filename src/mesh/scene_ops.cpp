@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -122,6 +123,21 @@ void validateScene(const Scene& scene) {
     }
     for (int n = 0; n < nodeCount; ++n)
         if (!reached[n]) throw std::invalid_argument("node " + std::to_string(n) + " is part of a cycle");
+    for (std::size_t a = 0; a < scene.animations.size(); ++a)
+        for (std::size_t c = 0; c < scene.animations[a].channels.size(); ++c) {
+            const AnimationChannel& channel = scene.animations[a].channels[c];
+            const std::string where = "animation " + std::to_string(a) + " channel " + std::to_string(c);
+            if (channel.node < 0 || channel.node >= nodeCount) throw std::invalid_argument(where + ": node index out of range");
+            const std::size_t perKey = (channel.path == AnimationChannel::Path::Rotation ? 4 : 3) *
+                                       (channel.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1);
+            if (channel.times.empty() || channel.values.size() != channel.times.size() * perKey)
+                throw std::invalid_argument(where + ": " + std::to_string(channel.values.size()) + " values for " +
+                                            std::to_string(channel.times.size()) + " keys");
+            const auto finite = [](double v) { return std::isfinite(v); };
+            if (!std::all_of(channel.times.begin(), channel.times.end(), finite) ||
+                !std::all_of(channel.values.begin(), channel.values.end(), finite))
+                throw std::invalid_argument(where + ": NaN or infinite values");
+        }
 }
 
 std::vector<Eigen::Matrix4d> worldTransforms(const Scene& scene) {
@@ -146,6 +162,8 @@ Scene expandInstances(const Scene& scene) {
     flat.textures = scene.textures;
     flat.materials = scene.materials;
     flat.warnings = scene.warnings;
+    if (!scene.animations.empty())
+        flat.warnings.push_back(std::to_string(scene.animations.size()) + " animations not kept: the flat mesh is drawn at rest");
     Mesh mesh;
     mesh.name = "expanded";
     for (WorldPrimitive& world : flattenScene(scene)) mesh.primitives.push_back(std::move(world.primitive));

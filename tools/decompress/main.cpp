@@ -51,6 +51,8 @@ int main(int argc, char** argv) {
     }
     try {
         const Scene flat = expandInstances(scene);
+        for (std::size_t i = scene.warnings.size(); i < flat.warnings.size(); ++i)
+            std::fprintf(stderr, "warning: %s\n", flat.warnings[i].c_str());
         writeScene(flat, output, options, {input});
         const TriangleMesh rebuilt = worldMesh(flat);
         const SurfaceDigest rebuiltDigest = digestOf(rebuilt, 0);
