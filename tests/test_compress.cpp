@@ -436,6 +436,33 @@ TEST_CASE("A subgroup's region is stored where a node per element of the whole g
     CHECK(openEdges(worldMesh(readScene(folder / "vase-small.glb"))) == 0);
 }
 
+TEST_CASE("Animated nodes are kept as they are with their animations: the milk truck's turning wheels", "[compress]") {
+    TemporaryFolder folder;
+    const auto input = modelPath("cesium_milk_truck/CesiumMilkTruck.gltf");
+    const nlohmann::json report = compressAndVerify(input, folder, "truck");
+    CHECK(report["animated_nodes_kept"] == 2);
+    CHECK(report["warnings"].dump().find("animation") == std::string::npos);
+    const Scene original = readScene(input), compressed = readScene(folder / "truck.glb");
+    REQUIRE(compressed.animations.size() == 1);
+    REQUIRE(compressed.animations[0].channels.size() == 2);
+    const std::vector<Eigen::Matrix4d> before = worldTransforms(original), after = worldTransforms(compressed);
+    for (std::size_t c = 0; c < 2; ++c) {
+        const AnimationChannel &from = original.animations[0].channels[c], &to = compressed.animations[0].channels[c];
+        // The channel drives a node drawing the same wheel, placed where it was, with the same keys.
+        REQUIRE(compressed.nodes[std::size_t(to.node)].mesh >= 0);
+        CHECK(compressed.meshes[std::size_t(compressed.nodes[std::size_t(to.node)].mesh)].primitives.size() ==
+              original.meshes[std::size_t(original.nodes[std::size_t(from.node)].mesh)].primitives.size());
+        CHECK((after[std::size_t(to.node)] - before[std::size_t(from.node)]).cwiseAbs().maxCoeff() < 1e-6);
+        CHECK(to.path == from.path);
+        CHECK(to.times == from.times);
+        CHECK(to.values == from.values);
+    }
+    // X3D keeps no animation: said, not silent.
+    const CommandResult x3d = runCommand(kSymcompress + " " + quoted(input) + " -o " + quoted(folder / "truck.x3d"));
+    CHECK(x3d.status == 0);
+    CHECK(x3d.output.find("1 animations not written: .x3d output is drawn at rest") != std::string::npos);
+}
+
 TEST_CASE("Symmetric parts are stored as their fundamental regions where that pays (X3D)", "[compress]") {
     // The menger sponge (Oh, 48 elements) as X3D text: its region and a USE per copy cost far less than
     // its 2112 triangles; the rebuilt surface must be the original.

@@ -58,6 +58,7 @@ struct CompressionStats {
     std::string sceneGroup = "C1";        // the scene's symmetry group, where one part of the scene is stored for all
     std::size_t tilesInSceneSymmetry = 0; // tiles drawn by that part's nodes
     std::size_t inputInstancesKept = 0;   // nodes of the input's own shared meshes, kept (KeptInstance)
+    std::size_t animatedNodesKept = 0;    // nodes of animated subtrees, kept with their animations
     double maxDeviation = 0;              // of the placements used, relative to the diagonal
     double secondsTiles = 0, secondsClasses = 0, secondsPlan = 0;
 };
@@ -108,6 +109,10 @@ struct KeptInstance {
 
 struct SceneAnalysis {
     std::vector<KeptInstance> keptInstances;  // not in the soup: their meshes are stored as they are
+    // The input's animated nodes that have no animated ancestor: kept with their subtrees as they are
+    // (nodes, transforms, meshes) and their animations, so that the animations still drive them; what
+    // they draw is not in the soup.
+    std::vector<int> animatedSubtrees;
     std::vector<WorldPrimitive> soup;
     std::vector<Tile> tiles;
     TileClassification classification;
@@ -117,7 +122,8 @@ struct SceneAnalysis {
 
 SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options = {});
 
-// The input's materials and textures are kept. The output is one level of nodes: an instance node takes
+// The input's materials, textures and animations are kept. Apart from animated subtrees (kept as they are
+// under a node holding their parent's world transform), the output is one level of nodes: an instance node takes
 // the name of the input node its tile came from; tiles stored as they are share one mesh per material,
 // and the names of their nodes are reported as not kept (CompressedScene::scene.warnings), as is the
 // input's hierarchy. `options.tolerance` and `threads` must be those the analysis was made with.

@@ -360,6 +360,47 @@ void addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const s
     out.nodes.push_back(std::move(node));
 }
 
+// The animated subtrees as they are (SceneAnalysis::animatedSubtrees), each under a root node holding its
+// parent's world transform, and the input's animations retargeted to them. Meshes are shared with the
+// other kept meshes through `keptMesh` (input mesh -> output mesh).
+void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Scene& out, std::map<int, int>& keptMesh,
+                          CompressionStats& stats) {
+    if (analysis.animatedSubtrees.empty()) return;
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+    std::map<int, int> nodeOf;  // input node -> output node
+    auto copy = [&](auto&& self, int node) -> int {
+        const Node& from = input.nodes[std::size_t(node)];
+        Node to;
+        to.name = from.name;
+        to.transform = from.transform;
+        if (from.mesh >= 0) {
+            auto [entry, added] = keptMesh.emplace(from.mesh, int(out.meshes.size()));
+            if (added) out.meshes.push_back(input.meshes[std::size_t(from.mesh)]);
+            to.mesh = entry->second;
+        }
+        const int index = int(out.nodes.size());
+        out.nodes.push_back(std::move(to));
+        nodeOf[node] = index;
+        ++stats.animatedNodesKept;
+        for (int child : from.children) {
+            const int copied = self(self, child);
+            out.nodes[std::size_t(index)].children.push_back(copied);
+        }
+        return index;
+    };
+    for (int top : analysis.animatedSubtrees) {
+        const Eigen::Matrix4d parentWorld = world[std::size_t(top)] * input.nodes[std::size_t(top)].transform.inverse();
+        addRootNode(out, -1, parentWorld, "");
+        const int holder = out.roots.back();
+        const int copied = copy(copy, top);
+        out.nodes[std::size_t(holder)].children.push_back(copied);
+    }
+    for (Animation animation : input.animations) {
+        for (AnimationChannel& channel : animation.channels) channel.node = nodeOf.at(channel.node);
+        out.animations.push_back(std::move(animation));
+    }
+}
+
 // The primitive with its positions only: what `reproduces` compares when attributes are ignored.
 Primitive geometryOf(Primitive primitive) {
     primitive.normals.clear();
@@ -529,6 +570,25 @@ SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options) {
     SceneAnalysis analysis;
     auto start = std::chrono::steady_clock::now();
     analysis.soup = flattenScene(input);
+    {
+        std::vector<bool> animated(input.nodes.size(), false), inSubtree(input.nodes.size(), false);
+        for (const Animation& animation : input.animations)
+            for (const AnimationChannel& channel : animation.channels) animated[std::size_t(channel.node)] = true;
+        // Depth first from the roots, marking every node under an animated one.
+        std::vector<std::pair<int, bool>> stack;
+        for (int root : input.roots) stack.push_back({root, false});
+        while (!stack.empty()) {
+            const auto [node, under] = stack.back();
+            stack.pop_back();
+            if (animated[std::size_t(node)] && !under) analysis.animatedSubtrees.push_back(node);
+            inSubtree[std::size_t(node)] = under || animated[std::size_t(node)];
+            for (int child : input.nodes[std::size_t(node)].children) stack.push_back({child, inSubtree[std::size_t(node)]});
+        }
+        std::sort(analysis.animatedSubtrees.begin(), analysis.animatedSubtrees.end());
+        analysis.soup.erase(std::remove_if(analysis.soup.begin(), analysis.soup.end(),
+                                           [&](const WorldPrimitive& placed) { return inSubtree[std::size_t(placed.node)]; }),
+                            analysis.soup.end());
+    }
     if (options.keepInputInstances) {
         // A mesh drawn by two or more nodes, one of them scaling or shearing it, is the author's instancing
         // of copies that are not congruent: kept as it is, and left out of the tiles. (Rigid copies are
@@ -598,6 +658,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         ++stats.inputInstancesKept;
         ++stats.instances;
     }
+    keepAnimatedSubtrees(input, analysis, out, keptMesh, stats);
     PrimitivesByKind unique;  // tiles stored as they are
     if (!options.instancing)
         for (const Tile& tile : tiles) unique.add(tilePrimitive(tile, soup));

@@ -67,8 +67,16 @@ int runInfo(const fs::path& file, bool json) {
     return 0;
 }
 
+// What the output's format cannot hold, said before the writer leaves it out.
+void warnAboutWhatTheFormatDrops(Scene& scene, const fs::path& output) {
+    if (!scene.animations.empty() && formatFromExtension(output) != FileFormat::Glb && formatFromExtension(output) != FileFormat::Gltf)
+        scene.warnings.push_back(std::to_string(scene.animations.size()) + " animations not written: " +
+                                 output.extension().string() + " output is drawn at rest");
+}
+
 int runConvert(const fs::path& input, const fs::path& output, const WriteOptions& options, bool quiet) {
-    const Scene scene = readScene(input);
+    Scene scene = readScene(input);
+    warnAboutWhatTheFormatDrops(scene, output);
     if (!quiet)
         for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     writeScene(scene, output, options, {input});
@@ -289,6 +297,7 @@ int runCompress(const CompressRequest& request) {
         if (const std::size_t dropped = dropUnreadTexcoords(scene))
             scene.warnings.push_back(request.input.filename().string() + ": texture coordinates of " + std::to_string(dropped) +
                                      " primitives dropped (--drop-unused-texcoords): no texture reads them");
+    warnAboutWhatTheFormatDrops(scene, request.output);
     const double readSeconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (!request.quiet)
         for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
@@ -385,6 +394,7 @@ int runCompress(const CompressRequest& request) {
                           {"scene_group", stats.sceneGroup},
                           {"tiles_in_scene_symmetry", stats.tilesInSceneSymmetry},
                           {"input_instances_kept", stats.inputInstancesKept},
+                          {"animated_nodes_kept", stats.animatedNodesKept},
                           {"bytes_per_instance", instanceBytes},
                           {"ablation",
                            {{"draco_alone", request.options.instancing ? dracoAlone : outputBytes},
@@ -420,6 +430,9 @@ int runCompress(const CompressRequest& request) {
                     stats.assemblies, stats.assemblyCopies, stats.tilesInAssemblies);
     if (stats.inputInstancesKept)
         std::printf("  kept            %zu nodes of meshes the input already shares\n", stats.inputInstancesKept);
+    if (stats.animatedNodesKept)
+        std::printf("  animated        %zu nodes kept as they are, for the scene's animations (%zu)\n",
+                    stats.animatedNodesKept, compressed.scene.animations.size());
     if (stats.instances) std::printf("  per instance    %.0f bytes\n", instanceBytes);
     if (stats.attributeMismatches)
         std::printf("  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
