@@ -463,6 +463,14 @@ void GltfReader::readAnimations(Scene& scene) {
             else
                 animation.channels.push_back(std::move(out));
         }
+        for (const AnimationChannel& channel : animation.channels) {
+            // Written back, a node's transform is a rotation and a scale with the mirror on x: the same
+            // rest pose, but not the same parts for a channel to replace when the file put it elsewhere.
+            const std::vector<double>& scale = model_.nodes[std::size_t(channel.node)].scale;
+            if (scale.size() == 3 && (scale[1] < 0 || scale[2] < 0))
+                warnAbout("node " + std::to_string(channel.node) + " is animated with a negative scale on y or z: its " +
+                          "animation may play differently once written back");
+        }
         if (!animation.channels.empty()) scene.animations.push_back(std::move(animation));
     }
     if (weights) warnAbout(std::to_string(weights) + " animation channels of morph target weights ignored");
