@@ -223,3 +223,49 @@ TEST_CASE("gltfNodeBytes and x3dNodeBytes are what a node drawing a stored mesh 
         }
     CHECK(sizes.size() >= 6);  // the transform and the name are what is measured
 }
+
+TEST_CASE("Animations are written to X3D as a TimeSensor, interpolators and ROUTEs", "[io][x3d]") {
+    Scene scene;
+    Primitive triangle;
+    triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    triangle.triangles = {{0, 1, 2}};
+    scene.meshes.push_back({"", {triangle}});
+    scene.nodes.resize(2);
+    scene.nodes[0].mesh = scene.nodes[1].mesh = 0;
+    scene.nodes[1].name = "slider";
+    scene.roots = {0, 1};
+    AnimationChannel turn, slide;
+    turn.node = 0;
+    turn.path = AnimationChannel::Path::Rotation;
+    turn.times = {0, 1.5, 3};
+    const double half = std::sqrt(0.5);
+    turn.values = {0, 0, 0, 1, 0, 0, half, half, 0, 0, 1, 0};  // quarter and half turns about z
+    slide.node = 1;
+    slide.interpolation = AnimationChannel::Interpolation::Step;
+    slide.times = {1, 3};
+    slide.values = {0, 0, 0, 2, 0, 0};
+    scene.animations.push_back({"walk", {turn, slide}});
+    validateScene(scene);
+    TemporaryFolder folder;
+    writeScene(scene, folder / "walk.x3d");
+    const std::string text = readTextFile(folder / "walk.x3d");
+    INFO(text);
+    CHECK(text.find("<TimeSensor DEF='walk' cycleInterval='3' loop='true'/>") != std::string::npos);
+    CHECK(text.find("<Transform DEF='node0'") != std::string::npos);  // a DEF for the unnamed node's ROUTE
+    CHECK(text.find("<OrientationInterpolator DEF='walk_channel0' key='0 0.5 1' keyValue='1 0 0 0, 0 0 1 1.5707963, 0 0 1 3.1415927'/>") !=
+          std::string::npos);
+    // STEP: every key but the first doubled, the earlier value holding until it.
+    CHECK(text.find("<PositionInterpolator DEF='walk_channel1' key='0.33333334 1 1' keyValue='0 0 0, 0 0 0, 2 0 0'/>") !=
+          std::string::npos);
+    CHECK(text.find("<ROUTE fromNode='walk' fromField='fraction_changed' toNode='walk_channel0' toField='set_fraction'/>") !=
+          std::string::npos);
+    CHECK(text.find("<ROUTE fromNode='walk_channel0' fromField='value_changed' toNode='node0' toField='set_rotation'/>") !=
+          std::string::npos);
+    CHECK(text.find("<ROUTE fromNode='walk_channel1' fromField='value_changed' toNode='slider' toField='set_translation'/>") !=
+          std::string::npos);
+    // Read back, the scene is drawn at rest, and says so.
+    const Scene back = readScene(folder / "walk.x3d");
+    CHECK(sceneStatistics(back).trianglesDrawn == 2);
+    CHECK(std::any_of(back.warnings.begin(), back.warnings.end(),
+                      [](const std::string& w) { return w.find("animations (TimeSensor") != std::string::npos; }));
+}

@@ -4,6 +4,7 @@
 // WriteOptions::draco is false.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "rotation_and_scale.hpp"
 #include "rounded.hpp"
 
 #include <draco/compression/decode.h>
@@ -260,18 +261,6 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     indices["count"] = primitive.triangles.size() * 3;
     indices["type"] = "SCALAR";
     return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
-}
-
-// A linear map as glTF's R * S: a rotation, then a scale along the rotated axes (a mirror as one negative
-// scale). Nothing when the map shears (L^T L is not diagonal), which TRS cannot hold.
-std::optional<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> asRotationAndScale(const Eigen::Matrix3d& linear) {
-    const Eigen::Matrix3d gram = linear.transpose() * linear;
-    const double size = gram.diagonal().maxCoeff();
-    if (!(size > 0) || (gram - Eigen::Matrix3d(gram.diagonal().asDiagonal())).norm() > 1e-9 * size) return std::nullopt;
-    Eigen::Vector3d scale = gram.diagonal().cwiseSqrt();
-    if ((scale.array() <= 0).any()) return std::nullopt;
-    if (linear.determinant() < 0) scale.x() = -scale.x();
-    return std::pair{Eigen::Matrix3d(linear * scale.cwiseInverse().asDiagonal()), scale};
 }
 
 // A node's fields: translation (float32, what a glTF reader keeps of it), rotation quaternion to 1e-7 and

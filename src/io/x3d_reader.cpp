@@ -217,6 +217,8 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
     if (!kGroupingNodes.count(type)) {
         if (kUnsupportedGeometry.count(type)) ++skippedGeometry_[type];
         if (type == "ProtoInstance") ++skippedGeometry_["ProtoInstance (prototypes are not supported)"];
+        if (type == "TimeSensor" || (type.size() > 12 && type.compare(type.size() - 12, 12, "Interpolator") == 0))
+            notes_.insert("animations (TimeSensor, interpolators and their ROUTEs) are not read: the scene is drawn at rest");
         return -1;  // Viewpoint, lights, sensors, scripts, metadata, ...: nothing drawn
     }
     Node out;

@@ -1,9 +1,11 @@
 // X3D writer: XML encoding with X3D 3.3 Interchange nodes only, so that X3D 3 and 4 readers (X_ITE,
 // assimp, meshlab) load it. Each mesh becomes one DEF'd Group of Shapes the first time a node draws it
 // and a USE afterwards; node transforms become Transforms (any affine matrix, mirrors included, through
-// rotation, scale and scaleOrientation). `.x3dz` is the same, gzip-compressed.
+// rotation, scale and scaleOrientation); animations become a TimeSensor, interpolators and ROUTEs. `.x3dz`
+// is the same, gzip-compressed.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "rotation_and_scale.hpp"
 #include "rounded.hpp"
 
 #include <Eigen/Geometry>
@@ -11,7 +13,9 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <charconv>
+#include <map>
 #include <set>
 
 namespace symcompress {
@@ -67,17 +71,9 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
     return out;
 }
 
-// X3D's Transform is T * R * SR * S * SR^-1. With the SVD L = U S V^T of the linear part, R = U V^T and
-// SR = V reproduce any affine matrix; a mirror shows up as a negative scale.
-void appendTransformFields(std::string& out, const Eigen::Matrix4d& matrix) {
-    const Eigen::Matrix3d linear = matrix.topLeftCorner<3, 3>();
-    Eigen::JacobiSVD<Eigen::Matrix3d> svd(linear, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Eigen::Matrix3d u = svd.matrixU(), v = svd.matrixV();
-    Eigen::Vector3d scale = svd.singularValues();
-    if (v.determinant() < 0) v.col(2) = -v.col(2), u.col(2) = -u.col(2);
-    if (u.determinant() < 0) u.col(2) = -u.col(2), scale[2] = -scale[2];
-    const Eigen::AngleAxisd rotation(u * v.transpose()), orientation(v);
-    const Eigen::Vector3d translation = matrix.topRightCorner<3, 1>();
+// A Transform's fields, each left out when it does nothing.
+void appendTransform(std::string& out, const Eigen::Vector3d& translation, const Eigen::AngleAxisd& rotation,
+                     const Eigen::Vector3d& scale, const Eigen::AngleAxisd& orientation) {
     auto placement = [](double x) { return rounded(x, kPlacementDigits); };
     auto turn = [](double x) { return roundedDecimals(x, kRotationDecimals); };
     if (!translation.isZero(0)) {
@@ -102,6 +98,25 @@ void appendTransformFields(std::string& out, const Eigen::Matrix4d& matrix) {
     }
 }
 
+// X3D's Transform is T * R * SR * S * SR^-1. With the SVD L = U S V^T of the linear part, R = U V^T and
+// SR = V reproduce any affine matrix; a mirror shows up as a negative scale. An animated node is written
+// as glTF holds it, translation, rotation and scale (no scaleOrientation), the parts its channels replace.
+void appendTransformFields(std::string& out, const Eigen::Matrix4d& matrix, bool animated) {
+    const Eigen::Matrix3d linear = matrix.topLeftCorner<3, 3>();
+    const Eigen::Vector3d translation = matrix.topRightCorner<3, 1>();
+    if (animated)
+        if (const auto trs = asRotationAndScale(linear)) {
+            appendTransform(out, translation, Eigen::AngleAxisd(trs->first), trs->second, Eigen::AngleAxisd::Identity());
+            return;
+        }
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(linear, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d u = svd.matrixU(), v = svd.matrixV();
+    Eigen::Vector3d scale = svd.singularValues();
+    if (v.determinant() < 0) v.col(2) = -v.col(2), u.col(2) = -u.col(2);
+    if (u.determinant() < 0) u.col(2) = -u.col(2), scale[2] = -scale[2];
+    appendTransform(out, translation, Eigen::AngleAxisd(u * v.transpose()), scale, Eigen::AngleAxisd(v));
+}
+
 class X3dWriter {
 public:
     X3dWriter(const Scene& scene, const WriteOptions& options) : scene_(scene), options_(options) {}
@@ -116,7 +131,10 @@ public:
         if (!options_.extrasJson.empty())
             out_ += "<MetadataString name='symcompress' value='\"" + escapeXml(escapeQuotes(options_.extrasJson)) + "\"'/>\n";
         written_.assign(scene_.meshes.size(), false);
+        for (const Animation& animation : scene_.animations)
+            for (const AnimationChannel& channel : animation.channels) nodeDef_[channel.node];
         for (int root : scene_.roots) writeNode(root, 1);
+        for (std::size_t a = 0; a < scene_.animations.size(); ++a) writeAnimation(scene_.animations[a], a);
         out_ += "</Scene>\n</X3D>\n";
         return std::move(out_);
     }
@@ -137,13 +155,72 @@ private:
         const Node& node = scene_.nodes[index];
         indent(depth);
         out_ += "<Transform";
-        if (!node.name.empty()) out_ += " DEF='" + uniqueName(node.name) + "'";
-        appendTransformFields(out_, node.transform);
+        // Animated nodes need a DEF for their ROUTEs (nodeDef_ holds an entry for each).
+        const auto animated = nodeDef_.find(index);
+        if (!node.name.empty() || animated != nodeDef_.end()) {
+            const std::string def = uniqueName(node.name.empty() ? "node" + std::to_string(index) : node.name);
+            out_ += " DEF='" + def + "'";
+            if (animated != nodeDef_.end()) animated->second = def;
+        }
+        appendTransformFields(out_, node.transform, animated != nodeDef_.end());
         out_ += ">\n";
         if (node.mesh >= 0) writeMesh(node.mesh, depth + 1);
         for (int child : node.children) writeNode(child, depth + 1);
         indent(depth);
         out_ += "</Transform>\n";
+    }
+
+    // A glTF animation as X3D 3.3 Interchange nodes: a looping TimeSensor whose cycle is the animation's
+    // length, one interpolator per channel keyed on the fraction of the cycle, and ROUTEs from the clock
+    // to the interpolators and from them to the Transforms. STEP keys are doubled (a jump at each key);
+    // cubic splines keep their values at the keys and are interpolated linearly between them.
+    void writeAnimation(const Animation& animation, std::size_t index) {
+        double cycle = 0;
+        for (const AnimationChannel& channel : animation.channels) cycle = std::max(cycle, channel.times.back());
+        if (!(cycle > 0)) cycle = 1;
+        const std::string clock = uniqueName(animation.name.empty() ? "animation" + std::to_string(index) : animation.name);
+        out_ += " <TimeSensor DEF='" + clock + "' cycleInterval='";
+        appendNumber(out_, cycle);
+        out_ += "' loop='true'/>\n";
+        for (std::size_t c = 0; c < animation.channels.size(); ++c) {
+            const AnimationChannel& channel = animation.channels[c];
+            if (nodeDef_.at(channel.node).empty()) continue;  // a node no root reaches: nothing drawn to move
+            const bool rotation = channel.path == AnimationChannel::Path::Rotation;
+            const std::size_t components = rotation ? 4 : 3;
+            const std::size_t stride = components * (channel.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1);
+            const std::size_t offset = channel.interpolation == AnimationChannel::Interpolation::CubicSpline ? components : 0;
+            std::vector<std::pair<double, std::size_t>> keys;  // fraction, index of the key's value
+            for (std::size_t k = 0; k < channel.times.size(); ++k) {
+                if (channel.interpolation == AnimationChannel::Interpolation::Step && k > 0)
+                    keys.push_back({channel.times[k] / cycle, k - 1});
+                keys.push_back({channel.times[k] / cycle, k});
+            }
+            const std::string interpolator = uniqueName(clock + "_channel" + std::to_string(c));
+            out_ += std::string(" <") + (rotation ? "OrientationInterpolator" : "PositionInterpolator") + " DEF='" + interpolator + "' key='";
+            for (std::size_t k = 0; k < keys.size(); ++k) {
+                if (k) out_ += ' ';
+                appendNumber(out_, static_cast<float>(keys[k].first));  // key times are float32 in glTF
+            }
+            out_ += "' keyValue='";
+            for (std::size_t k = 0; k < keys.size(); ++k) {
+                if (k) out_ += ", ";
+                const double* value = channel.values.data() + keys[k].second * stride + offset;
+                if (rotation) {
+                    const Eigen::AngleAxisd turn(Eigen::Quaterniond(value[3], value[0], value[1], value[2]).normalized());
+                    const auto decimals = [](double x) { return roundedDecimals(x, kRotationDecimals); };
+                    appendVector(out_, turn.axis(), 3, decimals);
+                    out_ += ' ';
+                    appendNumber(out_, decimals(turn.angle()));
+                } else {
+                    appendVector(out_, Eigen::Vector3d(value[0], value[1], value[2]), 3);
+                }
+            }
+            out_ += "'/>\n";
+            const char* field = rotation ? "set_rotation" : channel.path == AnimationChannel::Path::Scale ? "set_scale" : "set_translation";
+            out_ += " <ROUTE fromNode='" + clock + "' fromField='fraction_changed' toNode='" + interpolator + "' toField='set_fraction'/>\n";
+            out_ += " <ROUTE fromNode='" + interpolator + "' fromField='value_changed' toNode='" + nodeDef_.at(channel.node) +
+                    "' toField='" + field + "'/>\n";
+        }
     }
 
     // DEF names must be unique in the file.
@@ -261,6 +338,7 @@ private:
     std::vector<bool> written_;
     std::set<int> materialWritten_;
     std::set<std::string> names_;
+    std::map<int, std::string> nodeDef_;  // animated node -> its DEF
 };
 
 std::string gzip(const std::string& text, const fs::path& file) {

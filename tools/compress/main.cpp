@@ -69,9 +69,20 @@ int runInfo(const fs::path& file, bool json) {
 
 // What the output's format cannot hold, said before the writer leaves it out.
 void warnAboutWhatTheFormatDrops(Scene& scene, const fs::path& output) {
-    if (!scene.animations.empty() && formatFromExtension(output) != FileFormat::Glb && formatFromExtension(output) != FileFormat::Gltf)
+    const FileFormat format = formatFromExtension(output);
+    if (scene.animations.empty() || format == FileFormat::Glb || format == FileFormat::Gltf) return;
+    if (format != FileFormat::X3d) {
         scene.warnings.push_back(std::to_string(scene.animations.size()) + " animations not written: " +
                                  output.extension().string() + " output is drawn at rest");
+        return;
+    }
+    std::size_t cubic = 0;
+    for (const Animation& animation : scene.animations)
+        for (const AnimationChannel& channel : animation.channels)
+            cubic += channel.interpolation == AnimationChannel::Interpolation::CubicSpline;
+    if (cubic)
+        scene.warnings.push_back(std::to_string(cubic) + " cubic-spline animation channels written as linear between " +
+                                 "their keys (X3D 3.3 has no cubic orientation interpolator)");
 }
 
 int runConvert(const fs::path& input, const fs::path& output, const WriteOptions& options, bool quiet) {
