@@ -457,10 +457,34 @@ TEST_CASE("Animated nodes are kept as they are with their animations: the milk t
         CHECK(to.times == from.times);
         CHECK(to.values == from.values);
     }
-    // X3D keeps no animation: said, not silent.
-    const CommandResult x3d = runCommand(kSymcompress + " " + quoted(input) + " -o " + quoted(folder / "truck.x3d"));
+    // As X3D: a TimeSensor and an interpolator for each wheel (X_ITE loads it: test_interop).
+    const CommandResult x3d = runCommand(kSymcompress + " -q " + quoted(input) + " -o " + quoted(folder / "truck.x3d"));
     CHECK(x3d.status == 0);
-    CHECK(x3d.output.find("1 animations not written: .x3d output is drawn at rest") != std::string::npos);
+    const std::string text = readTextFile(folder / "truck.x3d");
+    CHECK(text.find("<TimeSensor") != std::string::npos);
+    CHECK(text.find("<OrientationInterpolator", text.find("<OrientationInterpolator") + 1) != std::string::npos);
+    // OBJ keeps none: said, not silent.
+    const CommandResult obj = runCommand(kSymcompress + " convert " + quoted(input) + " -o " + quoted(folder / "truck.obj"));
+    CHECK(obj.status == 0);
+    CHECK(obj.output.find("1 animations not written: .obj output is drawn at rest") != std::string::npos);
+}
+
+TEST_CASE("Animation channels of nodes the scene does not draw are left out, and said so", "[compress]") {
+    Primitive box;
+    samples::appendMesh(box, samples::boxMesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 2, 3)));
+    Scene scene = samples::singleMeshScene("box", box, {0.5, 0.5, 0.5, 1});
+    scene.nodes.push_back(scene.nodes[0]);  // a second node drawing the box, which no root reaches
+    AnimationChannel slide;
+    slide.node = int(scene.nodes.size()) - 1;
+    slide.times = {0, 1};
+    slide.values = {0, 0, 0, 1, 0, 0};
+    scene.animations.push_back({"slide", {slide}});
+    validateScene(scene);
+    const CompressedScene compressed = compressScene(scene);
+    CHECK(compressed.scene.animations.empty());
+    CHECK(compressed.stats.animatedNodesKept == 0);
+    CHECK(compressed.scene.warnings.back() == "1 animation channels of nodes the scene does not draw left out");
+    CHECK(compressed.stats.trianglesStored == 12);
 }
 
 TEST_CASE("Symmetric parts are stored as their fundamental regions where that pays (X3D)", "[compress]") {

@@ -365,7 +365,7 @@ void addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const s
 // other kept meshes through `keptMesh` (input mesh -> output mesh).
 void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Scene& out, std::map<int, int>& keptMesh,
                           CompressionStats& stats) {
-    if (analysis.animatedSubtrees.empty()) return;
+    if (input.animations.empty()) return;
     const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
     std::map<int, int> nodeOf;  // input node -> output node
     auto copy = [&](auto&& self, int node) -> int {
@@ -395,10 +395,23 @@ void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Sce
         const int copied = copy(copy, top);
         out.nodes[std::size_t(holder)].children.push_back(copied);
     }
+    std::size_t undrawn = 0;  // channels of nodes that no root reaches
     for (Animation animation : input.animations) {
-        for (AnimationChannel& channel : animation.channels) channel.node = nodeOf.at(channel.node);
-        out.animations.push_back(std::move(animation));
+        std::vector<AnimationChannel> kept;
+        for (AnimationChannel& channel : animation.channels) {
+            const auto copied = nodeOf.find(channel.node);
+            if (copied == nodeOf.end()) {
+                ++undrawn;
+                continue;
+            }
+            channel.node = copied->second;
+            kept.push_back(std::move(channel));
+        }
+        animation.channels = std::move(kept);
+        if (!animation.channels.empty()) out.animations.push_back(std::move(animation));
     }
+    if (undrawn)
+        out.warnings.push_back(std::to_string(undrawn) + " animation channels of nodes the scene does not draw left out");
 }
 
 // The primitive with its positions only: what `reproduces` compares when attributes are ignored.
