@@ -27,7 +27,12 @@ TEST_CASE("symcompress info --json has the documented keys", "[cli]") {
     CHECK(json["materials"].is_number());
     CHECK(json["bbox"]["min"].size() == 3);
     CHECK(json["bbox"]["max"].size() == 3);
+    CHECK(json["animations"] == 0);
     CHECK(json["warnings"].is_array());
+    const CommandResult truck =
+        runCommand(kSymcompress + " info --json " + quoted(modelPath("cesium_milk_truck/CesiumMilkTruck.gltf")));
+    REQUIRE(truck.status == 0);
+    CHECK(nlohmann::json::parse(truck.output)["animations"] == 1);
 }
 
 TEST_CASE("symcompress detect --json lists the whole group", "[cli][symmetry]") {

@@ -41,6 +41,7 @@ int runInfo(const fs::path& file, bool json) {
         out["meshes"] = statistics.meshes;
         out["materials"] = statistics.materials;
         out["textures"] = scene.textures.size();
+        out["animations"] = scene.animations.size();
         if (statistics.bounds.isEmpty())
             out["bbox"] = nullptr;
         else
@@ -56,6 +57,7 @@ int runInfo(const fs::path& file, bool json) {
     std::printf("  meshes            %zu\n", statistics.meshes);
     std::printf("  materials         %zu\n", statistics.materials);
     std::printf("  textures          %zu\n", scene.textures.size());
+    std::printf("  animations        %zu\n", scene.animations.size());
     if (statistics.bounds.isEmpty()) {
         std::printf("  bounding box      (empty)\n");
     } else {
