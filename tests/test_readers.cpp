@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -209,4 +210,45 @@ TEST_CASE("Node animations are read and written back; channels the scene cannot 
         CHECK(channel.times == std::vector<double>{0, 1});
         CHECK(channel.values == std::vector<double>{0, 0, 0, 2, 0, 0});
     }
+}
+
+TEST_CASE("X3D animations are read from a TimeSensor, interpolators and ROUTEs; what glTF cannot hold is said", "[io][x3d]") {
+    TemporaryFolder folder;
+    const auto file = folder / "clock.x3d";
+    writeTextFile(file, R"(<X3D><Scene>
+        <Transform DEF='door' translation='1 0 0'><Shape><IndexedFaceSet coordIndex='0 1 2 -1'><Coordinate point='0 0 0 1 0 0 0 1 0'/></IndexedFaceSet></Shape></Transform>
+        <Transform DEF='hinged' center='1 0 0'><Shape><IndexedFaceSet coordIndex='0 1 2 -1'><Coordinate point='0 0 0 1 0 0 0 1 0'/></IndexedFaceSet></Shape></Transform>
+        <Transform USE='door'/>
+        <TimeSensor DEF='clock' cycleInterval='4' loop='true'/>
+        <OrientationInterpolator DEF='swing' key='0 0.5 1' keyValue='0 1 0 0, 0 1 0 1.5707963, 0 1 0 0'/>
+        <PositionInterpolator DEF='push' key='0 1' keyValue='1 0 0, 2 0 0'/>
+        <ROUTE fromNode='clock' fromField='fraction_changed' toNode='swing' toField='set_fraction'/>
+        <ROUTE fromNode='clock' fromField='fraction_changed' toNode='push' toField='set_fraction'/>
+        <ROUTE fromNode='swing' fromField='value_changed' toNode='door' toField='set_rotation'/>
+        <ROUTE fromNode='swing' fromField='value_changed' toNode='hinged' toField='rotation'/>
+        <ROUTE fromNode='push' fromField='value_changed' toNode='door' toField='set_translation'/>
+    </Scene></X3D>)");
+    const Scene scene = readScene(file);
+    validateScene(scene);
+    // The hinged Transform turns about its center, which glTF's translation-rotation-scale cannot hold.
+    CHECK(hasWarning(scene, "1 animation ROUTEs left out"));
+    REQUIRE(scene.animations.size() == 1);
+    CHECK(scene.animations[0].name == "clock");
+    // The door is drawn twice (a DEF and a USE): each copy gets the rotation and the translation.
+    const auto& channels = scene.animations[0].channels;
+    REQUIRE(channels.size() == 4);
+    std::set<int> doors;
+    for (const AnimationChannel& channel : channels) {
+        doors.insert(channel.node);
+        CHECK(scene.nodes[std::size_t(channel.node)].name == "door");
+        CHECK(channel.times.back() == Approx(4));
+    }
+    CHECK(doors.size() == 2);
+    const AnimationChannel& swing = channels[0];
+    CHECK(swing.path == AnimationChannel::Path::Rotation);
+    CHECK(swing.times == std::vector<double>{0, 2, 4});
+    CHECK(swing.values[4 + 1] == Approx(std::sqrt(0.5)));  // y of a quarter turn about y
+    CHECK(swing.values[4 + 3] == Approx(std::sqrt(0.5)));
+    CHECK(channels[2].path == AnimationChannel::Path::Translation);
+    CHECK(channels[2].values == std::vector<double>{1, 0, 0, 2, 0, 0});
 }

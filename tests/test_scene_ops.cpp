@@ -180,4 +180,5 @@ TEST_CASE("validateScene checks animation channels", "[scene]") {
     expectBroken([](AnimationChannel& c) { c.path = AnimationChannel::Path::Scale; }, "8 values for 2 keys");
     expectBroken([](AnimationChannel& c) { c.interpolation = AnimationChannel::Interpolation::CubicSpline; }, "8 values for 2 keys");
     expectBroken([](AnimationChannel& c) { c.values[2] = std::nan(""); }, "NaN");
+    expectBroken([](AnimationChannel& c) { c.times = {1, 1}; }, "key times do not increase");
 }

@@ -8,8 +8,8 @@
 // - Node::mesh is -1 or an index into Scene::meshes; Node::children index into Scene::nodes and the
 //   node graph is a forest (a node is the child of at most one node, no cycles);
 // - Material::baseColorTexture is -1 or an index into Scene::textures;
-// - every AnimationChannel targets a node of Scene::nodes, has finite times and values, and as many
-//   values as its times, path and interpolation ask for.
+// - every AnimationChannel targets a node of Scene::nodes, has finite, increasing times and finite values,
+//   as many as its times, path and interpolation ask for.
 // Geometry is double precision; readers convert whatever the file stores.
 #pragma once
 
@@ -113,7 +113,7 @@ struct AnimationChannel {
     int node = -1;  // index into Scene::nodes
     enum class Path { Translation, Rotation, Scale } path = Path::Translation;
     enum class Interpolation { Linear, Step, CubicSpline } interpolation = Interpolation::Linear;
-    std::vector<double> times;   // seconds, not decreasing
+    std::vector<double> times;   // seconds, increasing
     // Per key: 3 values (translation, scale) or 4 (rotation quaternion x, y, z, w); cubic splines store
     // in-tangent, value and out-tangent for each key.
     std::vector<double> values;

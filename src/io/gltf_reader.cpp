@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -458,8 +459,8 @@ void GltfReader::readAnimations(Scene& scene) {
                 warnAbout(where + " ignored: its keys and values do not match");
             else if (!std::all_of(out.times.begin(), out.times.end(), finite) || !std::all_of(out.values.begin(), out.values.end(), finite))
                 warnAbout(where + " ignored: NaN or infinite keys or values");
-            else if (!std::is_sorted(out.times.begin(), out.times.end()))
-                warnAbout(where + " ignored: its key times decrease");
+            else if (std::adjacent_find(out.times.begin(), out.times.end(), std::greater_equal<double>()) != out.times.end())
+                warnAbout(where + " ignored: its key times do not increase");
             else
                 animation.channels.push_back(std::move(out));
         }

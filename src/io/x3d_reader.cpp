@@ -10,8 +10,10 @@
 
 #include <zlib.h>
 
-#include <cstring>
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -60,12 +62,14 @@ private:
     bool readGeometry(const pugi::xml_node& geometry, Primitive& out);
     void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces);
     void readInline(const pugi::xml_node& node, std::vector<int>& into);
+    void readAnimations();
 
     fs::path file_;
     Scene& scene_;
     std::set<fs::path>& inlineStack_;
     pugi::xml_document document_;
     std::map<std::string, pugi::xml_node> definitions_;
+    std::map<std::string, std::vector<int>> nodesOfTransform_;  // a DEF'd Transform's scene nodes (one per USE)
     std::map<const void*, int> meshOfShape_, materialOfAppearance_, textureOfNode_;
     std::map<std::string, int> skippedGeometry_;
     std::set<std::string> useStack_;
@@ -167,6 +171,7 @@ std::vector<int> X3dReader::read() {
     if (!scene) throw FileError(file_, "no <X3D><Scene> element (only the XML encoding of X3D is read)");
     std::vector<int> roots;
     readChildren(scene, roots, 0);
+    readAnimations();
     const std::string name = file_.filename().string();
     for (const auto& [type, count] : skippedGeometry_)
         scene_.warnings.push_back(name + ": " + std::to_string(count) + " " + type + " node" + (count > 1 ? "s" : "") +
@@ -176,6 +181,84 @@ std::vector<int> X3dReader::read() {
         scene_.warnings.push_back(name + ": " + std::to_string(degenerateFaces_) +
                                   " faces with fewer than 3 distinct corners or no area skipped");
     return roots;
+}
+
+// A ROUTE from a Position- or OrientationInterpolator's value to a Transform's translation, rotation or
+// scale, the interpolator driven by a TimeSensor's fraction, becomes a channel of that TimeSensor's
+// animation: key times the cycleInterval (nudged to increase strictly where keys repeat, as glTF asks),
+// axis-angle values as quaternions. Routes that do not fit (other interpolators, a Transform with a
+// center or scaleOrientation, which glTF's translation-rotation-scale cannot hold) are left out with a note.
+void X3dReader::readAnimations() {
+    std::map<std::string, pugi::xml_node> byDef;
+    for (const pugi::xpath_node& found : document_.select_nodes("//*[@DEF]")) byDef[found.node().attribute("DEF").value()] = found.node();
+    const pugi::xpath_node_set routes = document_.select_nodes("//ROUTE");
+    auto attribute = [](const pugi::xml_node& node, const char* name) { return std::string(node.attribute(name).value()); };
+    // "set_rotation", "rotation" and "rotation_changed" name one field.
+    auto field = [&](const pugi::xml_node& route, const char* name) {
+        std::string value = attribute(route, name);
+        if (value.rfind("set_", 0) == 0) value.erase(0, 4);
+        if (value.size() > 8 && value.compare(value.size() - 8, 8, "_changed") == 0) value.erase(value.size() - 8);
+        return value;
+    };
+    auto defined = [&](const std::string& def, const char* type) {
+        const auto found = byDef.find(def);
+        return found != byDef.end() && std::strcmp(found->second.name(), type) == 0 ? found->second : pugi::xml_node();
+    };
+    std::map<std::string, std::size_t> animationOf;  // TimeSensor DEF -> index into Scene::animations
+    std::size_t leftOut = 0;
+    for (const pugi::xpath_node& found : routes) {
+        const pugi::xml_node route = found.node();
+        const std::string to = field(route, "toField");
+        if (field(route, "fromField") != "value" || (to != "translation" && to != "rotation" && to != "scale")) continue;
+        const std::string source = attribute(route, "fromNode");
+        const pugi::xml_node interpolator = defined(source, to == "rotation" ? "OrientationInterpolator" : "PositionInterpolator");
+        const pugi::xml_node transform = defined(attribute(route, "toNode"), "Transform");
+        const auto targets = nodesOfTransform_.find(attribute(route, "toNode"));
+        pugi::xml_node clock;
+        for (const pugi::xpath_node& other : routes)
+            if (attribute(other.node(), "toNode") == source && field(other.node(), "toField") == "fraction" &&
+                field(other.node(), "fromField") == "fraction")
+                clock = defined(attribute(other.node(), "fromNode"), "TimeSensor");
+        if (!interpolator || !transform || targets == nodesOfTransform_.end() || !clock ||
+            !vector3(transform, "center", Eigen::Vector3d::Zero()).isZero() ||
+            rotationField(numbers(transform, "scaleOrientation")).angle() != 0) {
+            ++leftOut;
+            continue;
+        }
+        const bool rotation = to == "rotation";
+        const std::vector<double> keys = numbers(interpolator, "key"), values = numbers(interpolator, "keyValue");
+        const std::size_t components = rotation ? 4 : 3;
+        if (keys.empty() || values.size() != keys.size() * components || !std::is_sorted(keys.begin(), keys.end())) {
+            ++leftOut;
+            continue;
+        }
+        AnimationChannel channel;
+        channel.path = rotation ? AnimationChannel::Path::Rotation
+                                : to == "scale" ? AnimationChannel::Path::Scale : AnimationChannel::Path::Translation;
+        const double cycle = scalar(clock, "cycleInterval", 1);
+        for (std::size_t k = 0; k < keys.size(); ++k) {
+            double time = keys[k] * cycle;
+            if (k > 0 && !(time > channel.times.back()))
+                time = std::nextafter(static_cast<float>(channel.times.back()), std::numeric_limits<float>::infinity());
+            channel.times.push_back(time);
+            const double* value = values.data() + k * components;
+            if (rotation) {
+                const Eigen::Quaterniond q(rotationField({value[0], value[1], value[2], value[3]}));
+                channel.values.insert(channel.values.end(), {q.x(), q.y(), q.z(), q.w()});
+            } else {
+                channel.values.insert(channel.values.end(), value, value + 3);
+            }
+        }
+        auto [entry, added] = animationOf.emplace(attribute(clock, "DEF"), scene_.animations.size());
+        if (added) scene_.animations.push_back({attribute(clock, "DEF"), {}});
+        for (int node : targets->second) {
+            channel.node = node;
+            scene_.animations[entry->second].channels.push_back(channel);
+        }
+    }
+    if (leftOut)
+        notes_.insert(std::to_string(leftOut) + " animation ROUTEs left out (read: Position and Orientation interpolators " +
+                      "driven by a TimeSensor, on Transforms without center or scaleOrientation)");
 }
 
 void X3dReader::readChildren(const pugi::xml_node& parent, std::vector<int>& into, int depth) {
@@ -217,8 +300,6 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
     if (!kGroupingNodes.count(type)) {
         if (kUnsupportedGeometry.count(type)) ++skippedGeometry_[type];
         if (type == "ProtoInstance") ++skippedGeometry_["ProtoInstance (prototypes are not supported)"];
-        if (type == "TimeSensor" || (type.size() > 12 && type.compare(type.size() - 12, 12, "Interpolator") == 0))
-            notes_.insert("animations (TimeSensor, interpolators and their ROUTEs) are not read: the scene is drawn at rest");
         return -1;  // Viewpoint, lights, sensors, scripts, metadata, ...: nothing drawn
     }
     Node out;
@@ -250,6 +331,7 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
     }
     const int index = static_cast<int>(scene_.nodes.size());
     out.children = children;
+    if (type == "Transform" && !out.name.empty()) nodesOfTransform_[out.name].push_back(index);
     scene_.nodes.push_back(out);
     return index;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -137,6 +138,8 @@ void validateScene(const Scene& scene) {
             if (!std::all_of(channel.times.begin(), channel.times.end(), finite) ||
                 !std::all_of(channel.values.begin(), channel.values.end(), finite))
                 throw std::invalid_argument(where + ": NaN or infinite values");
+            if (std::adjacent_find(channel.times.begin(), channel.times.end(), std::greater_equal<double>()) != channel.times.end())
+                throw std::invalid_argument(where + ": key times do not increase");
         }
 }
 
