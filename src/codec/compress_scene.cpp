@@ -360,6 +360,25 @@ void addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const s
     out.nodes.push_back(std::move(node));
 }
 
+// Which nodes are animated or under an animated node (reached from the roots); `tops` gets the animated
+// nodes with no animated ancestor, in increasing order.
+std::vector<bool> markAnimatedSubtrees(const Scene& input, std::vector<int>& tops) {
+    std::vector<bool> animated(input.nodes.size(), false), inSubtree(input.nodes.size(), false);
+    for (const Animation& animation : input.animations)
+        for (const AnimationChannel& channel : animation.channels) animated[std::size_t(channel.node)] = true;
+    std::vector<std::pair<int, bool>> stack;  // node, whether an ancestor is animated
+    for (int root : input.roots) stack.push_back({root, false});
+    while (!stack.empty()) {
+        const auto [node, under] = stack.back();
+        stack.pop_back();
+        if (animated[std::size_t(node)] && !under) tops.push_back(node);
+        inSubtree[std::size_t(node)] = under || animated[std::size_t(node)];
+        for (int child : input.nodes[std::size_t(node)].children) stack.push_back({child, inSubtree[std::size_t(node)]});
+    }
+    std::sort(tops.begin(), tops.end());
+    return inSubtree;
+}
+
 // The animated subtrees as they are (SceneAnalysis::animatedSubtrees), each under a root node holding its
 // parent's world transform, and the input's animations retargeted to them. Meshes are shared with the
 // other kept meshes through `keptMesh` (input mesh -> output mesh).
@@ -583,25 +602,10 @@ SceneAnalysis analyzeScene(const Scene& input, const CompressOptions& options) {
     SceneAnalysis analysis;
     auto start = std::chrono::steady_clock::now();
     analysis.soup = flattenScene(input);
-    {
-        std::vector<bool> animated(input.nodes.size(), false), inSubtree(input.nodes.size(), false);
-        for (const Animation& animation : input.animations)
-            for (const AnimationChannel& channel : animation.channels) animated[std::size_t(channel.node)] = true;
-        // Depth first from the roots, marking every node under an animated one.
-        std::vector<std::pair<int, bool>> stack;
-        for (int root : input.roots) stack.push_back({root, false});
-        while (!stack.empty()) {
-            const auto [node, under] = stack.back();
-            stack.pop_back();
-            if (animated[std::size_t(node)] && !under) analysis.animatedSubtrees.push_back(node);
-            inSubtree[std::size_t(node)] = under || animated[std::size_t(node)];
-            for (int child : input.nodes[std::size_t(node)].children) stack.push_back({child, inSubtree[std::size_t(node)]});
-        }
-        std::sort(analysis.animatedSubtrees.begin(), analysis.animatedSubtrees.end());
-        analysis.soup.erase(std::remove_if(analysis.soup.begin(), analysis.soup.end(),
-                                           [&](const WorldPrimitive& placed) { return inSubtree[std::size_t(placed.node)]; }),
-                            analysis.soup.end());
-    }
+    const std::vector<bool> animated = markAnimatedSubtrees(input, analysis.animatedSubtrees);
+    analysis.soup.erase(std::remove_if(analysis.soup.begin(), analysis.soup.end(),
+                                       [&](const WorldPrimitive& placed) { return animated[std::size_t(placed.node)]; }),
+                        analysis.soup.end());
     if (options.keepInputInstances) {
         // A mesh drawn by two or more nodes, one of them scaling or shearing it, is the author's instancing
         // of copies that are not congruent: kept as it is, and left out of the tiles. (Rigid copies are
@@ -760,10 +764,10 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
                 for (std::size_t j = 0; j < r.instances.size(); ++j) copiesInTile.push_back(instanceTransform(r, j));
                 return nodesCost(copiesInTile);
             };
+            const double alone = costs.alone(c.prototype), perNode = (instanced - alone) / copies;
             if (group.size() > 1)
-                std::tie(region, regional) =
-                    cheapestRegion(prototype, group, center, tolerance, options.seamGridBits, costs, costs.alone(c.prototype),
-                                   (instanced - costs.alone(c.prototype)) / copies, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
+                std::tie(region, regional) = cheapestRegion(prototype, group, center, tolerance, options.seamGridBits, costs, alone,
+                                                            perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
         }
         const bool single = placed.size() == 1 && !region;
         if (single || copies * costs.merged(c.prototype) <= std::min(instanced, regional)) {
