@@ -117,6 +117,9 @@ struct AnimationChannel {
     // Per key: 3 values (translation, scale) or 4 (rotation quaternion x, y, z, w); cubic splines store
     // in-tangent, value and out-tangent for each key.
     std::vector<double> values;
+
+    std::size_t components() const { return path == Path::Rotation ? 4 : 3; }  // of one value
+    std::size_t valuesPerKey() const { return components() * (interpolation == Interpolation::CubicSpline ? 3 : 1); }
 };
 
 struct Animation {

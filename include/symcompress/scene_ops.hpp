@@ -16,6 +16,10 @@ Scene sceneOfOneMesh(const std::string& name, Primitive primitive);
 // Throws std::invalid_argument naming the first broken invariant of scene.hpp.
 void validateScene(const Scene& scene);
 
+// What breaks scene.hpp's invariants in an animation channel of a scene of `nodes` nodes, or "" when
+// nothing does (validateScene throws it; readers leave such a channel out with it as a warning).
+std::string animationChannelProblem(const AnimationChannel& channel, std::size_t nodes);
+
 // A primitive placed in world space: attributes transformed (normals by the inverse transpose and
 // renormalized), winding flipped where the world transform has a negative determinant.
 struct WorldPrimitive {

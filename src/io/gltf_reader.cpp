@@ -3,6 +3,7 @@
 // that accessors stay inside their buffers.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <tiny_gltf.h>
 
@@ -17,7 +18,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <functional>
 #include <map>
 #include <set>
 
@@ -451,16 +451,9 @@ void GltfReader::readAnimations(Scene& scene) {
                 continue;
             }
             out.times = readAccessor(sampler.input, 1, "animation input");
-            out.values = readAccessor(sampler.output, out.path == AnimationChannel::Path::Rotation ? 4 : 3, "animation output");
-            const std::size_t perKey = (out.path == AnimationChannel::Path::Rotation ? 4 : 3) *
-                                       (out.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1);
-            const auto finite = [](double v) { return std::isfinite(v); };
-            if (out.times.empty() || out.values.size() != out.times.size() * perKey)
-                warnAbout(where + " ignored: its keys and values do not match");
-            else if (!std::all_of(out.times.begin(), out.times.end(), finite) || !std::all_of(out.values.begin(), out.values.end(), finite))
-                warnAbout(where + " ignored: NaN or infinite keys or values");
-            else if (std::adjacent_find(out.times.begin(), out.times.end(), std::greater_equal<double>()) != out.times.end())
-                warnAbout(where + " ignored: its key times do not increase");
+            out.values = readAccessor(sampler.output, int(out.components()), "animation output");
+            if (const std::string problem = animationChannelProblem(out, scene.nodes.size()); !problem.empty())
+                warnAbout(where + " ignored: " + problem);
             else
                 animation.channels.push_back(std::move(out));
         }

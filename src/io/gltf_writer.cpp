@@ -428,7 +428,7 @@ Json writeAnimation(const Animation& animation, GltfBuilder& builder) {
         const std::vector<float> times(channel.times.begin(), channel.times.end()),
             values(channel.values.begin(), channel.values.end());
         Json sampler = {{"input", builder.addFloatAccessor(times, 1, "SCALAR", true, 0)},
-                        {"output", builder.addFloatAccessor(values, rotation ? 4 : 3, rotation ? "VEC4" : "VEC3", false, 0)}};
+                        {"output", builder.addFloatAccessor(values, int(channel.components()), rotation ? "VEC4" : "VEC3", false, 0)}};
         if (channel.interpolation == AnimationChannel::Interpolation::Step) sampler["interpolation"] = "STEP";
         if (channel.interpolation == AnimationChannel::Interpolation::CubicSpline) sampler["interpolation"] = "CUBICSPLINE";
         const char* path = rotation ? "rotation" : channel.path == AnimationChannel::Path::Scale ? "scale" : "translation";

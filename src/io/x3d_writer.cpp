@@ -186,9 +186,8 @@ private:
             const AnimationChannel& channel = animation.channels[c];
             if (nodeDef_.at(channel.node).empty()) continue;  // a node no root reaches: nothing drawn to move
             const bool rotation = channel.path == AnimationChannel::Path::Rotation;
-            const std::size_t components = rotation ? 4 : 3;
-            const std::size_t stride = components * (channel.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1);
-            const std::size_t offset = channel.interpolation == AnimationChannel::Interpolation::CubicSpline ? components : 0;
+            // A cubic spline's key is in-tangent, value, out-tangent: the value is the middle one.
+            const std::size_t stride = channel.valuesPerKey(), offset = stride > channel.components() ? channel.components() : 0;
             std::vector<std::pair<double, std::size_t>> keys;  // fraction, index of the key's value
             for (std::size_t k = 0; k < channel.times.size(); ++k) {
                 if (channel.interpolation == AnimationChannel::Interpolation::Step && k > 0)

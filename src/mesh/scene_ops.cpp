@@ -125,22 +125,21 @@ void validateScene(const Scene& scene) {
     for (int n = 0; n < nodeCount; ++n)
         if (!reached[n]) throw std::invalid_argument("node " + std::to_string(n) + " is part of a cycle");
     for (std::size_t a = 0; a < scene.animations.size(); ++a)
-        for (std::size_t c = 0; c < scene.animations[a].channels.size(); ++c) {
-            const AnimationChannel& channel = scene.animations[a].channels[c];
-            const std::string where = "animation " + std::to_string(a) + " channel " + std::to_string(c);
-            if (channel.node < 0 || channel.node >= nodeCount) throw std::invalid_argument(where + ": node index out of range");
-            const std::size_t perKey = (channel.path == AnimationChannel::Path::Rotation ? 4 : 3) *
-                                       (channel.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1);
-            if (channel.times.empty() || channel.values.size() != channel.times.size() * perKey)
-                throw std::invalid_argument(where + ": " + std::to_string(channel.values.size()) + " values for " +
-                                            std::to_string(channel.times.size()) + " keys");
-            const auto finite = [](double v) { return std::isfinite(v); };
-            if (!std::all_of(channel.times.begin(), channel.times.end(), finite) ||
-                !std::all_of(channel.values.begin(), channel.values.end(), finite))
-                throw std::invalid_argument(where + ": NaN or infinite values");
-            if (std::adjacent_find(channel.times.begin(), channel.times.end(), std::greater_equal<double>()) != channel.times.end())
-                throw std::invalid_argument(where + ": key times do not increase");
-        }
+        for (std::size_t c = 0; c < scene.animations[a].channels.size(); ++c)
+            if (const std::string problem = animationChannelProblem(scene.animations[a].channels[c], scene.nodes.size()); !problem.empty())
+                throw std::invalid_argument("animation " + std::to_string(a) + " channel " + std::to_string(c) + ": " + problem);
+}
+
+std::string animationChannelProblem(const AnimationChannel& channel, std::size_t nodes) {
+    if (channel.node < 0 || std::size_t(channel.node) >= nodes) return "node index out of range";
+    if (channel.times.empty() || channel.values.size() != channel.times.size() * channel.valuesPerKey())
+        return std::to_string(channel.values.size()) + " values for " + std::to_string(channel.times.size()) + " keys";
+    const auto finite = [](double v) { return std::isfinite(v); };
+    if (!std::all_of(channel.times.begin(), channel.times.end(), finite) || !std::all_of(channel.values.begin(), channel.values.end(), finite))
+        return "NaN or infinite values";
+    if (std::adjacent_find(channel.times.begin(), channel.times.end(), std::greater_equal<double>()) != channel.times.end())
+        return "key times do not increase";
+    return "";
 }
 
 std::vector<Eigen::Matrix4d> worldTransforms(const Scene& scene) {

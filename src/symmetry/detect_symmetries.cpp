@@ -71,14 +71,9 @@ public:
         const Eigen::Vector3d helper = std::abs(axis.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
         u_ = axis.cross(helper).normalized();
         v_ = axis.cross(u_);
-        // The Fourier factors of modeAmplitudes, e^(-2 pi i m k / azimuths), row m.
-        for (int m = 0; m < azimuths_ / 2; ++m)
-            for (int k = 0; k < azimuths_; ++k) twiddles_.push_back(std::polar(1.0, -2 * kPi * m * k / azimuths_));
         // The points `change` compares at, off the azimuths of modeAmplitudes, and the functions there:
         // the same for every map tried about this axis.
-        for (double theta : kRingAngles)
-            for (double ring : {theta, kPi - theta})
-                for (int k = 0; k < azimuths_; ++k) changePoints_.push_back(direction(ring, 2 * kPi * (k + 0.37) / azimuths_));
+        changePoints_ = ringPoints(0.37);
         for (const MomentFunction& f : functions_) {
             std::vector<double> values;
             double scale = 0;
@@ -95,14 +90,25 @@ public:
         return std::sin(theta) * (std::cos(phi) * u_ + std::sin(phi) * v_) + std::cos(theta) * axis_;
     }
 
+    // Ring after ring (each angle of kRingAngles and its mirror about the equator), `azimuths_` points on
+    // each, the first `offset` of a step from the u axis.
+    std::vector<Eigen::Vector3d> ringPoints(double offset) const {
+        std::vector<Eigen::Vector3d> points;
+        for (double theta : kRingAngles)
+            for (double ring : {theta, kPi - theta})
+                for (int k = 0; k < azimuths_; ++k) points.push_back(direction(ring, 2 * kPi * (k + offset) / azimuths_));
+        return points;
+    }
+
     // For each Fourier mode m about the axis (1 <= m < azimuths / 2), its largest relative amplitude over
     // functions and rings, in units of the functions' tolerances.
     std::vector<double> modeAmplitudes() const {
         std::vector<double> amplitude(azimuths_ / 2, 0.0);
-        std::vector<Eigen::Vector3d> points;  // ring after ring, the same for every function
-        for (double theta : kRingAngles)
-            for (double ring : {theta, kPi - theta})
-                for (int k = 0; k < azimuths_; ++k) points.push_back(direction(ring, 2 * kPi * k / azimuths_));
+        const std::vector<Eigen::Vector3d> points = ringPoints(0);  // the same for every function
+        // The Fourier factors e^(-2 pi i m k / azimuths), row m: computed once, not per function and ring.
+        std::vector<std::complex<double>> twiddles;
+        for (int m = 0; m < azimuths_ / 2; ++m)
+            for (int k = 0; k < azimuths_; ++k) twiddles.push_back(std::polar(1.0, -2 * kPi * m * k / azimuths_));
         for (std::size_t i = 0; i < functions_.size(); ++i)
             for (std::size_t first = 0; first < points.size(); first += std::size_t(azimuths_)) {
                 std::vector<double> values(azimuths_);
@@ -113,7 +119,7 @@ public:
                 }
                 for (int m = 1; m < azimuths_ / 2; ++m) {
                     std::complex<double> mode = 0;
-                    for (int k = 0; k < azimuths_; ++k) mode += values[k] * twiddles_[std::size_t(m * azimuths_ + k)];
+                    for (int k = 0; k < azimuths_; ++k) mode += values[k] * twiddles[std::size_t(m * azimuths_ + k)];
                     // Parseval: the pair (m, -m) carries 2 |mode|^2 / K of the ring's energy.
                     const double relative = std::sqrt(2 * std::norm(mode) / (azimuths_ * energy));
                     amplitude[m] = std::max(amplitude[m], relative / tolerances_[i]);
@@ -139,7 +145,6 @@ private:
     const std::vector<double>& tolerances_;
     Eigen::Vector3d axis_, u_, v_;
     int azimuths_;
-    std::vector<std::complex<double>> twiddles_;
     std::vector<Eigen::Vector3d> changePoints_;
     std::vector<std::vector<double>> changeValues_;  // per function, at changePoints_
     std::vector<double> changeScales_;               // per function, its largest magnitude there
