@@ -288,7 +288,7 @@ TEST_CASE("Seams of a fundamental region stay closed after quantization: a squar
     checkRegionSeamsClosed(scene, "ring");
 }
 
-TEST_CASE("Every sample, compressed to GLB and X3D, rebuilds its original surface; the bolts use both mechanisms",
+TEST_CASE("Every sample, compressed to GLB and X3D, rebuilds its original surface, the bolts using both mechanisms",
           "[compress]") {
     TemporaryFolder folder;
     const std::vector<std::pair<const char*, Scene>> scenes{

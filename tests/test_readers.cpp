@@ -149,7 +149,7 @@ TEST_CASE("Each kind of bad input gives one clear error naming the file", "[io][
     }
 }
 
-TEST_CASE("Node animations are read and written back; channels the scene cannot hold are left out with a warning",
+TEST_CASE("Node animations are read and written back, and channels the scene cannot hold are left out with a warning",
           "[io]") {
     SECTION("the milk truck's turning wheels, through convert") {
         const Scene truck = readScene(modelPath("cesium_milk_truck/CesiumMilkTruck.gltf"));
@@ -212,7 +212,7 @@ TEST_CASE("Node animations are read and written back; channels the scene cannot 
     }
 }
 
-TEST_CASE("X3D animations are read from a TimeSensor, interpolators and ROUTEs; what glTF cannot hold is said", "[io][x3d]") {
+TEST_CASE("X3D animations are read from a TimeSensor, interpolators and ROUTEs, and what glTF cannot hold is said", "[io][x3d]") {
     TemporaryFolder folder;
     const auto file = folder / "clock.x3d";
     writeTextFile(file, R"(<X3D><Scene>

@@ -31,7 +31,7 @@ nlohmann::json glbJson(const std::filesystem::path& file) {
 
 }  // namespace
 
-TEST_CASE("Rounding helpers: float32 text reads back to the same float; rotation noise prints as 0", "[io]") {
+TEST_CASE("Rounding helpers: float32 text reads back to the same float, rotation noise prints as 0", "[io]") {
     for (double value : {0.1, 1.0 / 3.0, -123456.789, 0.03323778510093689, 6.4000000953674316, 1e-30}) {
         const double shortened = asFloat32(value);
         CHECK(static_cast<float>(shortened) == static_cast<float>(value));
