@@ -288,3 +288,51 @@ TEST_CASE("Animations are written to X3D as a TimeSensor, interpolators and ROUT
     CHECK(slid.times[2] < 3 + 1e-5);
     CHECK(slid.values == std::vector<double>{0, 0, 0, 0, 0, 0, 2, 0, 0});
 }
+
+TEST_CASE("An image several materials show is written to X3D once and USEd, and its data: URL reads back", "[io][x3d]") {
+    TemporaryFolder folder;
+    Scene scene;
+    // Not a real PNG: the readers and writers keep image bytes as they are. Every byte value, so that
+    // every base64 digit and both paddings are exercised.
+    std::vector<std::uint8_t> image(256 + 2);
+    for (std::size_t i = 0; i < image.size(); ++i) image[i] = std::uint8_t(i * 7);
+    scene.textures = {{"a", "", "image/png", image}, {"b", "", "image/png", image}, {"c", "", "image/jpeg", {1, 2, 3, 4}}};
+    for (int texture : {0, 1, 2}) {
+        Material material;
+        material.name = "m" + std::to_string(texture);
+        material.baseColorTexture = texture;
+        scene.materials.push_back(material);
+    }
+    Mesh mesh;
+    for (int material : {0, 1, 2}) {
+        Primitive triangle;
+        triangle.positions = {{0, 0, double(material)}, {1, 0, double(material)}, {0, 1, double(material)}};
+        triangle.texcoords = {{0, 0}, {1, 0}, {0, 1}};
+        triangle.triangles = {{0, 1, 2}};
+        triangle.material = material;
+        mesh.primitives.push_back(triangle);
+    }
+    scene.meshes.push_back(mesh);
+    scene.nodes.resize(1);
+    scene.nodes[0].mesh = 0;
+    scene.roots = {0};
+    writeScene(scene, folder / "shared.x3d");
+    const std::string text = readTextFile(folder / "shared.x3d");
+    auto count = [&](const std::string& what) {
+        std::size_t found = 0;
+        for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++found;
+        return found;
+    };
+    CHECK(count("data:image/png;base64,") == 1);
+    CHECK(count("data:image/jpeg;base64,") == 1);
+    CHECK(count("<ImageTexture USE='texture0'/>") == 1);
+    const Scene again = readScene(folder / "shared.x3d");
+    REQUIRE(again.materials.size() == 3);
+    for (int m : {0, 1, 2}) {
+        REQUIRE(again.materials[std::size_t(m)].baseColorTexture >= 0);
+        const Texture& texture = again.textures[std::size_t(again.materials[std::size_t(m)].baseColorTexture)];
+        CHECK(texture.bytes == scene.textures[std::size_t(m)].bytes);
+        CHECK(texture.mimeType == scene.textures[std::size_t(m)].mimeType);
+    }
+    CHECK(again.warnings.empty());
+}

@@ -47,6 +47,10 @@ TriangleMesh worldMesh(const Scene& scene);
 // expanded, materials and textures kept, animations left out (a warning says so).
 Scene expandInstances(const Scene& scene);
 
+// For each texture, the first one with the same image bytes and type: an image that several materials
+// (or an X3D file's several ImageTextures of one URL) use is written once.
+std::vector<int> firstTextureOfSameImage(const std::vector<Texture>& textures);
+
 // The world transform of every node (identity for nodes that are not reachable from the roots).
 std::vector<Eigen::Matrix4d> worldTransforms(const Scene& scene);
 

@@ -4,6 +4,7 @@
 // WriteOptions::draco is false.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 #include "rotation_and_scale.hpp"
 #include "rounded.hpp"
 
@@ -307,21 +308,6 @@ Json writeNode(const Node& node, const std::vector<int>& meshIndex, std::size_t 
     return out;
 }
 
-// For each texture, the first one with the same image bytes: an image that several materials (or an X3D
-// file's several ImageTextures of one URL) use is embedded once.
-std::vector<int> firstOfSameImage(const std::vector<Texture>& textures) {
-    std::vector<int> first(textures.size());
-    for (std::size_t i = 0; i < textures.size(); ++i) {
-        first[i] = int(i);
-        for (std::size_t j = 0; j < i; ++j)
-            if (textures[j].bytes == textures[i].bytes && textures[j].mimeType == textures[i].mimeType) {
-                first[i] = first[j];
-                break;
-            }
-    }
-    return first;
-}
-
 // textureIndex: the glTF texture of each of the scene's textures once written (-1 before), shared by
 // textures of the same image.
 Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, const Scene& scene,
@@ -461,7 +447,7 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     }
     GltfBuilder builder(root);
     std::vector<int> textureIndex(scene.textures.size(), -1);
-    const std::vector<int> sameImage = firstOfSameImage(scene.textures);
+    const std::vector<int> sameImage = firstTextureOfSameImage(scene.textures);
     for (const Material& material : scene.materials)
         root["materials"].push_back(writeMaterial(material, builder, root, scene, sameImage, textureIndex));
 

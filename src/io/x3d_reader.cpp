@@ -11,6 +11,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -59,6 +60,7 @@ private:
     int readShape(const pugi::xml_node& shape);
     int readMaterial(const pugi::xml_node& appearance);
     int readTexture(const pugi::xml_node& appearance);
+    int addTexture(int& index, Texture texture);  // sets `index` (the ImageTexture's) and returns it
     bool readGeometry(const pugi::xml_node& geometry, Primitive& out);
     void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces);
     void readInline(const pugi::xml_node& node, std::vector<int>& into);
@@ -113,6 +115,33 @@ bool X3dReader::boolean(const pugi::xml_node& node, const char* field, bool fall
     if (!attribute) return fallback;
     const std::string value = attribute.value();
     return value == "true" || value == "TRUE";
+}
+
+// RFC 4648 base64 (whitespace skipped, padding optional); false on any other character.
+bool decodeBase64(const std::string& text, std::vector<std::uint8_t>& bytes) {
+    bytes.clear();
+    std::uint32_t bits = 0;
+    int count = 0;
+    for (char c : text) {
+        int value;
+        if (c >= 'A' && c <= 'Z') value = c - 'A';
+        else if (c >= 'a' && c <= 'z') value = c - 'a' + 26;
+        else if (c >= '0' && c <= '9') value = c - '0' + 52;
+        else if (c == '+') value = 62;
+        else if (c == '/') value = 63;
+        else if (c == '=' || std::isspace(static_cast<unsigned char>(c))) continue;
+        else return false;
+        bits = (bits << 6) | std::uint32_t(value);
+        if (++count == 4) {
+            bytes.insert(bytes.end(), {std::uint8_t(bits >> 16), std::uint8_t(bits >> 8), std::uint8_t(bits)});
+            bits = 0;
+            count = 0;
+        }
+    }
+    if (count == 1) return false;
+    if (count == 2) bytes.push_back(std::uint8_t(bits >> 4));
+    if (count == 3) bytes.insert(bytes.end(), {std::uint8_t(bits >> 10), std::uint8_t(bits >> 2)});
+    return !bytes.empty();
 }
 
 Eigen::AngleAxisd rotationField(const std::vector<double>& values) {
@@ -372,6 +401,20 @@ int X3dReader::readTexture(const pugi::xml_node& appearance) {
     if (!inserted) return entry->second;
     Texture out;
     for (const std::string& url : x3d::parseStrings(texture.attribute("url").value())) {
+        if (url.compare(0, 5, "data:") == 0) {
+            // An image inside the file (how the X3D writer embeds them): data:[mime type][;base64],bytes.
+            const std::size_t comma = url.find(',');
+            const std::string header = url.substr(5, comma == std::string::npos ? 0 : comma - 5);
+            const std::size_t base64At = header.rfind(";base64");
+            if (comma == std::string::npos || base64At == std::string::npos || base64At + 7 != header.size() ||
+                !decodeBase64(url.substr(comma + 1), out.bytes)) {
+                notes_.insert("an ImageTexture's data: URL that is not valid base64 was skipped");
+                continue;
+            }
+            out.uri.clear();
+            out.mimeType = header.substr(0, base64At);
+            return addTexture(entry->second, std::move(out));
+        }
         if (out.uri.empty()) out.uri = url;
         const fs::path image = file_.parent_path() / url;
         std::error_code error;
@@ -387,9 +430,13 @@ int X3dReader::readTexture(const pugi::xml_node& appearance) {
     out.mimeType = extension == ".png" || extension == ".PNG" ? "image/png"
                    : extension == ".jpg" || extension == ".jpeg" || extension == ".JPG" ? "image/jpeg"
                                                                                          : "";
-    scene_.textures.push_back(std::move(out));
-    entry->second = static_cast<int>(scene_.textures.size()) - 1;
-    return entry->second;
+    return addTexture(entry->second, std::move(out));
+}
+
+int X3dReader::addTexture(int& index, Texture texture) {
+    scene_.textures.push_back(std::move(texture));
+    index = static_cast<int>(scene_.textures.size()) - 1;
+    return index;
 }
 
 int X3dReader::readMaterial(const pugi::xml_node& shape) {

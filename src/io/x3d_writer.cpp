@@ -5,6 +5,7 @@
 // is the same, gzip-compressed.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 #include "rotation_and_scale.hpp"
 #include "rounded.hpp"
 
@@ -283,15 +284,26 @@ private:
         out_ += "' transparency='";
         appendNumber(out_, phong.transparency);
         out_ += "'/>";
-        if (m.baseColorTexture >= 0) {
-            const Texture& texture = scene_.textures[m.baseColorTexture];
-            std::string url = texture.uri;
-            if (!texture.bytes.empty())
-                url = "data:" + (texture.mimeType.empty() ? std::string("image/png") : texture.mimeType) + ";base64," +
-                      base64(texture.bytes);
-            if (!url.empty()) out_ += "<ImageTexture url='\"" + escapeXml(url) + "\"'/>";
-        }
+        if (m.baseColorTexture >= 0) writeImageTexture(sameImage_[std::size_t(m.baseColorTexture)]);
         out_ += "</Appearance>\n";
+    }
+
+    // An image is written once, with a DEF, and USEd by every other material showing it.
+    void writeImageTexture(int index) {
+        const std::string def = "texture" + std::to_string(index);
+        if (textureWritten_.count(index)) {
+            out_ += "<ImageTexture USE='" + def + "'/>";
+            return;
+        }
+        const Texture& texture = scene_.textures[std::size_t(index)];
+        std::string url = texture.uri;
+        if (!texture.bytes.empty())
+            url = "data:" + (texture.mimeType.empty() ? std::string("image/png") : texture.mimeType) + ";base64," +
+                  base64(texture.bytes);
+        if (url.empty()) return;
+        textureWritten_.insert(index);
+        names_.insert(def);
+        out_ += "<ImageTexture DEF='" + def + "' url='\"" + escapeXml(url) + "\"'/>";
     }
 
     void writeShape(const Primitive& primitive, int depth) {
@@ -336,6 +348,8 @@ private:
     std::string out_;
     std::vector<bool> written_;
     std::set<int> materialWritten_;
+    std::vector<int> sameImage_ = firstTextureOfSameImage(scene_.textures);
+    std::set<int> textureWritten_;
     std::set<std::string> names_;
     std::map<int, std::string> nodeDef_;  // animated node -> its DEF
 };

@@ -142,6 +142,20 @@ std::string animationChannelProblem(const AnimationChannel& channel, std::size_t
     return "";
 }
 
+std::vector<int> firstTextureOfSameImage(const std::vector<Texture>& textures) {
+    std::vector<int> first(textures.size());
+    for (std::size_t i = 0; i < textures.size(); ++i) {
+        first[i] = int(i);
+        for (std::size_t j = 0; j < i; ++j)
+            if (textures[j].bytes == textures[i].bytes && textures[j].mimeType == textures[i].mimeType &&
+                (!textures[i].bytes.empty() || textures[j].uri == textures[i].uri)) {  // unread images: by URL
+                first[i] = first[j];
+                break;
+            }
+    }
+    return first;
+}
+
 std::vector<Eigen::Matrix4d> worldTransforms(const Scene& scene) {
     std::vector<Eigen::Matrix4d> world(scene.nodes.size(), Eigen::Matrix4d::Identity());
     traverse(scene, [&](int node, const Eigen::Matrix4d& transform) { world[node] = transform; });
