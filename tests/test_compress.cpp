@@ -469,6 +469,37 @@ TEST_CASE("Animated nodes are kept as they are with their animations: the milk t
     CHECK(obj.output.find("1 animations not written: .obj output is drawn at rest") != std::string::npos);
 }
 
+TEST_CASE("Cameras and lights stay where they were: the sterile room's, the Chevy's viewpoints", "[compress]") {
+    TemporaryFolder folder;
+    const auto input = modelPath("cge_sterile_room/sterile_room.gltf");
+    const nlohmann::json report = compressAndVerify(input, folder, "room");
+    CHECK(report["cameras_and_lights_kept"] == 3);
+    const Scene original = readScene(input), compressed = readScene(folder / "room.glb");
+    REQUIRE(compressed.cameras.size() == 1);
+    REQUIRE(compressed.lights.size() == 2);
+    const std::vector<Eigen::Matrix4d> before = worldTransforms(original), after = worldTransforms(compressed);
+    std::size_t matched = 0;
+    for (std::size_t from = 0; from < original.nodes.size(); ++from) {
+        if (original.nodes[from].camera < 0 && original.nodes[from].light < 0) continue;
+        for (std::size_t to = 0; to < compressed.nodes.size(); ++to)
+            if (compressed.nodes[to].name == original.nodes[from].name) {
+                ++matched;
+                CHECK(compressed.nodes[to].camera == original.nodes[from].camera);
+                CHECK(compressed.nodes[to].light == original.nodes[from].light);
+                CHECK((after[to] - before[from]).cwiseAbs().maxCoeff() < 1e-6);
+            }
+    }
+    CHECK(matched == 3);
+    // The Chevy's four X3D viewpoints, as X3D again.
+    const CommandResult chevy = runCommand(kSymcompress + " " + quoted(modelPath("savage_chevy_tahoe/ChevyTahoe.x3d")) + " -o " +
+                                           quoted(folder / "chevy.x3d"));
+    CHECK(chevy.status == 0);
+    CHECK(chevy.output.find("cameras, lights 4 nodes kept where they were (4 cameras, 0 lights)") != std::string::npos);
+    const Scene chevyAgain = readScene(folder / "chevy.x3d");
+    REQUIRE(chevyAgain.cameras.size() == 4);
+    CHECK(chevyAgain.cameras[0].name == "Chevy Side View");
+}
+
 TEST_CASE("Animation channels of nodes the scene does not draw are left out, and said so", "[compress]") {
     Primitive box;
     samples::appendMesh(box, samples::boxMesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 2, 3)));

@@ -252,3 +252,166 @@ TEST_CASE("X3D animations are read from a TimeSensor, interpolators and ROUTEs, 
     CHECK(channels[2].path == AnimationChannel::Path::Translation);
     CHECK(channels[2].values == std::vector<double>{1, 0, 0, 2, 0, 0});
 }
+
+namespace {
+
+// Where a node's camera or light is and which way it looks: its world origin and its -z.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> placementOf(const Scene& scene, int node) {
+    const Eigen::Matrix4d world = worldTransforms(scene)[std::size_t(node)];
+    return {world.topRightCorner<3, 1>(), -world.block<3, 1>(0, 2).normalized()};
+}
+
+int nodeWith(const Scene& scene, bool camera, int index) {
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n)
+        if ((camera ? scene.nodes[n].camera : scene.nodes[n].light) == index) return int(n);
+    return -1;
+}
+
+}  // namespace
+
+TEST_CASE("glTF cameras and lights are read and written back, as glTF and as X3D", "[io]") {
+    TemporaryFolder folder;
+    const Scene room = readScene(modelPath("cge_sterile_room/sterile_room.gltf"));
+    REQUIRE(room.cameras.size() == 1);
+    REQUIRE(room.lights.size() == 2);
+    CHECK(room.cameras[0].name == "Camera");
+    CHECK(room.cameras[0].yfov == Approx(0.39959652046304894));
+    CHECK(room.cameras[0].aspectRatio == Approx(1.7777777777777777));
+    CHECK(room.cameras[0].zfar == 100);
+    CHECK(room.lights[0].type == Light::Type::Point);
+    CHECK(room.lights[0].intensity == Approx(543.5141306588226));
+    CHECK(!hasWarning(room, "camera"));
+    CHECK(!hasWarning(room, "light"));
+
+    writeScene(room, folder / "room.glb");
+    const Scene glb = readScene(folder / "room.glb");
+    REQUIRE(glb.cameras.size() == 1);
+    REQUIRE(glb.lights.size() == 2);
+    CHECK(glb.cameras[0].yfov == room.cameras[0].yfov);
+    CHECK(glb.cameras[0].znear == room.cameras[0].znear);
+    CHECK(glb.lights[1].name == "Light.001");
+    CHECK(glb.lights[1].intensity == room.lights[1].intensity);
+    for (int index : {0, 1}) {
+        const auto [at, towards] = placementOf(room, nodeWith(room, false, index));
+        const auto [atAgain, towardsAgain] = placementOf(glb, nodeWith(glb, false, index));
+        CHECK((at - atAgain).norm() < 1e-5);
+        CHECK((towards - towardsAgain).norm() < 1e-6);
+    }
+
+    // X3D: a Viewpoint and PointLights in the Transforms of their nodes; intensities above X3D's 1 are cut
+    // to 1, and said so before writing.
+    CHECK(formatLosses(room, folder / "room.x3d") ==
+          std::vector<std::string>{"2 lights brighter than 1 written with intensity 1 (X3D's largest; glTF's intensities are in candela or lux)"});
+    writeScene(room, folder / "room.x3d");
+    const Scene x3d = readScene(folder / "room.x3d");
+    REQUIRE(x3d.cameras.size() == 1);
+    REQUIRE(x3d.lights.size() == 2);
+    // The room's camera is wider than it is high: X3D's fieldOfView, the smaller angle, is glTF's yfov.
+    CHECK(x3d.cameras[0].yfov == Approx(room.cameras[0].yfov));
+    CHECK(x3d.cameras[0].name == "Camera");
+    CHECK(x3d.lights[0].intensity == 1);
+    CHECK(x3d.lights[0].range == 0);  // no limit, both ways
+    const auto [camera, view] = placementOf(room, nodeWith(room, true, 0));
+    const auto [cameraAgain, viewAgain] = placementOf(x3d, nodeWith(x3d, true, 0));
+    CHECK((camera - cameraAgain).norm() < 1e-5);
+    CHECK((view - viewAgain).norm() < 1e-6);
+    CHECK(formatLosses(room, folder / "room.obj") ==
+          std::vector<std::string>{"1 cameras and 2 lights not written: .obj output holds geometry only"});
+}
+
+TEST_CASE("X3D viewpoints and lights are read where X3D puts them, written back, and the rest is said", "[io][x3d]") {
+    TemporaryFolder folder;
+    const auto file = folder / "lit.x3d";
+    writeTextFile(file, R"(<X3D><Scene>
+        <NavigationInfo avatarSize='0.5 1.6 0.75' visibilityLimit='500'/>
+        <Background skyColor='0 0 1'/>
+        <WorldInfo title='lit'/>
+        <Transform translation='10 0 0'>
+          <Viewpoint DEF='front' description='Front' position='0 1 5' orientation='0 1 0 0.5' fieldOfView='0.6'/>
+          <DirectionalLight DEF='sun' direction='0 -1 0' intensity='0.8' color='1 0.9 0.8' global='true'/>
+          <SpotLight DEF='lamp' location='1 2 3' direction='1 0 0' beamWidth='1.2' cutOffAngle='0.5' radius='20' attenuation='0 0 1'/>
+          <PointLight DEF='off' on='false'/>
+        </Transform>
+        <OrthoViewpoint DEF='plan' position='0 10 0' orientation='1 0 0 -1.5707963' fieldOfView='-4 -2 2 2'/>
+    </Scene></X3D>)");
+    const Scene scene = readScene(file);
+    validateScene(scene);
+    CHECK(hasWarning(scene, "not kept (symcompress keeps geometry, materials, animations of transforms, viewpoints and "
+                            "lights): 1 Background, 1 NavigationInfo, 1 WorldInfo"));
+    CHECK(hasWarning(scene, "lights that are off (on='false') left out"));
+    REQUIRE(scene.cameras.size() == 2);
+    REQUIRE(scene.lights.size() == 2);
+
+    const Camera& front = scene.cameras[0];
+    CHECK(front.name == "Front");
+    CHECK(front.projection == Camera::Projection::Perspective);
+    CHECK(front.yfov == Approx(0.6));
+    CHECK(front.znear == Approx(0.25));  // avatarSize[0] / 2
+    CHECK(front.zfar == Approx(500));
+    const auto [eye, look] = placementOf(scene, nodeWith(scene, true, 0));
+    CHECK((eye - Eigen::Vector3d(10, 1, 5)).norm() < 1e-12);
+    CHECK((look - Eigen::Vector3d(-std::sin(0.5), 0, -std::cos(0.5))).norm() < 1e-12);  // -z turned 0.5 about y
+    CHECK(scene.nodes[std::size_t(nodeWith(scene, true, 0))].name == "front");
+
+    // The plan view: a 6 by 4 window whose centre is 1 to the left of the viewpoint.
+    const Camera& plan = scene.cameras[1];
+    CHECK(plan.projection == Camera::Projection::Orthographic);
+    CHECK(plan.xmag == Approx(3));
+    CHECK(plan.ymag == Approx(2));
+    const auto [planEye, planLook] = placementOf(scene, nodeWith(scene, true, 1));
+    CHECK((planEye - Eigen::Vector3d(-1, 10, 0)).norm() < 1e-6);
+    CHECK((planLook - Eigen::Vector3d(0, -1, 0)).norm() < 1e-6);
+
+    const Light& sun = scene.lights[0];
+    CHECK(sun.type == Light::Type::Directional);
+    CHECK(sun.intensity == Approx(0.8));
+    CHECK(sun.color.isApprox(Eigen::Vector3d(1, 0.9, 0.8)));
+    CHECK((placementOf(scene, nodeWith(scene, false, 0)).second - Eigen::Vector3d(0, -1, 0)).norm() < 1e-12);
+    const Light& lamp = scene.lights[1];
+    CHECK(lamp.type == Light::Type::Spot);
+    CHECK(lamp.range == 20);
+    CHECK(lamp.outerConeAngle == Approx(0.5));
+    CHECK(lamp.innerConeAngle < lamp.outerConeAngle);  // X3D's beamWidth wider than the cut-off: no falloff
+    CHECK(lamp.innerConeAngle == Approx(0.5));
+    const auto [lampAt, lampTowards] = placementOf(scene, nodeWith(scene, false, 1));
+    CHECK((lampAt - Eigen::Vector3d(11, 2, 3)).norm() < 1e-12);
+    CHECK((lampTowards - Eigen::Vector3d(1, 0, 0)).norm() < 1e-12);
+
+    // Written as X3D (OrthoViewpoint needs the Navigation component at level 3) and as glTF, read back the same.
+    writeScene(scene, folder / "again.x3d");
+    CHECK(readTextFile(folder / "again.x3d").find("<component name='Navigation' level='3'/>") != std::string::npos);
+    writeScene(scene, folder / "again.glb");
+    for (const char* name : {"again.x3d", "again.glb"}) {
+        const Scene again = readScene(folder / name);
+        REQUIRE(again.cameras.size() == 2);
+        REQUIRE(again.lights.size() == 2);
+        CHECK(again.cameras[0].yfov == Approx(0.6));
+        CHECK(again.cameras[1].xmag == Approx(3));
+        CHECK(again.lights[1].range == 20);
+        CHECK(again.lights[1].outerConeAngle == Approx(0.5));
+        for (bool camera : {true, false})
+            for (int index : {0, 1}) {
+                const auto [at, towards] = placementOf(scene, nodeWith(scene, camera, index));
+                const auto [atAgain, towardsAgain] = placementOf(again, nodeWith(again, camera, index));
+                CHECK((at - atAgain).norm() < 1e-5);
+                CHECK((towards - towardsAgain).norm() < 1e-6);
+            }
+    }
+}
+
+TEST_CASE("glTF cameras and lights that break the rules are left out with a warning", "[io]") {
+    TemporaryFolder folder;
+    const auto file = folder / "broken.gltf";
+    writeTextFile(file, R"({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "spot", "spot": {"innerConeAngle": 1, "outerConeAngle": 0.5}}]}},
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0, "znear": 0.1}}],
+        "nodes": [{"camera": 0}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}, {"extensions": {"KHR_lights_punctual": {"light": 3}}}],
+        "scenes": [{"nodes": [0, 1, 2]}]})");
+    const Scene scene = readScene(file);
+    CHECK(scene.cameras.empty());
+    CHECK(scene.lights.empty());
+    CHECK(hasWarning(scene, "camera 0 ignored: a perspective camera needs yfov and znear above 0"));
+    CHECK(hasWarning(scene, "light 0 ignored: a spot light needs 0 <= innerConeAngle < outerConeAngle <= pi/2"));
+    CHECK(hasWarning(scene, "node 2: KHR_lights_punctual light index missing or out of range, ignored"));
+}

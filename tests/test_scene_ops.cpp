@@ -182,3 +182,45 @@ TEST_CASE("validateScene checks animation channels", "[scene]") {
     expectBroken([](AnimationChannel& c) { c.values[2] = std::nan(""); }, "NaN");
     expectBroken([](AnimationChannel& c) { c.times = {1, 1}; }, "key times do not increase");
 }
+
+TEST_CASE("validateScene checks cameras and lights, and expandInstances keeps them where they were", "[scene]") {
+    Scene scene = sceneWithOneMesh(unitTriangle());
+    scene.nodes.resize(3);
+    scene.nodes[0].mesh = 0;
+    scene.nodes[0].children = {1};
+    scene.nodes[0].transform.topRightCorner<3, 1>() = Eigen::Vector3d(5, 0, 0);
+    scene.nodes[1].camera = 0;
+    scene.nodes[1].transform.topRightCorner<3, 1>() = Eigen::Vector3d(0, 2, 0);
+    scene.nodes[2].light = 0;
+    scene.roots = {0, 2};
+    scene.cameras.push_back(Camera{});
+    scene.lights.push_back(Light{});
+    validateScene(scene);
+    auto expectBroken = [&](auto&& breakIt, const char* problem) {
+        Scene broken = scene;
+        breakIt(broken);
+        INFO(problem);
+        CHECK_THROWS_WITH(validateScene(broken), Catch::Contains(problem));
+    };
+    expectBroken([](Scene& s) { s.nodes[1].camera = 1; }, "camera index out of range");
+    expectBroken([](Scene& s) { s.nodes[2].light = -2; }, "light index out of range");
+    expectBroken([](Scene& s) { s.cameras[0].yfov = 0; }, "a perspective camera needs yfov and znear above 0");
+    expectBroken([](Scene& s) { s.cameras[0].zfar = 0.01; }, "zfar is not beyond znear");
+    expectBroken([](Scene& s) { s.cameras[0].projection = Camera::Projection::Orthographic; }, "0 <= znear < zfar");
+    expectBroken([](Scene& s) { s.cameras[0].aspectRatio = std::nan(""); }, "NaN");
+    expectBroken([](Scene& s) { s.lights[0].intensity = -1; }, "negative colour, intensity or range");
+    expectBroken([](Scene& s) { s.lights[0].type = Light::Type::Spot, s.lights[0].outerConeAngle = 2; }, "a spot light needs");
+
+    const Scene flat = expandInstances(scene);
+    validateScene(flat);
+    REQUIRE(flat.cameras.size() == 1);
+    REQUIRE(flat.lights.size() == 1);
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(flat);
+    int cameras = 0;
+    for (std::size_t n = 0; n < flat.nodes.size(); ++n)
+        if (flat.nodes[n].camera == 0) {
+            ++cameras;
+            CHECK(world[n].topRightCorner<3, 1>() == Eigen::Vector3d(5, 2, 0));
+        }
+    CHECK(cameras == 1);
+}

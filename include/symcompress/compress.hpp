@@ -59,6 +59,7 @@ struct CompressionStats {
     std::size_t tilesInSceneSymmetry = 0; // tiles drawn by that part's nodes
     std::size_t inputInstancesKept = 0;   // nodes of the input's own shared meshes, kept (KeptInstance)
     std::size_t animatedNodesKept = 0;    // nodes of animated subtrees, kept with their animations
+    std::size_t camerasAndLightsKept = 0; // other nodes with a camera or a light, kept at their world placement
     double maxDeviation = 0;              // of the placements used, relative to the diagonal
     double secondsTiles = 0, secondsClasses = 0, secondsPlan = 0;
 };

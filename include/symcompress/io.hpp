@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace symcompress {
 
@@ -47,6 +48,10 @@ struct WriteOptions {
 // `inputs` (the files the scene was read from). Throws FileError.
 void writeScene(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options = {},
                 const std::vector<std::filesystem::path>& inputs = {});
+
+// What writing `scene` to `file` leaves out or changes (animations, cameras and lights in OBJ or PLY, cubic
+// splines and light intensities in X3D), one warning each, for the caller to show before it writes.
+std::vector<std::string> formatLosses(const Scene& scene, const std::filesystem::path& file);
 
 void writeGltf(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);  // .gltf/.glb
 // What storing `primitive` as a mesh of its own adds to a glTF file written with `options`: its data (Draco's

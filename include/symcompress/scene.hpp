@@ -8,6 +8,8 @@
 // - Node::mesh is -1 or an index into Scene::meshes; Node::children index into Scene::nodes and the
 //   node graph is a forest (a node is the child of at most one node, no cycles);
 // - Material::baseColorTexture is -1 or an index into Scene::textures;
+// - Node::camera and Node::light are -1 or indices into Scene::cameras and Scene::lights, whose numbers are
+//   finite (a perspective camera's yfov and znear > 0, an orthographic one's xmag and ymag != 0);
 // - every AnimationChannel targets a node of Scene::nodes, has finite, increasing times and finite values,
 //   as many as its times, path and interpolation ask for.
 // Geometry is double precision; readers convert whatever the file stores.
@@ -100,10 +102,34 @@ struct Mesh {
     std::vector<Primitive> primitives;
 };
 
+// A viewpoint, as glTF holds it: it looks down its node's -z, +y up (X3D's Viewpoint has the same frame).
+struct Camera {
+    std::string name;
+    enum class Projection { Perspective, Orthographic } projection = Projection::Perspective;
+    double yfov = 0.7853981633974483;  // perspective: vertical field of view, radians
+    double aspectRatio = 0;            // perspective: width / height, 0 when left to the viewer
+    double xmag = 1, ymag = 1;         // orthographic: half the width and height of the view
+    double znear = 0.1;
+    double zfar = 0;                   // 0: infinitely far (perspective only)
+};
+
+// A punctual light, as glTF's KHR_lights_punctual holds it: directional and spot lights shine down their
+// node's -z, point and spot lights from its origin.
+struct Light {
+    std::string name;
+    enum class Type { Directional, Point, Spot } type = Type::Point;
+    Eigen::Vector3d color{1, 1, 1};
+    double intensity = 1;  // glTF: candela (point, spot) or lux (directional); X3D: 0 to 1, taken as is
+    double range = 0;      // 0: no limit
+    double innerConeAngle = 0, outerConeAngle = 0.7853981633974483;  // spot, radians
+};
+
 struct Node {
     std::string name;
     Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // local, column vectors: parent * this
     int mesh = -1;                                            // index into Scene::meshes
+    int camera = -1;                                          // index into Scene::cameras
+    int light = -1;                                           // index into Scene::lights
     std::vector<int> children;                                // indices into Scene::nodes
 };
 
@@ -134,6 +160,8 @@ struct Scene {
     std::vector<Node> nodes;
     std::vector<int> roots;             // the nodes drawn, in order
     std::vector<Animation> animations;
+    std::vector<Camera> cameras;
+    std::vector<Light> lights;
     std::vector<std::string> warnings;  // what the reader could not carry through, one line each
     std::string extrasJson;             // glTF asset.extras as read (where symcompress keeps its digest)
 };

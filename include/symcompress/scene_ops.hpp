@@ -19,6 +19,9 @@ void validateScene(const Scene& scene);
 // What breaks scene.hpp's invariants in an animation channel of a scene of `nodes` nodes, or "" when
 // nothing does (validateScene throws it; readers leave such a channel out with it as a warning).
 std::string animationChannelProblem(const AnimationChannel& channel, std::size_t nodes);
+// The same for a camera and a light.
+std::string cameraProblem(const Camera& camera);
+std::string lightProblem(const Light& light);
 
 // A primitive placed in world space: attributes transformed (normals by the inverse transpose and
 // renormalized), winding flipped where the world transform has a negative determinant.
@@ -44,7 +47,8 @@ std::vector<WorldPrimitive> flattenScene(const Scene& scene);
 TriangleMesh worldMesh(const Scene& scene);
 
 // The same drawing as one mesh under one root node with the identity transform: every instance
-// expanded, materials and textures kept, animations left out (a warning says so).
+// expanded, materials and textures kept, cameras and lights kept on root nodes at their world
+// placement, animations left out (a warning says so).
 Scene expandInstances(const Scene& scene);
 
 // For each texture, the first one with the same image bytes and type: an image that several materials

@@ -379,6 +379,8 @@ void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Sce
         Node to;
         to.name = from.name;
         to.transform = from.transform;
+        to.camera = from.camera;
+        to.light = from.light;
         if (from.mesh >= 0) {
             auto [entry, added] = keptMesh.emplace(from.mesh, int(out.meshes.size()));
             if (added) out.meshes.push_back(input.meshes[std::size_t(from.mesh)]);
@@ -420,6 +422,31 @@ void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Sce
     }
     if (undrawn)
         out.warnings.push_back(std::to_string(undrawn) + " animation channels of nodes the scene does not draw left out");
+}
+
+// Every node with a camera or a light, outside the animated subtrees (which keep theirs), as a root node at
+// its world placement: the tiles are rebuilt elsewhere, the viewpoints and lights stay where they were.
+void keepCamerasAndLights(const Scene& input, Scene& out, CompressionStats& stats) {
+    out.cameras = input.cameras;
+    out.lights = input.lights;
+    std::vector<int> animatedTops;
+    const std::vector<bool> animated = markAnimatedSubtrees(input, animatedTops);
+    std::vector<std::pair<int, Eigen::Matrix4d>> stack;  // node, its parent's world transform
+    for (auto root = input.roots.rbegin(); root != input.roots.rend(); ++root) stack.push_back({*root, Eigen::Matrix4d::Identity()});
+    while (!stack.empty()) {
+        const auto [node, parentWorld] = stack.back();
+        stack.pop_back();
+        const Node& from = input.nodes[std::size_t(node)];
+        if (animated[std::size_t(node)]) continue;
+        const Eigen::Matrix4d world = parentWorld * from.transform;
+        if (from.camera >= 0 || from.light >= 0) {
+            addRootNode(out, -1, world, from.name);
+            out.nodes.back().camera = from.camera;
+            out.nodes.back().light = from.light;
+            ++stats.camerasAndLightsKept;
+        }
+        for (auto child = from.children.rbegin(); child != from.children.rend(); ++child) stack.push_back({*child, world});
+    }
 }
 
 // The primitive with its positions only: what `reproduces` compares when attributes are ignored.
@@ -665,6 +692,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         ++stats.instances;
     }
     keepAnimatedSubtrees(input, analysis, out, keptMesh, stats);
+    keepCamerasAndLights(input, out, stats);
     PrimitivesByKind unique;  // tiles stored as they are
     if (!options.instancing)
         for (const Tile& tile : tiles) unique.add(tilePrimitive(tile, soup));

@@ -51,6 +51,7 @@ private:
     Eigen::Matrix4d nodeTransform(const tinygltf::Node& node) const;
     void readMaterials(Scene& scene);
     void readAnimations(Scene& scene);
+    void readCamerasAndLights(Scene& scene);
     void warnAbout(const std::string& warning) { warnings_.insert(warning); }
 
     fs::path file_;
@@ -470,6 +471,74 @@ void GltfReader::readAnimations(Scene& scene) {
     if (weights) warnAbout(std::to_string(weights) + " animation channels of morph target weights ignored");
 }
 
+// glTF's cameras and KHR_lights_punctual lights, with the nodes that carry them. One that breaks the
+// rules of scene.hpp (a yfov of 0, an unknown light type) is left out with a warning.
+void GltfReader::readCamerasAndLights(Scene& scene) {
+    std::vector<int> cameraIndex(model_.cameras.size(), -1), lightIndex(model_.lights.size(), -1);
+    for (std::size_t c = 0; c < model_.cameras.size(); ++c) {
+        const tinygltf::Camera& source = model_.cameras[c];
+        Camera camera;
+        camera.name = source.name;
+        if (source.type == "orthographic") {
+            camera.projection = Camera::Projection::Orthographic;
+            camera.xmag = source.orthographic.xmag;
+            camera.ymag = source.orthographic.ymag;
+            camera.znear = source.orthographic.znear;
+            camera.zfar = source.orthographic.zfar;
+        } else {
+            camera.yfov = source.perspective.yfov;
+            camera.aspectRatio = source.perspective.aspectRatio;
+            camera.znear = source.perspective.znear;
+            camera.zfar = source.perspective.zfar;
+        }
+        const std::string problem = source.type == "orthographic" || source.type == "perspective"
+                                        ? cameraProblem(camera)
+                                        : "unknown type '" + source.type + "'";
+        if (!problem.empty()) {
+            warnAbout("camera " + std::to_string(c) + " ignored: " + problem);
+            continue;
+        }
+        cameraIndex[c] = int(scene.cameras.size());
+        scene.cameras.push_back(camera);
+    }
+    for (std::size_t l = 0; l < model_.lights.size(); ++l) {
+        const tinygltf::Light& source = model_.lights[l];
+        Light light;
+        light.name = source.name;
+        light.type = source.type == "directional" ? Light::Type::Directional
+                     : source.type == "spot"      ? Light::Type::Spot
+                                                  : Light::Type::Point;
+        if (source.color.size() == 3) light.color = {source.color[0], source.color[1], source.color[2]};
+        light.intensity = source.intensity;
+        light.range = source.range;
+        light.innerConeAngle = source.spot.innerConeAngle;
+        light.outerConeAngle = source.spot.outerConeAngle;
+        const bool known = source.type == "directional" || source.type == "spot" || source.type == "point";
+        const std::string problem = !known ? "unknown type '" + source.type + "'"
+                                    : !source.color.empty() && source.color.size() != 3 ? "a colour needs 3 values"
+                                                                                        : lightProblem(light);
+        if (!problem.empty()) {
+            warnAbout("light " + std::to_string(l) + " ignored: " + problem);
+            continue;
+        }
+        lightIndex[l] = int(scene.lights.size());
+        scene.lights.push_back(light);
+    }
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+        const tinygltf::Node& source = model_.nodes[n];
+        if (source.camera >= 0 && std::size_t(source.camera) < cameraIndex.size()) scene.nodes[n].camera = cameraIndex[source.camera];
+        else if (source.camera >= 0) warnAbout("node " + std::to_string(n) + ": camera index out of range, ignored");
+        const auto extension = source.extensions.find("KHR_lights_punctual");
+        if (extension == source.extensions.end()) continue;
+        static const tinygltf::Value none;
+        const tinygltf::Value& light = extension->second.Has("light") ? extension->second.Get("light") : none;
+        if (light.IsNumber() && light.GetNumberAsInt() >= 0 && std::size_t(light.GetNumberAsInt()) < lightIndex.size())
+            scene.nodes[n].light = lightIndex[std::size_t(light.GetNumberAsInt())];
+        else
+            warnAbout("node " + std::to_string(n) + ": KHR_lights_punctual light index missing or out of range, ignored");
+    }
+}
+
 Scene GltfReader::read() {
     Scene scene;
     readMaterials(scene);
@@ -493,9 +562,9 @@ Scene GltfReader::read() {
             node.children.push_back(child);
         }
         if (source.skin >= 0) warnAbout("skins ignored: skinned meshes are drawn in their bind pose");
-        if (source.camera >= 0) warnAbout("cameras ignored");
         scene.nodes.push_back(std::move(node));
     }
+    readCamerasAndLights(scene);
     const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (sceneIndex < static_cast<int>(model_.scenes.size())) {
         for (int root : model_.scenes[sceneIndex].nodes) {
@@ -510,7 +579,6 @@ Scene GltfReader::read() {
     if (model_.scenes.size() > 1) warnAbout(std::to_string(model_.scenes.size() - 1) + " scenes besides the default one ignored");
     readAnimations(scene);
     if (!model_.skins.empty()) warnAbout(std::to_string(model_.skins.size()) + " skins ignored");
-    if (!model_.lights.empty()) warnAbout(std::to_string(model_.lights.size()) + " KHR_lights_punctual lights ignored");
     for (const auto& [mode, count] : skippedModes_)
         warnAbout(std::to_string(count) + " " + mode + " skipped (only triangles are kept)");
     for (const std::string& warning : warnings_) scene.warnings.push_back(file_.filename().string() + ": " + warning);

@@ -304,7 +304,38 @@ Json writeNode(const Node& node, const std::vector<int>& meshIndex, std::size_t 
     }
     if (!node.name.empty()) out["name"] = node.name;
     if (node.mesh >= 0 && meshIndex[node.mesh] >= 0) (*drawing)["mesh"] = meshIndex[node.mesh];
+    if (node.camera >= 0) (*drawing)["camera"] = node.camera;
+    if (node.light >= 0) (*drawing)["extensions"]["KHR_lights_punctual"]["light"] = node.light;
     if (!node.children.empty()) (*drawing)["children"] = node.children;
+    return out;
+}
+
+Json writeCamera(const Camera& camera) {
+    Json out = Json::object();
+    if (!camera.name.empty()) out["name"] = camera.name;
+    if (camera.projection == Camera::Projection::Orthographic) {
+        out["type"] = "orthographic";
+        out["orthographic"] = {{"xmag", camera.xmag}, {"ymag", camera.ymag}, {"znear", camera.znear}, {"zfar", camera.zfar}};
+        return out;
+    }
+    out["type"] = "perspective";
+    Json perspective = {{"yfov", camera.yfov}, {"znear", camera.znear}};
+    if (camera.aspectRatio > 0) perspective["aspectRatio"] = camera.aspectRatio;
+    if (camera.zfar > 0) perspective["zfar"] = camera.zfar;
+    out["perspective"] = perspective;
+    return out;
+}
+
+// A KHR_lights_punctual light, its fields left out where they are the extension's defaults.
+Json writeLight(const Light& light) {
+    Json out = Json::object();
+    if (!light.name.empty()) out["name"] = light.name;
+    out["type"] = light.type == Light::Type::Directional ? "directional" : light.type == Light::Type::Spot ? "spot" : "point";
+    if (light.color != Eigen::Vector3d::Ones()) out["color"] = {light.color.x(), light.color.y(), light.color.z()};
+    if (light.intensity != 1) out["intensity"] = light.intensity;
+    if (light.range > 0 && light.type != Light::Type::Directional) out["range"] = light.range;
+    if (light.type == Light::Type::Spot)
+        out["spot"] = {{"innerConeAngle", light.innerConeAngle}, {"outerConeAngle", light.outerConeAngle}};
     return out;
 }
 
@@ -474,10 +505,13 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     root["scenes"] = {{{"nodes", scene.roots}}};
     root["scene"] = 0;
     for (const Animation& animation : scene.animations) root["animations"].push_back(writeAnimation(animation, builder));
+    for (const Camera& camera : scene.cameras) root["cameras"].push_back(writeCamera(camera));
+    for (const Light& light : scene.lights) root["extensions"]["KHR_lights_punctual"]["lights"].push_back(writeLight(light));
     if (usedDraco) {
-        root["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+        root["extensionsUsed"].push_back("KHR_draco_mesh_compression");
         root["extensionsRequired"] = {"KHR_draco_mesh_compression"};
     }
+    if (!scene.lights.empty()) root["extensionsUsed"].push_back("KHR_lights_punctual");
 
     std::vector<unsigned char>& binary = builder.binary();
     if (formatFromExtension(file) == FileFormat::Glb) {

@@ -47,6 +47,34 @@ Scene readScene(const fs::path& file) {
     return scene;
 }
 
+std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) {
+    const FileFormat format = formatFromExtension(file);
+    std::vector<std::string> losses;
+    if (format == FileFormat::Glb || format == FileFormat::Gltf) return losses;
+    if (format != FileFormat::X3d) {
+        const std::string extension = file.extension().string();
+        if (!scene.animations.empty())
+            losses.push_back(std::to_string(scene.animations.size()) + " animations not written: " + extension +
+                             " output is drawn at rest");
+        if (!scene.cameras.empty() || !scene.lights.empty())
+            losses.push_back(std::to_string(scene.cameras.size()) + " cameras and " + std::to_string(scene.lights.size()) +
+                             " lights not written: " + extension + " output holds geometry only");
+        return losses;
+    }
+    std::size_t cubic = 0;
+    for (const Animation& animation : scene.animations)
+        for (const AnimationChannel& channel : animation.channels)
+            cubic += channel.interpolation == AnimationChannel::Interpolation::CubicSpline;
+    if (cubic)
+        losses.push_back(std::to_string(cubic) + " cubic-spline animation channels written as linear between " +
+                         "their keys (X3D 3.3 has no cubic orientation interpolator)");
+    const std::size_t bright = std::count_if(scene.lights.begin(), scene.lights.end(), [](const Light& light) { return light.intensity > 1; });
+    if (bright)
+        losses.push_back(std::to_string(bright) + " lights brighter than 1 written with intensity 1 (X3D's largest; " +
+                         "glTF's intensities are in candela or lux)");
+    return losses;
+}
+
 void writeScene(const Scene& scene, const fs::path& file, const WriteOptions& options,
                 const std::vector<fs::path>& inputs) {
     refuseToOverwriteInputs(file, inputs);

@@ -2,6 +2,7 @@
 // a Shape or geometry reuses the same symcompress Mesh, so that the file's instancing survives.
 #include "symcompress/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 #include "symcompress/triangulate_polygon.hpp"
 #include "x3d_fields.hpp"
 #include "x3d_primitives.hpp"
@@ -11,9 +12,9 @@
 #include <zlib.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstring>
+#include <cctype>
 #include <limits>
 #include <map>
 #include <set>
@@ -27,6 +28,9 @@ namespace {
 const std::set<std::string> kGroupingNodes = {"Group", "Transform", "Switch", "LOD", "Collision", "Anchor",
                                               "StaticGroup", "Billboard", "CADAssembly", "CADLayer", "CADPart",
                                               "CADFace", "Scene", "LayerSet", "Layer"};
+// Nodes read where they are used (animations from their ROUTEs) or that hold nothing of the scene's.
+const std::set<std::string> kReadElsewhere = {"ROUTE", "TimeSensor", "PositionInterpolator", "OrientationInterpolator",
+                                              "ProtoDeclare", "ExternProtoDeclare", "IMPORT", "EXPORT"};
 // Geometry nodes that draw something we do not read: reported once per type.
 const std::set<std::string> kUnsupportedGeometry = {
     "Extrusion", "ElevationGrid", "Text", "PointSet", "LineSet", "IndexedLineSet", "NurbsPatchSurface",
@@ -65,6 +69,8 @@ private:
     void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces);
     void readInline(const pugi::xml_node& node, std::vector<int>& into);
     void readAnimations();
+    int readViewpoint(const pugi::xml_node& viewpoint);
+    int readLight(const pugi::xml_node& light, int depth);
 
     fs::path file_;
     Scene& scene_;
@@ -74,6 +80,7 @@ private:
     std::map<std::string, std::vector<int>> nodesOfTransform_;  // a DEF'd Transform's scene nodes (one per USE)
     std::map<const void*, int> meshOfShape_, materialOfAppearance_, textureOfNode_;
     std::map<std::string, int> skippedGeometry_;
+    std::map<std::string, int> notKept_;  // other nodes with nothing to carry them in the scene model
     std::set<std::string> useStack_;
     std::set<std::string> notes_;
     std::size_t degenerateFaces_ = 0;  // faces with fewer than 3 distinct corners or no area
@@ -205,6 +212,12 @@ std::vector<int> X3dReader::read() {
     for (const auto& [type, count] : skippedGeometry_)
         scene_.warnings.push_back(name + ": " + std::to_string(count) + " " + type + " node" + (count > 1 ? "s" : "") +
                                   " skipped (not supported)");
+    if (!notKept_.empty()) {
+        std::string list;
+        for (const auto& [type, count] : notKept_) list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + type;
+        scene_.warnings.push_back(name + ": not kept (symcompress keeps geometry, materials, animations of transforms, " +
+                                  "viewpoints and lights): " + list);
+    }
     for (const std::string& note : notes_) scene_.warnings.push_back(name + ": " + note);
     if (degenerateFaces_)
         scene_.warnings.push_back(name + ": " + std::to_string(degenerateFaces_) +
@@ -326,10 +339,13 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
         scene_.nodes.push_back(out);
         return static_cast<int>(scene_.nodes.size()) - 1;
     }
+    if (type == "Viewpoint" || type == "OrthoViewpoint") return readViewpoint(node);
+    if (type == "DirectionalLight" || type == "PointLight" || type == "SpotLight") return readLight(node, depth);
     if (!kGroupingNodes.count(type)) {
         if (kUnsupportedGeometry.count(type)) ++skippedGeometry_[type];
-        if (type == "ProtoInstance") ++skippedGeometry_["ProtoInstance (prototypes are not supported)"];
-        return -1;  // Viewpoint, lights, sensors, scripts, metadata, ...: nothing drawn
+        else if (type == "ProtoInstance") ++skippedGeometry_["ProtoInstance (prototypes are not supported)"];
+        else if (!kReadElsewhere.count(type) && type.compare(0, 8, "Metadata") != 0) ++notKept_[type];
+        return -1;
     }
     Node out;
     out.name = node.attribute("DEF").value();
@@ -363,6 +379,91 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
     if (type == "Transform" && !out.name.empty()) nodesOfTransform_[out.name].push_back(index);
     scene_.nodes.push_back(out);
     return index;
+}
+
+// A Viewpoint (or OrthoViewpoint) as a node placed at its position and orientation holding a camera: both
+// look down -z with +y up. fieldOfView becomes the vertical one (X3D's is the smaller of the two, the
+// vertical one in a landscape window); the near and far planes come from the NavigationInfo (avatarSize[0] / 2
+// and visibilityLimit), as an X3D browser sets them.
+int X3dReader::readViewpoint(const pugi::xml_node& viewpoint) {
+    const bool orthographic = std::strcmp(viewpoint.name(), "OrthoViewpoint") == 0;
+    Camera camera;
+    camera.name = viewpoint.attribute("description").value();
+    const pugi::xml_node navigation = document_.select_node("//NavigationInfo").node();
+    const std::vector<double> avatar = navigation ? numbers(navigation, "avatarSize") : std::vector<double>();
+    camera.znear = !avatar.empty() && avatar[0] > 0 ? avatar[0] / 2 : 0.125;
+    camera.zfar = navigation ? scalar(navigation, "visibilityLimit", 0) : 0;
+    Eigen::Affine3d placement = Eigen::Affine3d::Identity();
+    placement.translate(vector3(viewpoint, "position", Eigen::Vector3d(0, 0, 10)))
+        .rotate(rotationField(numbers(viewpoint, "orientation")));
+    if (orthographic) {
+        // fieldOfView: minimum x, minimum y, maximum x, maximum y of the view; glTF's is centred.
+        std::vector<double> field = numbers(viewpoint, "fieldOfView");
+        if (field.size() != 4) field = {-1, -1, 1, 1};
+        camera.projection = Camera::Projection::Orthographic;
+        camera.xmag = (field[2] - field[0]) / 2;
+        camera.ymag = (field[3] - field[1]) / 2;
+        placement.translate(Eigen::Vector3d((field[0] + field[2]) / 2, (field[1] + field[3]) / 2, 0));
+        if (!(camera.zfar > camera.znear)) camera.zfar = 1e4;  // glTF needs a far plane; X3D's may be infinite
+    } else {
+        camera.yfov = scalar(viewpoint, "fieldOfView", 0.7853981633974483);
+    }
+    if (const std::string problem = cameraProblem(camera); !problem.empty()) {
+        notes_.insert("a " + std::string(viewpoint.name()) + " was left out: " + problem);
+        return -1;
+    }
+    Node out;
+    out.name = viewpoint.attribute("DEF").value();
+    out.transform = placement.matrix();
+    out.camera = int(scene_.cameras.size());
+    scene_.cameras.push_back(camera);
+    scene_.nodes.push_back(out);
+    return int(scene_.nodes.size()) - 1;
+}
+
+// A light as a node at its location, turned so that its direction is -z (glTF's frame). What glTF's
+// KHR_lights_punctual cannot hold is said in a note: attenuation (glTF lights fall off with the inverse
+// square of the distance), ambient intensity, a light scoped to its group, a light that is off.
+int X3dReader::readLight(const pugi::xml_node& source, int depth) {
+    const std::string type = source.name();
+    if (!boolean(source, "on", true)) {
+        notes_.insert("lights that are off (on='false') left out");
+        return -1;
+    }
+    Light light;
+    light.type = type == "DirectionalLight" ? Light::Type::Directional : type == "SpotLight" ? Light::Type::Spot : Light::Type::Point;
+    light.color = vector3(source, "color", Eigen::Vector3d::Ones());
+    light.intensity = scalar(source, "intensity", 1);
+    if (light.type != Light::Type::Directional) {
+        light.range = scalar(source, "radius", 100);
+        if (light.range >= std::numeric_limits<float>::max()) light.range = 0;  // how the writer says "no limit"
+    }
+    if (light.type == Light::Type::Spot) {
+        light.outerConeAngle = std::min(scalar(source, "cutOffAngle", 0.7853981633974483), std::acos(0.0));
+        light.innerConeAngle = std::min(scalar(source, "beamWidth", std::acos(0.0)), std::nextafter(light.outerConeAngle, 0.0));
+    }
+    if (light.type != Light::Type::Directional && vector3(source, "attenuation", Eigen::Vector3d(1, 0, 0)) != Eigen::Vector3d(0, 0, 1))
+        notes_.insert("the attenuation of point and spot lights is not kept: glTF's lights fall off with the inverse square of the distance");
+    if (scalar(source, "ambientIntensity", 0) != 0) notes_.insert("the ambientIntensity of lights is not kept (glTF's lights have none)");
+    if (!boolean(source, "global", light.type != Light::Type::Directional) && depth > 1)
+        notes_.insert("lights scoped to their group (global='false') light the whole scene once written");
+    if (const std::string problem = lightProblem(light); !problem.empty()) {
+        notes_.insert("a " + type + " was left out: " + problem);
+        return -1;
+    }
+    Eigen::Affine3d placement = Eigen::Affine3d::Identity();
+    if (light.type != Light::Type::Directional) placement.translate(vector3(source, "location", Eigen::Vector3d::Zero()));
+    if (light.type != Light::Type::Point) {
+        const Eigen::Vector3d direction = vector3(source, "direction", Eigen::Vector3d(0, 0, -1));
+        if (direction.norm() > 0) placement.rotate(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(0, 0, -1), direction));
+    }
+    Node out;
+    out.name = source.attribute("DEF").value();
+    out.transform = placement.matrix();
+    out.light = int(scene_.lights.size());
+    scene_.lights.push_back(light);
+    scene_.nodes.push_back(out);
+    return int(scene_.nodes.size()) - 1;
 }
 
 void X3dReader::readInline(const pugi::xml_node& source, std::vector<int>& into) {

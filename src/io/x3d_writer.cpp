@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -125,7 +127,12 @@ public:
     std::string write() {
         out_ += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                 "<!DOCTYPE X3D PUBLIC \"ISO//Web3D//DTD X3D 3.3//EN\" \"http://www.web3d.org/specifications/x3d-3.3.dtd\">\n"
-                "<X3D profile='Interchange' version='3.3'>\n<head>\n<meta name='generator' content='symcompress'/>\n";
+                "<X3D profile='Interchange' version='3.3'>\n<head>\n";
+        // OrthoViewpoint is Navigation level 3, beyond the Interchange profile's level 1.
+        if (std::any_of(scene_.cameras.begin(), scene_.cameras.end(),
+                        [](const Camera& camera) { return camera.projection == Camera::Projection::Orthographic; }))
+            out_ += "<component name='Navigation' level='3'/>\n";
+        out_ += "<meta name='generator' content='symcompress'/>\n";
         if (!options_.extrasJson.empty())
             out_ += "<meta name='symcompress' content='" + escapeXml(options_.extrasJson) + "'/>\n";
         out_ += "</head>\n<Scene>\n";
@@ -166,9 +173,59 @@ private:
         appendTransformFields(out_, node.transform, animated != nodeDef_.end());
         out_ += ">\n";
         if (node.mesh >= 0) writeMesh(node.mesh, depth + 1);
+        if (node.camera >= 0) writeViewpoint(scene_.cameras[std::size_t(node.camera)], depth + 1);
+        if (node.light >= 0) writeLight(scene_.lights[std::size_t(node.light)], depth + 1);
         for (int child : node.children) writeNode(child, depth + 1);
         indent(depth);
         out_ += "</Transform>\n";
+    }
+
+    // A camera in its node's frame (the Transform around it places it): at the origin, looking down -z.
+    // X3D's fieldOfView is the smaller of the two angles: the vertical one unless the view is narrower
+    // than it is high.
+    void writeViewpoint(const Camera& camera, int depth) {
+        indent(depth);
+        if (camera.projection == Camera::Projection::Orthographic) {
+            out_ += "<OrthoViewpoint position='0 0 0' fieldOfView='";
+            appendVector(out_, Eigen::Vector4d(-camera.xmag, -camera.ymag, camera.xmag, camera.ymag), 4);
+        } else {
+            double fieldOfView = camera.yfov;
+            if (camera.aspectRatio > 0 && camera.aspectRatio < 1)
+                fieldOfView = 2 * std::atan(std::tan(camera.yfov / 2) * camera.aspectRatio);
+            out_ += "<Viewpoint position='0 0 0' fieldOfView='";
+            appendNumber(out_, fieldOfView);
+        }
+        out_ += "'";
+        if (!camera.name.empty()) out_ += " description='" + escapeXml(camera.name) + "'";
+        out_ += "/>\n";
+    }
+
+    // A light in its node's frame: at the origin, shining down -z. It lights the whole scene (global), as
+    // glTF's do; its intensity is cut to X3D's largest, 1 (formatLosses warns); a point or spot light's
+    // falls off with the inverse square of the distance, as glTF's does; no range is X3D's largest radius.
+    void writeLight(const Light& light, int depth) {
+        indent(depth);
+        out_ += light.type == Light::Type::Directional ? "<DirectionalLight direction='0 0 -1'"
+                : light.type == Light::Type::Spot      ? "<SpotLight direction='0 0 -1' location='0 0 0'"
+                                                       : "<PointLight location='0 0 0'";
+        out_ += " global='true' color='";
+        appendVector(out_, light.color, 3);
+        out_ += "' intensity='";
+        appendNumber(out_, std::min(light.intensity, 1.0));
+        out_ += "'";
+        if (light.type != Light::Type::Directional) {
+            out_ += " attenuation='0 0 1' radius='";
+            appendNumber(out_, light.range > 0 ? light.range : std::numeric_limits<float>::max());
+            out_ += "'";
+        }
+        if (light.type == Light::Type::Spot) {
+            out_ += " beamWidth='";
+            appendNumber(out_, light.innerConeAngle);
+            out_ += "' cutOffAngle='";
+            appendNumber(out_, light.outerConeAngle);
+            out_ += "'";
+        }
+        out_ += "/>\n";
     }
 
     // A glTF animation as X3D 3.3 Interchange nodes: a looping TimeSensor whose cycle is the animation's

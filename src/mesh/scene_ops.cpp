@@ -100,6 +100,10 @@ void validateScene(const Scene& scene) {
             throw std::invalid_argument("node " + std::to_string(n) + ": mesh index out of range");
         if (!node.transform.allFinite())
             throw std::invalid_argument("node " + std::to_string(n) + ": transform is NaN or infinite");
+        if (node.camera < -1 || node.camera >= static_cast<int>(scene.cameras.size()))
+            throw std::invalid_argument("node " + std::to_string(n) + ": camera index out of range");
+        if (node.light < -1 || node.light >= static_cast<int>(scene.lights.size()))
+            throw std::invalid_argument("node " + std::to_string(n) + ": light index out of range");
         for (int child : node.children) {
             if (child < 0 || child >= nodeCount)
                 throw std::invalid_argument("node " + std::to_string(n) + ": child index out of range");
@@ -128,6 +132,39 @@ void validateScene(const Scene& scene) {
         for (std::size_t c = 0; c < scene.animations[a].channels.size(); ++c)
             if (const std::string problem = animationChannelProblem(scene.animations[a].channels[c], scene.nodes.size()); !problem.empty())
                 throw std::invalid_argument("animation " + std::to_string(a) + " channel " + std::to_string(c) + ": " + problem);
+    for (std::size_t c = 0; c < scene.cameras.size(); ++c)
+        if (const std::string problem = cameraProblem(scene.cameras[c]); !problem.empty())
+            throw std::invalid_argument("camera " + std::to_string(c) + ": " + problem);
+    for (std::size_t l = 0; l < scene.lights.size(); ++l)
+        if (const std::string problem = lightProblem(scene.lights[l]); !problem.empty())
+            throw std::invalid_argument("light " + std::to_string(l) + ": " + problem);
+}
+
+std::string cameraProblem(const Camera& camera) {
+    const double numbers[] = {camera.yfov, camera.aspectRatio, camera.xmag, camera.ymag, camera.znear, camera.zfar};
+    if (!std::all_of(std::begin(numbers), std::end(numbers), [](double v) { return std::isfinite(v); }))
+        return "NaN or infinite values";
+    if (camera.projection == Camera::Projection::Perspective) {
+        if (!(camera.yfov > 0) || !(camera.znear > 0)) return "a perspective camera needs yfov and znear above 0";
+        if (camera.aspectRatio < 0) return "negative aspect ratio";
+        if (camera.zfar != 0 && !(camera.zfar > camera.znear)) return "zfar is not beyond znear";
+    } else {
+        if (camera.xmag == 0 || camera.ymag == 0) return "an orthographic camera needs xmag and ymag other than 0";
+        if (camera.znear < 0 || !(camera.zfar > camera.znear)) return "an orthographic camera needs 0 <= znear < zfar";
+    }
+    return "";
+}
+
+std::string lightProblem(const Light& light) {
+    const double numbers[] = {light.color.x(), light.color.y(), light.color.z(), light.intensity,
+                              light.range, light.innerConeAngle, light.outerConeAngle};
+    if (!std::all_of(std::begin(numbers), std::end(numbers), [](double v) { return std::isfinite(v); }))
+        return "NaN or infinite values";
+    if (light.intensity < 0 || light.range < 0 || (light.color.array() < 0).any()) return "negative colour, intensity or range";
+    if (light.type == Light::Type::Spot &&
+        !(0 <= light.innerConeAngle && light.innerConeAngle < light.outerConeAngle && light.outerConeAngle <= std::acos(0.0)))  // pi/2
+        return "a spot light needs 0 <= innerConeAngle < outerConeAngle <= pi/2";
+    return "";
 }
 
 std::string animationChannelProblem(const AnimationChannel& channel, std::size_t nodes) {
@@ -189,6 +226,19 @@ Scene expandInstances(const Scene& scene) {
     root.mesh = 0;
     flat.nodes.push_back(root);
     flat.roots.push_back(0);
+    flat.cameras = scene.cameras;
+    flat.lights = scene.lights;
+    traverse(scene, [&](int node, const Eigen::Matrix4d& world) {
+        const Node& from = scene.nodes[node];
+        if (from.camera < 0 && from.light < 0) return;
+        Node placed;
+        placed.name = from.name;
+        placed.transform = world;
+        placed.camera = from.camera;
+        placed.light = from.light;
+        flat.roots.push_back(int(flat.nodes.size()));
+        flat.nodes.push_back(std::move(placed));
+    });
     return flat;
 }
 

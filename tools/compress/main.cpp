@@ -42,6 +42,8 @@ int runInfo(const fs::path& file, bool json) {
         out["materials"] = statistics.materials;
         out["textures"] = scene.textures.size();
         out["animations"] = scene.animations.size();
+        out["cameras"] = scene.cameras.size();
+        out["lights"] = scene.lights.size();
         if (statistics.bounds.isEmpty())
             out["bbox"] = nullptr;
         else
@@ -58,6 +60,8 @@ int runInfo(const fs::path& file, bool json) {
     std::printf("  materials         %zu\n", statistics.materials);
     std::printf("  textures          %zu\n", scene.textures.size());
     std::printf("  animations        %zu\n", scene.animations.size());
+    std::printf("  cameras           %zu\n", scene.cameras.size());
+    std::printf("  lights            %zu\n", scene.lights.size());
     if (statistics.bounds.isEmpty()) {
         std::printf("  bounding box      (empty)\n");
     } else {
@@ -71,20 +75,7 @@ int runInfo(const fs::path& file, bool json) {
 
 // What the output's format cannot hold, said before the writer leaves it out.
 void warnAboutWhatTheFormatDrops(Scene& scene, const fs::path& output) {
-    const FileFormat format = formatFromExtension(output);
-    if (scene.animations.empty() || format == FileFormat::Glb || format == FileFormat::Gltf) return;
-    if (format != FileFormat::X3d) {
-        scene.warnings.push_back(std::to_string(scene.animations.size()) + " animations not written: " +
-                                 output.extension().string() + " output is drawn at rest");
-        return;
-    }
-    std::size_t cubic = 0;
-    for (const Animation& animation : scene.animations)
-        for (const AnimationChannel& channel : animation.channels)
-            cubic += channel.interpolation == AnimationChannel::Interpolation::CubicSpline;
-    if (cubic)
-        scene.warnings.push_back(std::to_string(cubic) + " cubic-spline animation channels written as linear between " +
-                                 "their keys (X3D 3.3 has no cubic orientation interpolator)");
+    for (std::string& loss : formatLosses(scene, output)) scene.warnings.push_back(std::move(loss));
 }
 
 int runConvert(const fs::path& input, const fs::path& output, const WriteOptions& options, bool quiet) {
@@ -408,6 +399,7 @@ int runCompress(const CompressRequest& request) {
                           {"tiles_in_scene_symmetry", stats.tilesInSceneSymmetry},
                           {"input_instances_kept", stats.inputInstancesKept},
                           {"animated_nodes_kept", stats.animatedNodesKept},
+                          {"cameras_and_lights_kept", stats.camerasAndLightsKept},
                           {"bytes_per_instance", instanceBytes},
                           {"ablation",
                            {{"draco_alone", request.options.instancing ? dracoAlone : outputBytes},
@@ -446,6 +438,9 @@ int runCompress(const CompressRequest& request) {
     if (stats.animatedNodesKept)
         std::printf("  animated        %zu nodes kept as they are, for the scene's animations (%zu)\n",
                     stats.animatedNodesKept, compressed.scene.animations.size());
+    if (stats.camerasAndLightsKept)
+        std::printf("  cameras, lights %zu nodes kept where they were (%zu cameras, %zu lights)\n",
+                    stats.camerasAndLightsKept, compressed.scene.cameras.size(), compressed.scene.lights.size());
     if (stats.instances) std::printf("  per instance    %.0f bytes\n", instanceBytes);
     if (stats.attributeMismatches)
         std::printf("  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "

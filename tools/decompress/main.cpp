@@ -50,7 +50,8 @@ int main(int argc, char** argv) {
         return kBadInput;
     }
     try {
-        const Scene flat = expandInstances(scene);
+        Scene flat = expandInstances(scene);
+        for (std::string& loss : formatLosses(flat, output)) flat.warnings.push_back(std::move(loss));
         for (std::size_t i = scene.warnings.size(); i < flat.warnings.size(); ++i)
             std::fprintf(stderr, "warning: %s\n", flat.warnings[i].c_str());
         writeScene(flat, output, options, {input});
