@@ -174,10 +174,13 @@ Primitive triangleOf(const Primitive& part, std::size_t t) {
 class StorageCosts {
 public:
     StorageCosts(const SceneAnalysis& analysis, const CompressOptions& options)
-        : analysis_(analysis), options_(options), classOf_(analysis.tiles.size(), kNone) {
+        : analysis_(analysis), options_(options), classOf_(analysis.tiles.size(), kNone), memberOf_(analysis.tiles.size(), 0) {
         const auto& classes = analysis.classification.classes;
         for (std::size_t k = 0; k < classes.size(); ++k)
-            for (std::size_t t : classes[k].members) classOf_[t] = k;
+            for (std::size_t i = 0; i < classes[k].members.size(); ++i) {
+                classOf_[classes[k].members[i]] = k;
+                memberOf_[classes[k].members[i]] = i;
+            }
         classMesh_.assign(classes.size(), -1);
     }
 
@@ -208,10 +211,11 @@ public:
         return classMesh_[k];
     }
     // The cheaper way of storing tile t apart from a group of tiles: as it is, or drawn by its class's
-    // mesh (a node, and its share of the mesh).
+    // mesh (a node placing it, and its share of the mesh).
     double apart(std::size_t t) {
-        const std::size_t members = classOf_[t] == kNone ? 1 : analysis_.classification.classes[classOf_[t]].members.size();
-        return std::min(merged(t), instance() + alone(t) / double(members));
+        if (classOf_[t] == kNone) return std::min(merged(t), instance() + alone(t));
+        const CongruenceClass& c = analysis_.classification.classes[classOf_[t]];
+        return std::min(merged(t), node(c.placements[memberOf_[t]].matrix(), "") + alone(t) / double(c.members.size()));
     }
     // A mesh of these tiles: their triangles, and with `overhead` that of a primitive per material and
     // attributes.
@@ -266,7 +270,7 @@ private:
 
     const SceneAnalysis& analysis_;
     const CompressOptions& options_;
-    std::vector<std::size_t> classOf_;
+    std::vector<std::size_t> classOf_, memberOf_;  // a tile's class, and its index among the class's members
     std::vector<double> classMesh_;  // < 0: not measured yet
     std::map<Attributes, KindCosts> kinds_;
 };
@@ -515,8 +519,15 @@ std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const Compres
     }
     // Once with a node per element, against storing every tile apart; a mesh of its own costs extra only
     // when some tiles are left for another mesh.
-    if (part.empty() || costs.meshOf(part, orbitTiles.size() < tiles.size()) + double(order) * costs.instance() >= apart)
-        return drawn;
+    auto nodeOf = [&](std::size_t e) {
+        Eigen::Matrix4d node = Eigen::Matrix4d::Identity();
+        node.topLeftCorner<3, 3>() = group.elements[e].linear;
+        node.topRightCorner<3, 1>() = center;
+        return node;
+    };
+    double nodes = 0;
+    for (std::size_t e = 0; e < order; ++e) nodes += costs.node(nodeOf(e), "");
+    if (part.empty() || costs.meshOf(part, orbitTiles.size() < tiles.size()) + nodes >= apart) return drawn;
     PrimitivesByKind parts;
     for (std::size_t t : part) {
         Primitive local = tilePrimitive(tiles[t], analysis.soup);
@@ -527,12 +538,7 @@ std::vector<bool> planSceneSymmetry(const SceneAnalysis& analysis, const Compres
     mesh.name = "1/" + std::to_string(order) + " of the scene (" + group.name + ")";
     parts.moveInto(mesh);
     out.meshes.push_back(std::move(mesh));
-    for (std::size_t e = 0; e < order; ++e) {
-        Eigen::Matrix4d node = Eigen::Matrix4d::Identity();
-        node.topLeftCorner<3, 3>() = group.elements[e].linear;
-        node.topRightCorner<3, 1>() = center;
-        addRootNode(out, int(out.meshes.size()) - 1, node, "");
-    }
+    for (std::size_t e = 0; e < order; ++e) addRootNode(out, int(out.meshes.size()) - 1, nodeOf(e), "");
     for (std::size_t t : orbitTiles) drawn[t] = true;
     stats.sceneGroup = group.name;
     stats.tilesInSceneSymmetry = orbitTiles.size();
@@ -569,12 +575,16 @@ void planAssemblies(const Scene& input, const SceneAnalysis& analysis, const Com
             }))
             continue;
         // Once with a node per copy, against storing every tile of every copy apart.
-        double apart = 0;
-        for (const std::vector<std::size_t>& copy : assembly.copies)
-            for (std::size_t t : copy) apart += costs.apart(t);
-        if (costs.meshOf(assembly.copies[0]) + double(assembly.copies.size()) * costs.instance() >= apart) continue;
-        const std::size_t index = stats.assemblies++;
         const Eigen::Vector3d center = classification.shapes[assembly.copies[0][0]].moments.centroid;
+        Eigen::Matrix4d atCenter = Eigen::Matrix4d::Identity();
+        atCenter.topRightCorner<3, 1>() = center;
+        double apart = 0, nodes = 0;
+        for (std::size_t j = 0; j < assembly.copies.size(); ++j) {
+            for (std::size_t t : assembly.copies[j]) apart += costs.apart(t);
+            nodes += costs.node(assembly.placements[j].matrix() * atCenter, sourceName(input, analysis, assembly.copies[j][0]));
+        }
+        if (costs.meshOf(assembly.copies[0]) + nodes >= apart) continue;
+        const std::size_t index = stats.assemblies++;
         PrimitivesByKind parts;
         for (std::size_t t : assembly.copies[0]) {
             Primitive local = primitiveOf(t);
@@ -585,8 +595,6 @@ void planAssemblies(const Scene& input, const SceneAnalysis& analysis, const Com
         mesh.name = "assembly " + std::to_string(index) + " (" + std::to_string(assembly.copies[0].size()) + " tiles)";
         parts.moveInto(mesh);
         out.meshes.push_back(std::move(mesh));
-        Eigen::Matrix4d atCenter = Eigen::Matrix4d::Identity();
-        atCenter.topRightCorner<3, 1>() = center;
         for (std::size_t j = 0; j < assembly.copies.size(); ++j) {
             addRootNode(out, int(out.meshes.size()) - 1, assembly.placements[j].matrix() * atCenter,
                         sourceName(input, analysis, assembly.copies[j][0]));
