@@ -326,6 +326,7 @@ TEST_CASE("X3D viewpoints and lights are read where X3D puts them, written back,
         <NavigationInfo avatarSize='0.5 1.6 0.75' visibilityLimit='500'/>
         <Background skyColor='0 0 1'/>
         <WorldInfo title='lit'/>
+        <ProximitySensor size='5 5 5'/>
         <Transform translation='10 0 0'>
           <Viewpoint DEF='front' description='Front' position='0 1 5' orientation='0 1 0 0.5' fieldOfView='0.6'/>
           <DirectionalLight DEF='sun' direction='0 -1 0' intensity='0.8' color='1 0.9 0.8' global='true'/>
@@ -337,7 +338,8 @@ TEST_CASE("X3D viewpoints and lights are read where X3D puts them, written back,
     const Scene scene = readScene(file);
     validateScene(scene);
     CHECK(hasWarning(scene, "not kept (symcompress keeps geometry, materials, animations of transforms, viewpoints and "
-                            "lights): 1 Background, 1 NavigationInfo, 1 WorldInfo"));
+                            "lights): 1 ProximitySensor"));
+    CHECK(scene.x3dEnvironment.size() == 3);  // NavigationInfo, Background, WorldInfo: given back in X3D output
     CHECK(hasWarning(scene, "lights that are off (on='false') left out"));
     REQUIRE(scene.cameras.size() == 2);
     REQUIRE(scene.lights.size() == 2);
@@ -414,4 +416,33 @@ TEST_CASE("glTF cameras and lights that break the rules are left out with a warn
     CHECK(hasWarning(scene, "camera 0 ignored: a perspective camera needs yfov and znear above 0"));
     CHECK(hasWarning(scene, "light 0 ignored: a spot light needs 0 <= innerConeAngle < outerConeAngle <= pi/2"));
     CHECK(hasWarning(scene, "node 2: KHR_lights_punctual light index missing or out of range, ignored"));
+}
+
+TEST_CASE("X3D's NavigationInfo, Background, Fog and WorldInfo are given back in X3D output, and said lost in glTF",
+          "[io][x3d]") {
+    TemporaryFolder folder;
+    const auto file = folder / "dark.x3d";
+    writeTextFile(file, R"(<X3D><Scene>
+        <NavigationInfo DEF='nav' headlight='false' type='"EXAMINE" "ANY"'/>
+        <Background DEF='sky' skyColor='0 0 0.2' backUrl='"back.png"'/>
+        <Fog color='1 1 1' visibilityRange='30'/>
+        <WorldInfo title='dark'><MetadataString name='author' value='"me"'/></WorldInfo>
+        <NavigationInfo USE='nav'/>
+        <Shape><IndexedFaceSet coordIndex='0 1 2 -1'><Coordinate point='0 0 0 1 0 0 0 1 0'/></IndexedFaceSet></Shape>
+    </Scene></X3D>)");
+    const Scene scene = readScene(file);
+    // Kept once each (the USE is the same node), without DEF names or the Background's relative image URL.
+    REQUIRE(scene.x3dEnvironment.size() == 4);
+    CHECK(scene.x3dEnvironment[0] == R"(<NavigationInfo headlight="false" type="&quot;EXAMINE&quot; &quot;ANY&quot;"/>)");
+    CHECK(scene.x3dEnvironment[1] == R"(<Background skyColor="0 0 0.2"/>)");
+    CHECK(scene.x3dEnvironment[3].find("<MetadataString name=\"author\"") != std::string::npos);
+    CHECK(hasWarning(scene, "Background images are not kept"));
+    CHECK(!hasWarning(scene, "not kept (symcompress keeps"));
+
+    writeScene(scene, folder / "again.x3d");
+    const Scene again = readScene(folder / "again.x3d");
+    CHECK(again.x3dEnvironment == scene.x3dEnvironment);
+    CHECK(formatLosses(scene, folder / "again.x3d").empty());
+    CHECK(formatLosses(scene, folder / "dark.glb") ==
+          std::vector<std::string>{"X3D's 1 Background, 1 Fog, 1 NavigationInfo, 1 WorldInfo not written: .glb output has no place for them"});
 }

@@ -162,6 +162,9 @@ struct Scene {
     std::vector<Animation> animations;
     std::vector<Camera> cameras;
     std::vector<Light> lights;
+    // X3D's NavigationInfo, Background, Fog and WorldInfo nodes as read (XML text), which the scene model and
+    // glTF have no place for: an X3D writer gives them back.
+    std::vector<std::string> x3dEnvironment;
     std::vector<std::string> warnings;  // what the reader could not carry through, one line each
     std::string extrasJson;             // glTF asset.extras as read (where symcompress keeps its digest)
 };

@@ -690,6 +690,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     Scene& out = result.scene;
     out.textures = input.textures;
     out.materials = input.materials;
+    out.x3dEnvironment = input.x3dEnvironment;
     out.warnings = input.warnings;
     std::map<int, int> keptMesh;  // input mesh -> output mesh
     for (const KeptInstance& kept : analysis.keptInstances) {

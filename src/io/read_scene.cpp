@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -50,6 +51,14 @@ Scene readScene(const fs::path& file) {
 std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) {
     const FileFormat format = formatFromExtension(file);
     std::vector<std::string> losses;
+    if (format != FileFormat::X3d && !scene.x3dEnvironment.empty()) {
+        // Each is the XML text of one node: its type is the element's name.
+        std::map<std::string, int> types;
+        for (const std::string& node : scene.x3dEnvironment) ++types[node.substr(1, node.find_first_of(" />") - 1)];
+        std::string list;
+        for (const auto& [type, count] : types) list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + type;
+        losses.push_back("X3D's " + list + " not written: " + file.extension().string() + " output has no place for them");
+    }
     if (format == FileFormat::Glb || format == FileFormat::Gltf) return losses;
     if (format != FileFormat::X3d) {
         const std::string extension = file.extension().string();

@@ -18,6 +18,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -28,6 +29,8 @@ namespace {
 const std::set<std::string> kGroupingNodes = {"Group", "Transform", "Switch", "LOD", "Collision", "Anchor",
                                               "StaticGroup", "Billboard", "CADAssembly", "CADLayer", "CADPart",
                                               "CADFace", "Scene", "LayerSet", "Layer"};
+// Bindable nodes of the scene's environment with no place in the scene model, kept as their XML text.
+const std::set<std::string> kEnvironment = {"NavigationInfo", "Background", "Fog", "WorldInfo"};
 // Nodes read where they are used (animations from their ROUTEs) or that hold nothing of the scene's.
 const std::set<std::string> kReadElsewhere = {"ROUTE", "TimeSensor", "PositionInterpolator", "OrientationInterpolator",
                                               "ProtoDeclare", "ExternProtoDeclare", "IMPORT", "EXPORT"};
@@ -71,6 +74,7 @@ private:
     void readAnimations();
     int readViewpoint(const pugi::xml_node& viewpoint);
     int readLight(const pugi::xml_node& light, int depth);
+    void keepEnvironment(const pugi::xml_node& node);
 
     fs::path file_;
     Scene& scene_;
@@ -339,6 +343,10 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
         scene_.nodes.push_back(out);
         return static_cast<int>(scene_.nodes.size()) - 1;
     }
+    if (kEnvironment.count(type)) {
+        if (!source.attribute("USE")) keepEnvironment(node);
+        return -1;
+    }
     if (type == "Viewpoint" || type == "OrthoViewpoint") return readViewpoint(node);
     if (type == "DirectionalLight" || type == "PointLight" || type == "SpotLight") return readLight(node, depth);
     if (!kGroupingNodes.count(type)) {
@@ -379,6 +387,36 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
     if (type == "Transform" && !out.name.empty()) nodesOfTransform_[out.name].push_back(index);
     scene_.nodes.push_back(out);
     return index;
+}
+
+// A NavigationInfo, Background, Fog or WorldInfo as XML text for Scene::x3dEnvironment, without its DEF
+// names (the writer makes its own; the ROUTEs that bind such nodes are not kept) and without a
+// Background's image URLs, which are relative to the input's folder.
+void X3dReader::keepEnvironment(const pugi::xml_node& node) {
+    pugi::xml_document copy;
+    pugi::xml_node kept = copy.append_copy(node);
+    std::size_t images = 0;
+    auto clean = [&](auto&& self, pugi::xml_node element) -> void {
+        element.remove_attribute("DEF");
+        std::vector<std::string> urls;
+        for (const pugi::xml_attribute attribute : element.attributes()) {
+            const std::string name = attribute.name();
+            if (name.size() > 3 && name.compare(name.size() - 3, 3, "Url") == 0) urls.push_back(name);
+        }
+        for (const std::string& url : urls) element.remove_attribute(url.c_str());
+        images += urls.size();
+        for (pugi::xml_node child = element.first_child(); child;) {
+            const pugi::xml_node next = child.next_sibling();
+            if (child.type() == pugi::node_element && child.attribute("USE")) element.remove_child(child);
+            else if (child.type() == pugi::node_element) self(self, child);
+            child = next;
+        }
+    };
+    clean(clean, kept);
+    if (images) notes_.insert("Background images are not kept (their URLs are relative to the input's folder)");
+    std::ostringstream text;
+    kept.print(text, "", pugi::format_raw);
+    scene_.x3dEnvironment.push_back(text.str());
 }
 
 // A Viewpoint (or OrthoViewpoint) as a node placed at its position and orientation holding a camera: both

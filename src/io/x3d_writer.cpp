@@ -138,6 +138,7 @@ public:
         out_ += "</head>\n<Scene>\n";
         if (!options_.extrasJson.empty())
             out_ += "<MetadataString name='symcompress' value='\"" + escapeXml(escapeQuotes(options_.extrasJson)) + "\"'/>\n";
+        for (const std::string& node : scene_.x3dEnvironment) out_ += " " + node + "\n";
         written_.assign(scene_.meshes.size(), false);
         for (const Animation& animation : scene_.animations)
             for (const AnimationChannel& channel : animation.channels) nodeDef_[channel.node];

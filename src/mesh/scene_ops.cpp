@@ -228,6 +228,7 @@ Scene expandInstances(const Scene& scene) {
     flat.roots.push_back(0);
     flat.cameras = scene.cameras;
     flat.lights = scene.lights;
+    flat.x3dEnvironment = scene.x3dEnvironment;
     traverse(scene, [&](int node, const Eigen::Matrix4d& world) {
         const Node& from = scene.nodes[node];
         if (from.camera < 0 && from.light < 0) return;
