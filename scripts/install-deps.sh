@@ -6,7 +6,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-packages=(build-essential cmake pkg-config libtinygltf-dev libdraco-dev libeigen3-dev libpugixml-dev catch2
+packages=(build-essential cmake pkg-config libtinygltf-dev libdraco-dev libmeshoptimizer-dev libeigen3-dev libpugixml-dev catch2
           libcli11-dev nlohmann-json3-dev libtbb-dev zlib1g-dev)
 missing=()
 for p in "${packages[@]}"; do

@@ -3,11 +3,15 @@
 // Skipped (with a note) when Node.js or the peers are not installed, or SYMCOMPRESS_SKIP_INTEROP is set.
 #include "sample_scenes.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <Eigen/Geometry>
+
+using namespace symcompress;
 using namespace symcompress::testing;
 
 namespace {
@@ -193,4 +197,47 @@ TEST_CASE("Compressed samples are drawn as they were by independent readers (glT
     for (const char* sample : {"bolts", "chess", "icosahedral", "lamp", "pliers", "room", "three_spheres"})
         inputs.push_back(std::filesystem::path(SYMCOMPRESS_SOURCE_DIR) / "samples" / (std::string(sample) + ".glb"));
     checkDrawnByOthers(inputs);
+}
+
+TEST_CASE("Files packed by glTF-Transform (meshopt) and gltfpack (quantized, meshopt) read as the same scene",
+          "[interop][gltf]") {
+    if (!interopAvailable()) {
+        WARN("skipped: the peers in ../shared/bench are not installed");
+        return;
+    }
+    const bool gltfpack = runCommand("gltfpack -v").status == 0;
+    if (!gltfpack) WARN("gltfpack is not installed: only glTF-Transform's files are read");
+    TemporaryFolder folder;
+    const std::string transform = quoted(sharedDir() / "bench/node/node_modules/.bin/gltf-transform");
+    for (const char* model : {"cge_grass_flowers/grass_flowers.x3d", "kenney_racing_forest/decoration-forest.glb"}) {
+        INFO(model);
+        const auto reference = folder / "reference.glb";
+        convert(modelPath(model), reference, "--no-draco");
+        std::vector<std::pair<std::string, std::string>> packers = {
+            {"meshopt.glb", transform + " meshopt " + quoted(reference) + " " + quoted(folder / "meshopt.glb")}};
+        if (gltfpack)
+            for (const char* flags : {"", "-cc"})
+                packers.push_back({std::string("gltfpack") + flags + ".glb",
+                                   std::string("gltfpack ") + flags + " -i " + quoted(reference) + " -o " +
+                                       quoted(folder / (std::string("gltfpack") + flags + ".glb"))});
+        const std::vector<WorldPrimitive> original = flattenScene(readScene(reference));
+        for (const auto& [name, command] : packers) {
+            INFO(name);
+            REQUIRE(runCommand(command).status == 0);
+            const auto verified = runJson(std::string(SYMDECOMPRESS_CLI) + " " + quoted(folder / name) + " -o " +
+                                          quoted(folder / "flat.glb") + " --json --verify " + quoted(reference));
+            CHECK(verified["verified"] == true);
+            // The texture coordinates span what they did (gltfpack quantizes them and brings them back
+            // with KHR_texture_transform).
+            Eigen::AlignedBox2d before, after;
+            for (const WorldPrimitive& p : original)
+                for (const Eigen::Vector2d& t : p.primitive.texcoords) before.extend(t);
+            for (const WorldPrimitive& p : flattenScene(readScene(folder / name)))
+                for (const Eigen::Vector2d& t : p.primitive.texcoords) after.extend(t);
+            REQUIRE(!before.isEmpty());
+            if (after.isEmpty() && name.rfind("gltfpack", 0) == 0) continue;  // dropped: no texture reads them (forest)
+            CHECK((before.min() - after.min()).norm() < 1e-3);
+            CHECK((before.max() - after.max()).norm() < 1e-3);
+        }
+    }
 }

@@ -5,8 +5,12 @@
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <set>
 
@@ -445,4 +449,86 @@ TEST_CASE("X3D's NavigationInfo, Background, Fog and WorldInfo are given back in
     CHECK(formatLosses(scene, folder / "again.x3d").empty());
     CHECK(formatLosses(scene, folder / "dark.glb") ==
           std::vector<std::string>{"X3D's 1 Background, 1 Fog, 1 NavigationInfo, 1 WorldInfo not written: .glb output has no place for them"});
+}
+
+TEST_CASE("glTF compressed by meshoptimizer (EXT_meshopt_compression, KHR_mesh_quantization, KHR_texture_transform) reads",
+          "[io]") {
+    // A quad as gltfpack writes one: integer positions scaled by the node, octahedral 8-bit normals,
+    // 16-bit texture coordinates brought back by a texture transform, every buffer view meshopt-coded, and
+    // a fallback buffer with no data.
+    const std::vector<std::array<std::uint16_t, 4>> positions = {{0, 0, 0, 0}, {1000, 0, 0, 0}, {1000, 500, 0, 0}, {0, 500, 7, 0}};
+    std::vector<float> normalFloats = {0, 0, 1, 0, 0, 0.6f, 0.8f, 0, 0.6f, 0, 0.8f, 0, 0, 0, -1, 0};
+    std::vector<std::int8_t> normals(16);
+    meshopt_encodeFilterOct(normals.data(), 4, 4, 8, normalFloats.data());
+    const std::vector<std::array<std::uint16_t, 2>> texcoords = {{0, 0}, {65535, 0}, {65535, 65535}, {0, 32768}};
+    const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
+
+    std::vector<unsigned char> binary;
+    nlohmann::json views = nlohmann::json::array();
+    auto addView = [&](const void* data, std::size_t count, std::size_t stride, const char* mode, const char* filter, bool vertices) {
+        std::vector<unsigned char> coded(vertices ? meshopt_encodeVertexBufferBound(count, stride) : meshopt_encodeIndexBufferBound(count, 4));
+        coded.resize(vertices ? meshopt_encodeVertexBuffer(coded.data(), coded.size(), data, count, stride)
+                              : meshopt_encodeIndexBuffer(coded.data(), coded.size(), static_cast<const std::uint16_t*>(data), count));
+        nlohmann::json extension = {{"buffer", 0}, {"byteOffset", binary.size()}, {"byteLength", coded.size()},
+                                    {"byteStride", stride}, {"count", count}, {"mode", mode}};
+        if (filter) extension["filter"] = filter;
+        nlohmann::json view = {{"buffer", 1}, {"byteLength", count * stride}, {"extensions", {{"EXT_meshopt_compression", extension}}}};
+        if (vertices) view["byteStride"] = stride;
+        binary.insert(binary.end(), coded.begin(), coded.end());
+        while (binary.size() % 4) binary.push_back(0);
+        views.push_back(view);
+    };
+    addView(positions.data(), 4, 8, "ATTRIBUTES", nullptr, true);
+    addView(normals.data(), 4, 4, "ATTRIBUTES", "OCTAHEDRAL", true);
+    addView(texcoords.data(), 4, 4, "ATTRIBUTES", nullptr, true);
+    addView(indices.data(), 6, 2, "TRIANGLES", nullptr, false);
+    nlohmann::json gltf = {
+        {"asset", {{"version", "2.0"}}},
+        {"extensionsUsed", {"EXT_meshopt_compression", "KHR_mesh_quantization", "KHR_texture_transform"}},
+        {"extensionsRequired", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
+        {"buffers", {{{"byteLength", binary.size()}},
+                     {{"byteLength", 4 * 8 + 4 * 4 + 4 * 4 + 6 * 2}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}},
+        {"bufferViews", views},
+        {"accessors", {{{"bufferView", 0}, {"componentType", 5123}, {"count", 4}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {1000, 500, 7}}},
+                       {{"bufferView", 1}, {"componentType", 5120}, {"normalized", true}, {"count", 4}, {"type", "VEC3"}},
+                       {{"bufferView", 2}, {"componentType", 5123}, {"normalized", true}, {"count", 4}, {"type", "VEC2"}},
+                       {{"bufferView", 3}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
+        {"images", {{{"uri", "data:image/png;base64,AAAA"}}}},
+        {"textures", {{{"source", 0}}}},
+        {"materials", {{{"pbrMetallicRoughness",
+                         {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.25, 0.5}}, {"scale", {2, 4}}}}}}}}}}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}, {"material", 0}}}}}}},
+        {"nodes", {{{"mesh", 0}, {"scale", {0.001, 0.001, 0.001}}, {"translation", {1, 2, 3}}}}},
+        {"scenes", {{{"nodes", {0}}}}}};
+    std::string json = gltf.dump();
+    while (json.size() % 4) json.push_back(' ');
+    std::string glb = "glTF";
+    auto put32 = [&](std::uint32_t value) { glb.append(reinterpret_cast<const char*>(&value), 4); };
+    put32(2);
+    put32(std::uint32_t(12 + 8 + json.size() + 8 + binary.size()));
+    put32(std::uint32_t(json.size()));
+    put32(0x4E4F534Au);
+    glb += json;
+    put32(std::uint32_t(binary.size()));
+    put32(0x004E4942u);
+    glb.append(reinterpret_cast<const char*>(binary.data()), binary.size());
+    TemporaryFolder folder;
+    writeTextFile(folder / "packed.glb", glb);
+
+    const Scene scene = readScene(folder / "packed.glb");
+    CHECK(scene.warnings.empty());
+    const std::vector<WorldPrimitive> world = flattenScene(scene);
+    REQUIRE(world.size() == 1);
+    const Primitive& quad = world[0].primitive;
+    REQUIRE(quad.positions.size() == 4);
+    CHECK((quad.positions[2] - Eigen::Vector3d(2, 2.5, 3)).norm() < 1e-12);
+    CHECK((quad.positions[3] - Eigen::Vector3d(1, 2.5, 3.007)).norm() < 1e-12);
+    for (std::size_t v = 0; v < 4; ++v) {
+        const Eigen::Vector3d expected(normalFloats[4 * v], normalFloats[4 * v + 1], normalFloats[4 * v + 2]);
+        CHECK((quad.normals[v] - expected).norm() < 0.02);  // 8 bits
+    }
+    // (u, v) = offset + scale * q / 65535
+    CHECK((quad.texcoords[1] - Eigen::Vector2d(2.25, 0.5)).norm() < 1e-12);
+    CHECK((quad.texcoords[3] - Eigen::Vector2d(0.25, 0.5 + 4 * 32768.0 / 65535)).norm() < 1e-12);
+    CHECK(quad.triangles == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}});
 }

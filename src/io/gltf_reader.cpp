@@ -11,6 +11,8 @@
 #include <draco/core/decoder_buffer.h>
 #include <draco/mesh/mesh.h>
 
+#include <meshoptimizer.h>
+
 #include <nlohmann/json.hpp>
 
 #include <Eigen/Geometry>
@@ -58,7 +60,22 @@ private:
     const tinygltf::Model& model_;
     std::set<std::string> warnings_;
     std::map<std::string, int> skippedModes_;
+    std::map<int, Eigen::Matrix<double, 2, 3>> texcoordTransforms_;  // material -> its KHR_texture_transform
 };
+
+// KHR_texture_transform's matrix: translation(offset) * rotation(rotation) * scale(scale), on (u, v, 1).
+Eigen::Matrix<double, 2, 3> textureTransform(const tinygltf::Value& extension) {
+    auto pair = [&](const char* key, Eigen::Vector2d fallback) {
+        if (!extension.Has(key) || !extension.Get(key).IsArray() || extension.Get(key).ArrayLen() != 2) return fallback;
+        return Eigen::Vector2d(extension.Get(key).Get(0).GetNumberAsDouble(), extension.Get(key).Get(1).GetNumberAsDouble());
+    };
+    const Eigen::Vector2d offset = pair("offset", Eigen::Vector2d::Zero()), scale = pair("scale", Eigen::Vector2d::Ones());
+    const double rotation = extension.Has("rotation") && extension.Get("rotation").IsNumber() ? extension.Get("rotation").GetNumberAsDouble() : 0;
+    Eigen::Matrix<double, 2, 3> matrix;
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    matrix << c * scale.x(), s * scale.y(), offset.x(), -s * scale.x(), c * scale.y(), offset.y();
+    return matrix;
+}
 
 int componentCount(int type) {
     switch (type) {
@@ -335,6 +352,10 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
     out.triangles = trianglesFromIndices(indices, mode);
     out.material = source.material >= 0 && source.material < static_cast<int>(model_.materials.size()) ? source.material
                                                                                                       : -1;
+    // KHR_texture_transform on the base colour texture (how gltfpack dequantizes texture coordinates),
+    // applied to the coordinates themselves: the writers have no such transform to give.
+    if (const auto transform = texcoordTransforms_.find(out.material); transform != texcoordTransforms_.end())
+        for (Eigen::Vector2d& t : out.texcoords) t = transform->second * t.homogeneous();
     for (const auto& [name, accessor] : source.attributes)
         if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0" && name != "COLOR_0")
             warnAbout("attribute " + name + " not carried through");
@@ -403,6 +424,9 @@ void GltfReader::readMaterials(Scene& scene) {
                 material.baseColorTexture = entry->second;
             }
             if (pbr.baseColorTexture.texCoord != 0) warnAbout("base colour textures on TEXCOORD_1 or higher are not carried through");
+            const auto transform = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
+            if (transform != pbr.baseColorTexture.extensions.end())
+                texcoordTransforms_[scene.materials.size()] = textureTransform(transform->second);
         }
         if (source.normalTexture.index >= 0 || source.occlusionTexture.index >= 0 || source.emissiveTexture.index >= 0 ||
             pbr.metallicRoughnessTexture.index >= 0)
@@ -585,20 +609,67 @@ Scene GltfReader::read() {
     return scene;
 }
 
-// Extensions we read, or whose absence from our reading changes nothing that we keep.
-bool understoodExtension(const std::string& name) {
-    static const std::set<std::string> known = {"KHR_draco_mesh_compression", "KHR_lights_punctual",
-                                                "KHR_materials_emissive_strength", "KHR_texture_transform",
-                                                "KHR_materials_unlit", "KHR_materials_ior", "KHR_materials_specular",
-                                                "KHR_materials_transmission", "KHR_materials_volume",
-                                                "KHR_materials_clearcoat", "KHR_materials_sheen"};
-    return known.count(name) > 0;
+// The extensions we read.
+bool readExtension(const std::string& name) {
+    static const std::set<std::string> read = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
+                                               "KHR_mesh_quantization", "KHR_lights_punctual", "KHR_texture_transform"};
+    return read.count(name) > 0;
 }
 
-// tinygltf (as packaged, without its own Draco support) rejects a primitive whose indices accessor has no
-// bufferView, which is how KHR_draco_mesh_compression files are written. The indices of such primitives
-// come from the Draco data anyway, so they are removed from the JSON before tinygltf sees it.
-std::vector<unsigned char> withoutDracoIndices(const std::vector<unsigned char>& bytes, bool binary) {
+// Extensions that change how a surface looks, never where it is: a file that requires one is still read,
+// its geometry right, with a warning that the extension is left out.
+bool appearanceOnly(const std::string& name) { return name.rfind("KHR_materials_", 0) == 0; }
+
+// EXT_meshopt_compression: each compressed buffer view decoded (meshoptimizer) into a buffer of its own,
+// which the view then points at, so that accessors read it as any other.
+void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
+    for (std::size_t v = 0; v < model.bufferViews.size(); ++v) {
+        tinygltf::BufferView& view = model.bufferViews[v];
+        const auto found = view.extensions.find("EXT_meshopt_compression");
+        if (found == view.extensions.end()) continue;
+        const tinygltf::Value& extension = found->second;
+        const std::string where = "buffer view " + std::to_string(v) + " (EXT_meshopt_compression)";
+        auto number = [&](const char* key, double fallback) {
+            return extension.Has(key) && extension.Get(key).IsNumber() ? extension.Get(key).GetNumberAsDouble() : fallback;
+        };
+        auto text = [&](const char* key, const char* fallback) {
+            return extension.Has(key) && extension.Get(key).IsString() ? extension.Get(key).Get<std::string>() : std::string(fallback);
+        };
+        const double buffer = number("buffer", -1), offset = number("byteOffset", 0), length = number("byteLength", -1),
+                     stride = number("byteStride", -1), count = number("count", -1);
+        if (buffer < 0 || buffer >= double(model.buffers.size()) || offset < 0 || length < 0 || stride <= 0 || count < 0 ||
+            offset + length > double(model.buffers[std::size_t(buffer)].data.size()) || stride * count > 1e10)
+            throw FileError(file, where + ": buffer, byteOffset, byteLength, byteStride or count missing or out of range");
+        const unsigned char* source = model.buffers[std::size_t(buffer)].data.data() + std::size_t(offset);
+        const std::string mode = text("mode", ""), filter = text("filter", "NONE");
+        tinygltf::Buffer decoded;
+        decoded.data.resize(std::size_t(stride) * std::size_t(count));
+        int status = -1;
+        if (mode == "ATTRIBUTES" && int(stride) % 4 == 0 && stride <= 256)
+            status = meshopt_decodeVertexBuffer(decoded.data.data(), std::size_t(count), std::size_t(stride), source, std::size_t(length));
+        else if (mode == "TRIANGLES" && (stride == 2 || stride == 4))
+            status = meshopt_decodeIndexBuffer(decoded.data.data(), std::size_t(count), std::size_t(stride), source, std::size_t(length));
+        else if (mode == "INDICES" && (stride == 2 || stride == 4))
+            status = meshopt_decodeIndexSequence(decoded.data.data(), std::size_t(count), std::size_t(stride), source, std::size_t(length));
+        if (status != 0) throw FileError(file, where + ": cannot be decoded (mode '" + mode + "')");
+        if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) meshopt_decodeFilterOct(decoded.data.data(), std::size_t(count), std::size_t(stride));
+        else if (filter == "QUATERNION" && stride == 8) meshopt_decodeFilterQuat(decoded.data.data(), std::size_t(count), std::size_t(stride));
+        else if (filter == "EXPONENTIAL" && int(stride) % 4 == 0) meshopt_decodeFilterExp(decoded.data.data(), std::size_t(count), std::size_t(stride));
+        else if (filter != "NONE") throw FileError(file, where + ": unknown filter '" + filter + "'");
+        model.buffers.push_back(std::move(decoded));
+        view.buffer = int(model.buffers.size()) - 1;
+        view.byteOffset = 0;
+        view.byteLength = std::size_t(stride) * std::size_t(count);
+        if (mode == "ATTRIBUTES") view.byteStride = std::size_t(stride);
+    }
+}
+
+// What tinygltf (as packaged) would refuse in a valid file, mended in the JSON before it sees it:
+// - a primitive whose indices accessor has no bufferView, which is how KHR_draco_mesh_compression files
+//   are written: the indices come from the Draco data anyway, so they are removed;
+// - EXT_meshopt_compression's fallback buffer, which has no data (no uri, or more bytes than a GLB's binary
+//   chunk): it gets one byte of its own; decodeMeshopt gives its buffer views their data.
+std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>& bytes, bool binary) {
     auto readU32 = [&](std::size_t at) {
         std::uint32_t value;
         std::memcpy(&value, bytes.data() + at, 4);
@@ -614,9 +685,19 @@ std::vector<unsigned char> withoutDracoIndices(const std::vector<unsigned char>&
     nlohmann::json json = nlohmann::json::parse(bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin),
                                                 bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin + jsonLength),
                                                 nullptr, false);
-    if (json.is_discarded() || !json.contains("meshes") || !json["meshes"].is_array()) return bytes;
+    if (json.is_discarded() || !json.is_object()) return bytes;
     bool changed = false;
-    for (auto& mesh : json["meshes"]) {
+    if (json.contains("buffers") && json["buffers"].is_array())
+        for (auto& buffer : json["buffers"]) {
+            if (!buffer.is_object() || !buffer.contains("extensions") || !buffer["extensions"].is_object()) continue;
+            const auto meshopt = buffer["extensions"].find("EXT_meshopt_compression");
+            if (meshopt == buffer["extensions"].end() || !meshopt->is_object() || !meshopt->value("fallback", false)) continue;
+            buffer["uri"] = "data:application/octet-stream;base64,AA==";
+            buffer["byteLength"] = 1;
+            changed = true;
+        }
+    nlohmann::json noMeshes = nlohmann::json::array();
+    for (auto& mesh : json.contains("meshes") && json["meshes"].is_array() ? json["meshes"] : noMeshes) {
         if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
         for (auto& primitive : mesh["primitives"]) {
             if (!primitive.is_object() || !primitive.contains("extensions") || !primitive.contains("indices")) continue;
@@ -664,7 +745,7 @@ Scene readGltf(const fs::path& file) {
     std::string error, warning;
     const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw FileError(file, "larger than 4 GiB");
-    const std::vector<unsigned char> parsed = withoutDracoIndices(bytes, binary);
+    const std::vector<unsigned char> parsed = preparedForTinygltf(bytes, binary);
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, parsed.data(),
                                                          static_cast<unsigned int>(parsed.size()), baseDir)
                            : loader.LoadASCIIFromString(&model, &error, &warning,
@@ -675,12 +756,13 @@ Scene readGltf(const fs::path& file) {
         throw FileError(file, "invalid glTF: " + (error.empty() ? std::string("cannot be parsed") : error));
     }
     for (const std::string& required : model.extensionsRequired)
-        if (!understoodExtension(required))
+        if (!readExtension(required) && !appearanceOnly(required))
             throw FileError(file, "requires the extension " + required + ", which symcompress cannot read");
+    decodeMeshopt(model, file);
     Scene scene = GltfReader(file, model).read();
     scene.extrasJson = model.asset.extras_json_string;
     for (const std::string& used : model.extensionsUsed)
-        if (!understoodExtension(used))
+        if (!readExtension(used))
             scene.warnings.push_back(file.filename().string() + ": extension " + used + " ignored");
     return scene;
 }
