@@ -532,3 +532,28 @@ TEST_CASE("glTF compressed by meshoptimizer (EXT_meshopt_compression, KHR_mesh_q
     CHECK((quad.texcoords[3] - Eigen::Vector2d(0.25, 0.5 + 4 * 32768.0 / 65535)).norm() < 1e-12);
     CHECK(quad.triangles == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}});
 }
+
+TEST_CASE("EXT_mesh_gpu_instancing: every instance of a node's mesh is drawn, at its place", "[io]") {
+    TemporaryFolder folder;
+    // One triangle drawn twice: at (10, 0, 0) unturned and at (0, 20, 0) turned a quarter about z, under a
+    // node that lifts everything by 1 in z.
+    writeTextFile(folder / "instanced.gltf", R"({"asset": {"version": "2.0"},
+        "extensionsUsed": ["EXT_mesh_gpu_instancing"], "extensionsRequired": ["EXT_mesh_gpu_instancing"],
+        "buffers": [{"byteLength": 92, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAgQQAAAAAAAAAAAAAAAAAAoEEAAAAAAAAAAAAAAAAAAAAAAACAPwAAAAAAAAAA8wQ1P/MENT8="}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24},
+                        {"buffer": 0, "byteOffset": 60, "byteLength": 32}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC3"},
+                      {"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC4"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "nodes": [{"mesh": 0, "translation": [0, 0, 1],
+                   "extensions": {"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": 1, "ROTATION": 2}}}}],
+        "scenes": [{"nodes": [0]}]})");
+    const Scene scene = readScene(folder / "instanced.gltf");
+    CHECK(scene.warnings.empty());
+    const TriangleMesh world = worldMesh(scene);
+    REQUIRE(world.positions.size() == 6);
+    CHECK((world.positions[1] - Eigen::Vector3d(11, 0, 1)).norm() < 1e-12);
+    CHECK((world.positions[4] - Eigen::Vector3d(0, 21, 1)).norm() < 1e-6);  // (1, 0, 0) turned to (0, 1, 0)
+    CHECK(scene.meshes.size() == 1);
+}

@@ -54,6 +54,7 @@ private:
     void readMaterials(Scene& scene);
     void readAnimations(Scene& scene);
     void readCamerasAndLights(Scene& scene);
+    void expandGpuInstances(Scene& scene);
     void warnAbout(const std::string& warning) { warnings_.insert(warning); }
 
     fs::path file_;
@@ -563,6 +564,53 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
     }
 }
 
+// EXT_mesh_gpu_instancing (gltfpack -mi, glTF-Transform instance): each instance of a node's mesh becomes
+// a child node of its own with the instance's translation, rotation and scale, which apply before the
+// node's transform, as the extension says. The new nodes come after the file's, whose indices stay.
+void GltfReader::expandGpuInstances(Scene& scene) {
+    static const tinygltf::Value none;
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+        const auto found = model_.nodes[n].extensions.find("EXT_mesh_gpu_instancing");
+        if (found == model_.nodes[n].extensions.end() || scene.nodes[n].mesh < 0) continue;
+        const tinygltf::Value& attributes = found->second.Has("attributes") ? found->second.Get("attributes") : none;
+        const std::string where = "node " + std::to_string(n) + " (EXT_mesh_gpu_instancing)";
+        std::map<std::string, std::vector<double>> values;
+        for (const std::string& name : attributes.Keys()) {
+            const int components = name == "ROTATION" ? 4 : 3;
+            if (name != "TRANSLATION" && name != "ROTATION" && name != "SCALE") {
+                warnAbout("instance attribute " + name + " not carried through");
+                continue;
+            }
+            if (!attributes.Get(name).IsNumber()) fail(where + ": " + name + " is not an accessor index");
+            values[name] = readAccessor(attributes.Get(name).GetNumberAsInt(), components, name.c_str());
+        }
+        std::size_t count = 0;
+        for (const auto& [name, list] : values) count = std::max(count, list.size() / (name == "ROTATION" ? 4 : 3));
+        for (const auto& [name, list] : values)
+            if (list.size() / (name == "ROTATION" ? 4 : 3) != count) fail(where + ": attributes of different counts");
+        auto component = [&](const char* name, std::size_t i, int c, double fallback) {
+            const auto list = values.find(name);
+            return list == values.end() ? fallback : list->second[i * (std::strcmp(name, "ROTATION") == 0 ? 4 : 3) + std::size_t(c)];
+        };
+        for (std::size_t i = 0; i < count; ++i) {
+            Eigen::Affine3d trs = Eigen::Affine3d::Identity();
+            trs.translate(Eigen::Vector3d(component("TRANSLATION", i, 0, 0), component("TRANSLATION", i, 1, 0), component("TRANSLATION", i, 2, 0)));
+            const Eigen::Quaterniond rotation(component("ROTATION", i, 3, 1), component("ROTATION", i, 0, 0),
+                                              component("ROTATION", i, 1, 0), component("ROTATION", i, 2, 0));
+            if (!(rotation.norm() > 0)) fail(where + ": instance " + std::to_string(i) + " has a rotation of length 0");
+            trs.rotate(rotation.normalized());
+            trs.scale(Eigen::Vector3d(component("SCALE", i, 0, 1), component("SCALE", i, 1, 1), component("SCALE", i, 2, 1)));
+            if (!trs.matrix().allFinite()) fail(where + ": instance " + std::to_string(i) + " has NaN or infinite values");
+            Node instance;
+            instance.transform = trs.matrix();
+            instance.mesh = scene.nodes[n].mesh;
+            scene.nodes[n].children.push_back(int(scene.nodes.size()));
+            scene.nodes.push_back(std::move(instance));
+        }
+        scene.nodes[n].mesh = -1;
+    }
+}
+
 Scene GltfReader::read() {
     Scene scene;
     readMaterials(scene);
@@ -589,6 +637,7 @@ Scene GltfReader::read() {
         scene.nodes.push_back(std::move(node));
     }
     readCamerasAndLights(scene);
+    expandGpuInstances(scene);
     const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (sceneIndex < static_cast<int>(model_.scenes.size())) {
         for (int root : model_.scenes[sceneIndex].nodes) {
@@ -612,7 +661,8 @@ Scene GltfReader::read() {
 // The extensions we read.
 bool readExtension(const std::string& name) {
     static const std::set<std::string> read = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
-                                               "KHR_mesh_quantization", "KHR_lights_punctual", "KHR_texture_transform"};
+                                               "KHR_mesh_quantization", "EXT_mesh_gpu_instancing",
+                                               "KHR_lights_punctual", "KHR_texture_transform"};
     return read.count(name) > 0;
 }
 
