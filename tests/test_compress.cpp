@@ -500,6 +500,32 @@ TEST_CASE("Cameras and lights stay where they were: the sterile room's, the Chev
     CHECK(chevyAgain.cameras[0].name == "Chevy Side View");
 }
 
+TEST_CASE("Hundreds of small copies the author shared with a scale are stored merged where their nodes cost more",
+          "[compress]") {
+    // One box drawn by 400 nodes that scale it by 0.5, as gltfpack -mi writes a quantized mesh's instances:
+    // kept as the author shared them, 400 nodes cost far more JSON than the boxes cost in Draco.
+    Primitive box;
+    samples::appendMesh(box, samples::boxMesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 2, 3)));
+    Scene scene = samples::singleMeshScene("box", box, {0.5, 0.5, 0.5, 1});
+    scene.nodes.clear();
+    scene.roots.clear();
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> coordinate(-50, 50);
+    for (int n = 0; n < 400; ++n) {
+        Node node;
+        node.mesh = 0;
+        node.transform.topLeftCorner<3, 3>() *= 0.5;
+        node.transform.topRightCorner<3, 1>() = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+        scene.roots.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(node);
+    }
+    TemporaryFolder folder;
+    const nlohmann::json report = compressAndVerify(writePlainGlb(scene, folder, "shared"), folder, "small");
+    CHECK(report["plan"] == "draco_alone");
+    CHECK(report["triangles_stored"] == 400 * 12);
+    CHECK(report["output_bytes"].get<double>() < 0.5 * report["ablation"]["instancing_and_regions"].get<double>());
+}
+
 TEST_CASE("Animation channels of nodes the scene does not draw are left out, and said so", "[compress]") {
     Primitive box;
     samples::appendMesh(box, samples::boxMesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 2, 3)));

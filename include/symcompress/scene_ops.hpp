@@ -31,6 +31,9 @@ struct WorldPrimitive {
     int mesh = -1;
 };
 
+// `local` placed by `world` as WorldPrimitive says.
+Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& world);
+
 // Brings every normal to unit length; a normal of zero length (or not finite) is replaced by the
 // area-weighted normal of the vertex's triangles. Returns how many were replaced, for a warning.
 std::size_t repairNormals(Scene& scene);

@@ -693,7 +693,17 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     out.x3dEnvironment = input.x3dEnvironment;
     out.warnings = input.warnings;
     std::map<int, int> keptMesh;  // input mesh -> output mesh
+    PrimitivesByKind unique;        // tiles stored as they are
+    std::set<std::string> merged;   // names of the input nodes whose parts are merged into `unique`
     for (const KeptInstance& kept : analysis.keptInstances) {
+        if (!options.instancing) {
+            // Every copy as it is, as Draco alone stores it: the author's sharing may cost more than it saves
+            // (hundreds of small scaled copies), and this plan is the one that stores nothing shared.
+            for (const Primitive& primitive : input.meshes[std::size_t(kept.mesh)].primitives)
+                unique.add(transformPrimitive(primitive, kept.transform));
+            if (!kept.name.empty()) merged.insert(kept.name);
+            continue;
+        }
         auto [entry, added] = keptMesh.emplace(kept.mesh, int(out.meshes.size()));
         if (added) out.meshes.push_back(input.meshes[std::size_t(kept.mesh)]);
         addRootNode(out, entry->second, kept.transform, kept.name);
@@ -702,7 +712,6 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     }
     keepAnimatedSubtrees(input, analysis, out, keptMesh, stats);
     keepCamerasAndLights(input, out, stats);
-    PrimitivesByKind unique;  // tiles stored as they are
     if (!options.instancing)
         for (const Tile& tile : tiles) unique.add(tilePrimitive(tile, soup));
     std::vector<bool> uniqueTile(tiles.size(), !options.instancing);  // stored as it is
@@ -834,7 +843,6 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
     if (!unique.empty()) {
         // One mesh per material for every tile stored as it is, drawn by one node: it takes the name of
         // the node its tiles came from when that is a single one; otherwise the names are lost.
-        std::set<std::string> merged;
         for (std::size_t t = 0; t < tiles.size(); ++t)
             if (uniqueTile[t])
                 if (std::string name = sourceName(input, analysis, t); !name.empty()) merged.insert(name);

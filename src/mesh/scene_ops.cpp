@@ -62,6 +62,9 @@ void traverse(const Scene& scene, Visit&& visit) {
     }
 }
 
+
+}  // namespace
+
 Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& world) {
     Primitive out = local;
     const Eigen::Matrix3d linear = world.topLeftCorner<3, 3>();
@@ -79,8 +82,6 @@ Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& worl
         for (Triangle& triangle : out.triangles) std::swap(triangle[1], triangle[2]);
     return out;
 }
-
-}  // namespace
 
 void validateScene(const Scene& scene) {
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
