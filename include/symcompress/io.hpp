@@ -49,8 +49,9 @@ struct WriteOptions {
 void writeScene(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options = {},
                 const std::vector<std::filesystem::path>& inputs = {});
 
-// What writing `scene` to `file` leaves out or changes (animations, cameras and lights in OBJ or PLY, cubic
-// splines and light intensities in X3D), one warning each, for the caller to show before it writes.
+// What writing `scene` to `file` leaves out or changes (animations, cameras and lights in OBJ or PLY; X3D's
+// environment nodes outside X3D; cubic splines and light intensities in X3D), one warning each, for the
+// caller to show before it writes.
 std::vector<std::string> formatLosses(const Scene& scene, const std::filesystem::path& file);
 
 void writeGltf(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);  // .gltf/.glb

@@ -500,6 +500,15 @@ void GltfReader::readAnimations(Scene& scene) {
 // rules of scene.hpp (a yfov of 0, an unknown light type) is left out with a warning.
 void GltfReader::readCamerasAndLights(Scene& scene) {
     std::vector<int> cameraIndex(model_.cameras.size(), -1), lightIndex(model_.lights.size(), -1);
+    // Adds `item` to `into`, its index to `indexOf[i]`, or leaves it out with a warning naming `problem`.
+    auto keep = [&](const char* what, std::size_t i, const std::string& problem, auto item, auto& into, std::vector<int>& indexOf) {
+        if (!problem.empty()) {
+            warnAbout(std::string(what) + " " + std::to_string(i) + " ignored: " + problem);
+            return;
+        }
+        indexOf[i] = int(into.size());
+        into.push_back(std::move(item));
+    };
     for (std::size_t c = 0; c < model_.cameras.size(); ++c) {
         const tinygltf::Camera& source = model_.cameras[c];
         Camera camera;
@@ -516,15 +525,9 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
             camera.znear = source.perspective.znear;
             camera.zfar = source.perspective.zfar;
         }
-        const std::string problem = source.type == "orthographic" || source.type == "perspective"
-                                        ? cameraProblem(camera)
-                                        : "unknown type '" + source.type + "'";
-        if (!problem.empty()) {
-            warnAbout("camera " + std::to_string(c) + " ignored: " + problem);
-            continue;
-        }
-        cameraIndex[c] = int(scene.cameras.size());
-        scene.cameras.push_back(camera);
+        keep("camera", c,
+             source.type == "orthographic" || source.type == "perspective" ? cameraProblem(camera) : "unknown type '" + source.type + "'",
+             camera, scene.cameras, cameraIndex);
     }
     for (std::size_t l = 0; l < model_.lights.size(); ++l) {
         const tinygltf::Light& source = model_.lights[l];
@@ -539,15 +542,11 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
         light.innerConeAngle = source.spot.innerConeAngle;
         light.outerConeAngle = source.spot.outerConeAngle;
         const bool known = source.type == "directional" || source.type == "spot" || source.type == "point";
-        const std::string problem = !known ? "unknown type '" + source.type + "'"
-                                    : !source.color.empty() && source.color.size() != 3 ? "a colour needs 3 values"
-                                                                                        : lightProblem(light);
-        if (!problem.empty()) {
-            warnAbout("light " + std::to_string(l) + " ignored: " + problem);
-            continue;
-        }
-        lightIndex[l] = int(scene.lights.size());
-        scene.lights.push_back(light);
+        keep("light", l,
+             !known                                              ? "unknown type '" + source.type + "'"
+             : !source.color.empty() && source.color.size() != 3 ? "a colour needs 3 values"
+                                                                 : lightProblem(light),
+             light, scene.lights, lightIndex);
     }
     for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
         const tinygltf::Node& source = model_.nodes[n];

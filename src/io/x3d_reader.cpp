@@ -12,9 +12,9 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
-#include <cctype>
 #include <limits>
 #include <map>
 #include <set>
@@ -75,6 +75,7 @@ private:
     int readViewpoint(const pugi::xml_node& viewpoint);
     int readLight(const pugi::xml_node& light, int depth);
     void keepEnvironment(const pugi::xml_node& node);
+    int addPlacedNode(const pugi::xml_node& source, const Eigen::Affine3d& placement, int camera, int light);
 
     fs::path file_;
     Scene& scene_;
@@ -450,11 +451,17 @@ int X3dReader::readViewpoint(const pugi::xml_node& viewpoint) {
         notes_.insert("a " + std::string(viewpoint.name()) + " was left out: " + problem);
         return -1;
     }
-    Node out;
-    out.name = viewpoint.attribute("DEF").value();
-    out.transform = placement.matrix();
-    out.camera = int(scene_.cameras.size());
     scene_.cameras.push_back(camera);
+    return addPlacedNode(viewpoint, placement, int(scene_.cameras.size()) - 1, -1);
+}
+
+// A node of its own at `placement`, named by the X3D node's DEF, carrying a camera or a light.
+int X3dReader::addPlacedNode(const pugi::xml_node& source, const Eigen::Affine3d& placement, int camera, int light) {
+    Node out;
+    out.name = source.attribute("DEF").value();
+    out.transform = placement.matrix();
+    out.camera = camera;
+    out.light = light;
     scene_.nodes.push_back(out);
     return int(scene_.nodes.size()) - 1;
 }
@@ -495,13 +502,8 @@ int X3dReader::readLight(const pugi::xml_node& source, int depth) {
         const Eigen::Vector3d direction = vector3(source, "direction", Eigen::Vector3d(0, 0, -1));
         if (direction.norm() > 0) placement.rotate(Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(0, 0, -1), direction));
     }
-    Node out;
-    out.name = source.attribute("DEF").value();
-    out.transform = placement.matrix();
-    out.light = int(scene_.lights.size());
     scene_.lights.push_back(light);
-    scene_.nodes.push_back(out);
-    return int(scene_.nodes.size()) - 1;
+    return addPlacedNode(source, placement, -1, int(scene_.lights.size()) - 1);
 }
 
 void X3dReader::readInline(const pugi::xml_node& source, std::vector<int>& into) {
