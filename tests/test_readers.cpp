@@ -517,6 +517,17 @@ TEST_CASE("glTF compressed by meshoptimizer (EXT_meshopt_compression, KHR_mesh_q
 
     const Scene scene = readScene(folder / "packed.glb");
     CHECK(scene.warnings.empty());
+    // Broken: the coded bytes garbled, or a view that asks for more than its byteLength. A clear error each.
+    std::string garbled = glb;
+    for (std::size_t i = glb.size() - binary.size() + 1; i < glb.size(); i += 3) garbled[i] = char(0xff);
+    writeTextFile(folder / "garbled.glb", garbled);
+    CHECK_THROWS_WITH(readScene(folder / "garbled.glb"), Catch::Contains("(EXT_meshopt_compression): cannot be decoded"));
+    std::string greedy = glb;
+    const std::size_t at = greedy.find("\"count\":4,\"mode\":\"ATTRIBUTES\"");
+    REQUIRE(at != std::string::npos);
+    greedy.replace(at, 9, "\"count\":9");
+    writeTextFile(folder / "greedy.glb", greedy);
+    CHECK_THROWS_WITH(readScene(folder / "greedy.glb"), Catch::Contains("exceeds the buffer view's byteLength"));
     const std::vector<WorldPrimitive> world = flattenScene(scene);
     REQUIRE(world.size() == 1);
     const Primitive& quad = world[0].primitive;

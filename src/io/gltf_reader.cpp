@@ -687,8 +687,12 @@ void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
         const double buffer = number("buffer", -1), offset = number("byteOffset", 0), length = number("byteLength", -1),
                      stride = number("byteStride", -1), count = number("count", -1);
         if (buffer < 0 || buffer >= double(model.buffers.size()) || offset < 0 || length < 0 || stride <= 0 || count < 0 ||
-            offset + length > double(model.buffers[std::size_t(buffer)].data.size()) || stride * count > 1e10)
+            offset + length > double(model.buffers[std::size_t(buffer)].data.size()))
             throw FileError(file, where + ": buffer, byteOffset, byteLength, byteStride or count missing or out of range");
+        // The decoded data fills the view (glTF's byteLength, bounded so that a broken file cannot ask for more).
+        if (stride * count > double(view.byteLength) || stride * count > double(1u << 31))
+            throw FileError(file, where + ": count times byteStride (" + std::to_string(std::size_t(stride * count)) +
+                                      ") exceeds the buffer view's byteLength (" + std::to_string(view.byteLength) + ")");
         const unsigned char* source = model.buffers[std::size_t(buffer)].data.data() + std::size_t(offset);
         const std::string mode = text("mode", ""), filter = text("filter", "NONE");
         tinygltf::Buffer decoded;
