@@ -430,18 +430,17 @@ void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Sce
 
 // Every node with a camera or a light, outside the animated subtrees (which keep theirs), as a root node at
 // its world placement: the tiles are rebuilt elsewhere, the viewpoints and lights stay where they were.
-void keepCamerasAndLights(const Scene& input, Scene& out, CompressionStats& stats) {
+void keepCamerasAndLights(const Scene& input, const SceneAnalysis& analysis, Scene& out, CompressionStats& stats) {
     out.cameras = input.cameras;
     out.lights = input.lights;
-    std::vector<int> animatedTops;
-    const std::vector<bool> animated = markAnimatedSubtrees(input, animatedTops);
+    const std::vector<int>& animated = analysis.animatedSubtrees;  // their tops, sorted: a subtree is skipped whole
     std::vector<std::pair<int, Eigen::Matrix4d>> stack;  // node, its parent's world transform
     for (auto root = input.roots.rbegin(); root != input.roots.rend(); ++root) stack.push_back({*root, Eigen::Matrix4d::Identity()});
     while (!stack.empty()) {
         const auto [node, parentWorld] = stack.back();
         stack.pop_back();
         const Node& from = input.nodes[std::size_t(node)];
-        if (animated[std::size_t(node)]) continue;
+        if (std::binary_search(animated.begin(), animated.end(), node)) continue;
         const Eigen::Matrix4d world = parentWorld * from.transform;
         if (from.camera >= 0 || from.light >= 0) {
             addRootNode(out, -1, world, from.name);
@@ -711,7 +710,7 @@ CompressedScene planCompression(const Scene& input, const SceneAnalysis& analysi
         ++stats.instances;
     }
     keepAnimatedSubtrees(input, analysis, out, keptMesh, stats);
-    keepCamerasAndLights(input, out, stats);
+    keepCamerasAndLights(input, analysis, out, stats);
     if (!options.instancing)
         for (const Tile& tile : tiles) unique.add(tilePrimitive(tile, soup));
     std::vector<bool> uniqueTile(tiles.size(), !options.instancing);  // stored as it is

@@ -64,14 +64,23 @@ private:
     std::map<int, Eigen::Matrix<double, 2, 3>> texcoordTransforms_;  // material -> its KHR_texture_transform
 };
 
+// object[key], or a null value where `object` is not an object or has no such key (tinygltf's Get asserts).
+const tinygltf::Value& member(const tinygltf::Value& object, const std::string& key) {
+    static const tinygltf::Value none;
+    return object.Has(key) ? object.Get(key) : none;
+}
+
+double numberOr(const tinygltf::Value& value, double fallback) { return value.IsNumber() ? value.GetNumberAsDouble() : fallback; }
+
 // KHR_texture_transform's matrix: translation(offset) * rotation(rotation) * scale(scale), on (u, v, 1).
 Eigen::Matrix<double, 2, 3> textureTransform(const tinygltf::Value& extension) {
     auto pair = [&](const char* key, Eigen::Vector2d fallback) {
-        if (!extension.Has(key) || !extension.Get(key).IsArray() || extension.Get(key).ArrayLen() != 2) return fallback;
-        return Eigen::Vector2d(extension.Get(key).Get(0).GetNumberAsDouble(), extension.Get(key).Get(1).GetNumberAsDouble());
+        const tinygltf::Value& value = member(extension, key);
+        if (!value.IsArray() || value.ArrayLen() != 2) return fallback;
+        return Eigen::Vector2d(numberOr(value.Get(0), fallback.x()), numberOr(value.Get(1), fallback.y()));
     };
     const Eigen::Vector2d offset = pair("offset", Eigen::Vector2d::Zero()), scale = pair("scale", Eigen::Vector2d::Ones());
-    const double rotation = extension.Has("rotation") && extension.Get("rotation").IsNumber() ? extension.Get("rotation").GetNumberAsDouble() : 0;
+    const double rotation = numberOr(member(extension, "rotation"), 0);
     Eigen::Matrix<double, 2, 3> matrix;
     const double c = std::cos(rotation), s = std::sin(rotation);
     matrix << c * scale.x(), s * scale.y(), offset.x(), -s * scale.x(), c * scale.y(), offset.y();
@@ -256,9 +265,9 @@ void GltfReader::decodeDracoPrimitive(const tinygltf::Primitive& source, const t
     if (!decoded.ok()) fail(where + ": Draco cannot decode the mesh: " + decoded.status().error_msg_string());
     const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
 
-    const tinygltf::Value& attributes = extension.Get("attributes");
+    const tinygltf::Value& attributes = member(extension, "attributes");
     auto readDracoAttribute = [&](const char* name, int components) -> std::vector<double> {
-        if (!attributes.Has(name) || !attributes.Get(name).IsInt()) return {};
+        if (!member(attributes, name).IsInt()) return {};
         const draco::PointAttribute* attribute = mesh->GetAttributeByUniqueId(attributes.Get(name).Get<int>());
         if (!attribute) fail(where + ": Draco attribute " + name + " is missing from the compressed data");
         const int stored = attribute->num_components();
@@ -554,8 +563,7 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
         else if (source.camera >= 0) warnAbout("node " + std::to_string(n) + ": camera index out of range, ignored");
         const auto extension = source.extensions.find("KHR_lights_punctual");
         if (extension == source.extensions.end()) continue;
-        static const tinygltf::Value none;
-        const tinygltf::Value& light = extension->second.Has("light") ? extension->second.Get("light") : none;
+        const tinygltf::Value& light = member(extension->second, "light");
         if (light.IsNumber() && light.GetNumberAsInt() >= 0 && std::size_t(light.GetNumberAsInt()) < lightIndex.size())
             scene.nodes[n].light = lightIndex[std::size_t(light.GetNumberAsInt())];
         else
@@ -567,11 +575,10 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
 // a child node of its own with the instance's translation, rotation and scale, which apply before the
 // node's transform, as the extension says. The new nodes come after the file's, whose indices stay.
 void GltfReader::expandGpuInstances(Scene& scene) {
-    static const tinygltf::Value none;
     for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
         const auto found = model_.nodes[n].extensions.find("EXT_mesh_gpu_instancing");
         if (found == model_.nodes[n].extensions.end() || scene.nodes[n].mesh < 0) continue;
-        const tinygltf::Value& attributes = found->second.Has("attributes") ? found->second.Get("attributes") : none;
+        const tinygltf::Value& attributes = member(found->second, "attributes");
         const std::string where = "node " + std::to_string(n) + " (EXT_mesh_gpu_instancing)";
         std::map<std::string, std::vector<double>> values;
         for (const std::string& name : attributes.Keys()) {
@@ -678,11 +685,10 @@ void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
         if (found == view.extensions.end()) continue;
         const tinygltf::Value& extension = found->second;
         const std::string where = "buffer view " + std::to_string(v) + " (EXT_meshopt_compression)";
-        auto number = [&](const char* key, double fallback) {
-            return extension.Has(key) && extension.Get(key).IsNumber() ? extension.Get(key).GetNumberAsDouble() : fallback;
-        };
+        auto number = [&](const char* key, double fallback) { return numberOr(member(extension, key), fallback); };
         auto text = [&](const char* key, const char* fallback) {
-            return extension.Has(key) && extension.Get(key).IsString() ? extension.Get(key).Get<std::string>() : std::string(fallback);
+            const tinygltf::Value& value = member(extension, key);
+            return value.IsString() ? value.Get<std::string>() : std::string(fallback);
         };
         const double buffer = number("buffer", -1), offset = number("byteOffset", 0), length = number("byteLength", -1),
                      stride = number("byteStride", -1), count = number("count", -1);
