@@ -3,7 +3,7 @@
 // must stay apart) placed at random rotations, mirrors and positions on a grid, baked into one mesh.
 //   bench_classes N        one row of the table (run each N in its own process for its peak memory)
 #include "symcompress/congruence.hpp"
-#include "symcompress/solids.hpp"
+#include "symcompress/detail/solids.hpp"
 
 #include <Eigen/Geometry>
 

@@ -4,9 +4,9 @@
 // to share). Writes a Draco GLB.
 //   bench_compress N OUT.glb      one row of the table (run each N in its own process for its peak memory)
 #include "sample_scenes.hpp"
-#include "symcompress/compress.hpp"
+#include "symcompress/detail/compression_plan.hpp"
 #include "symcompress/io.hpp"
-#include "symcompress/solids.hpp"
+#include "symcompress/detail/solids.hpp"
 
 #include <Eigen/Geometry>
 
@@ -90,14 +90,16 @@ int main(int argc, char** argv) {
         const Scene scene = samples::singleMeshScene("bench", std::move(baked), {0.7, 0.7, 0.7, 1});
         const std::size_t triangles = scene.meshes[0].primitives[0].triangles.size();
 
+        // The stages of compressFile's full plan, for a Draco GLB (without the trial of the simpler plans).
         WriteOptions write;
-        CompressOptions options;  // as symcompress sets them for a Draco GLB
-        useGltfCosts(options, write);
+        const CompressOptions options;
+        PlanOptions planOptions = planOptionsOf(options);
+        planOptions.costs = costModelFor(FileFormat::Glb, write);
         auto start = std::chrono::steady_clock::now();
-        const SceneAnalysis analysis = analyzeScene(scene, options);
+        const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
         const double analyzeSeconds = since(start);
         start = std::chrono::steady_clock::now();
-        const CompressedScene compressed = planCompression(scene, analysis, options);
+        const CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions);
         const double planSeconds = since(start);
         start = std::chrono::steady_clock::now();
         write.extrasJson = compressed.digest.json();

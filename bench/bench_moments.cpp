@@ -2,7 +2,7 @@
 // 10k to 10M triangles, orders 2..8 and 2..16, on 1 and 2 threads.
 //   bench_moments [max-triangles]      (default 10000000)
 #include "bench_meshes.hpp"
-#include "symcompress/moments.hpp"
+#include "symcompress/detail/moments.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -8,6 +8,7 @@
 //   bench_precision MODEL...
 #include "sample_scenes.hpp"
 #include "symcompress/congruence.hpp"
+#include "symcompress/detail/congruence_tolerances.hpp"
 #include "symcompress/io.hpp"
 
 #include <algorithm>

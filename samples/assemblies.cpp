@@ -1,7 +1,7 @@
 // Assemblies whose symmetry groups are known by construction (paper 6.4, Fig. 8 and 11), baked into one mesh.
 #include "sample_scenes.hpp"
 
-#include "symcompress/solids.hpp"
+#include "symcompress/detail/solids.hpp"
 
 #include <Eigen/Geometry>
 

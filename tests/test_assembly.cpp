@@ -39,7 +39,7 @@ TEST_CASE("Assemblies with known groups: the constructive algorithm and the whol
         const TileClassification classification = classify(c.scene);
         CHECK(classification.shapes.size() == c.tiles);
         CHECK(classification.classes.size() == c.classes);
-        const SymmetryGroup assembly = assemblySymmetries(classification, 1e-5);
+        const SymmetryGroup assembly = assemblySymmetries(classification);
         CHECK(assembly.name == c.group);
         CHECK(assembly.order() == c.order);
         const SymmetryGroup whole = detectSymmetries(worldMesh(c.scene));
@@ -50,7 +50,7 @@ TEST_CASE("Assemblies with known groups: the constructive algorithm and the whol
 
 TEST_CASE("The sterile room: the constructive group equals the whole-shape group", "[assembly][models]") {
     const Scene scene = readScene(symcompress::testing::modelPath("cge_sterile_room/sterile_room.gltf"));
-    const SymmetryGroup assembly = assemblySymmetries(classify(scene), 1e-5);
+    const SymmetryGroup assembly = assemblySymmetries(classify(scene));
     const SymmetryGroup whole = detectSymmetries(worldMesh(scene));
     CHECK(assembly.name == whole.name);
     CHECK(assembly.order() == whole.order());

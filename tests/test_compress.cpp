@@ -2,8 +2,11 @@
 // the report's keys, instancing where it pays, the Khronos validator on the output.
 #include "sample_scenes.hpp"
 #include "symcompress/compress.hpp"
+#include "symcompress/detail/compression_plan.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/tiles.hpp"
+#include "symcompress/detail/weld_positions.hpp"
+#include "symcompress/verify.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
 
@@ -21,23 +24,21 @@ namespace {
 const std::string kSymcompress = SYMCOMPRESS_CLI;
 const std::string kSymdecompress = SYMDECOMPRESS_CLI;
 
+// Compressed by the library (compressFile) to NAME.EXTENSION, rebuilt and verified (decompressFile) against
+// the original and against the digest stored in the file; the report's JSON.
 nlohmann::json compressAndVerify(const std::filesystem::path& input, const TemporaryFolder& folder, const std::string& name,
-                                 const std::string& options = "") {
-    const auto output = folder / (name + ".glb"), report = folder / (name + ".json"), flat = folder / (name + "-flat.glb");
-    const CommandResult compressed = runCommand(kSymcompress + " " + quoted(input) + " -o " + quoted(output) + " -q --report " +
-                                                quoted(report) + " " + options);
-    INFO(compressed.output);
-    REQUIRE(compressed.status == 0);
-    const nlohmann::json verified = runJson(kSymdecompress + " " + quoted(output) + " -o " + quoted(flat) + " --json --verify " +
-                                            quoted(input));
-    CHECK(verified["verified"] == true);
-    CHECK(verified["area_ratio"].get<double>() == Approx(1).epsilon(1e-3));
+                                 const CompressOptions& options = {}, const std::string& extension = ".glb") {
+    const auto output = folder / (name + extension), flat = folder / (name + "-flat.glb");
+    const CompressionReport report = compressFile(input, output, options);
+    const RebuildReport verified = decompressFile(output, flat, input);
+    CHECK(verified.verified);
+    CHECK(verified.areaRatio == Approx(1).epsilon(1e-3));
     // Without the original, the digest stored in the file.
-    const nlohmann::json fromDigest = runJson(kSymdecompress + " " + quoted(output) + " -o " + quoted(flat) + " --json");
-    CHECK(fromDigest["against"] == "digest");
-    CHECK(fromDigest["verified"] == true);
-    if (interopAvailable()) CHECK(validatorErrors(output).empty());
-    return nlohmann::json::parse(readTextFile(report));
+    const RebuildReport fromDigest = decompressFile(output, flat);
+    CHECK(fromDigest.against == RebuildReport::Against::Digest);
+    CHECK(fromDigest.verified);
+    if (extension == ".glb" && interopAvailable()) CHECK(validatorErrors(output).empty());
+    return nlohmann::json::parse(report.json());
 }
 
 // The scene as an uncompressed GLB in the folder: the input a user would start from.
@@ -300,13 +301,9 @@ TEST_CASE("Every sample, compressed to GLB and X3D, rebuilds its original surfac
         INFO(name);
         const auto input = writePlainGlb(scene, folder, name);
         compressAndVerify(input, folder, std::string(name) + "-small");
-        const auto x3d = folder / (std::string(name) + "-small.x3d"), report = folder / "x3d.json";
-        REQUIRE(runCommand(kSymcompress + " -q " + quoted(input) + " -o " + quoted(x3d) + " --report " + quoted(report)).status == 0);
-        CHECK(runJson(kSymdecompress + " " + quoted(x3d) + " -o " + quoted(folder / "flat.glb") + " --json --verify " +
-                      quoted(input))["verified"] == true);
+        const nlohmann::json r = compressAndVerify(input, folder, std::string(name) + "-small", {}, ".x3d");
         if (std::string(name) == "bolts") {
             // As X3D text a bolt's 6 region copies pay: every one of the 12 placements times the 6 elements of C6.
-            const nlohmann::json r = nlohmann::json::parse(readTextFile(report));
             CHECK(r["region_classes"] == 1);
             CHECK(r["instances"] == 72);
         }
@@ -357,7 +354,7 @@ TEST_CASE("Tiles stored as they are keep their attributes, whatever the other ti
     Scene scene = sceneOfOneMesh("parts", withNormals);
     scene.meshes[0].primitives.push_back(without);
     scene.materials.emplace_back();
-    const CompressedScene compressed = compressScene(scene);
+    const CompressedScene compressed = compressInMemory(scene);
     std::size_t trianglesWithNormals = 0;
     for (const Mesh& mesh : compressed.scene.meshes)
         for (const Primitive& p : mesh.primitives) trianglesWithNormals += p.normals.empty() ? 0 : p.triangles.size();
@@ -403,8 +400,10 @@ TEST_CASE("Texture coordinates no texture reads are dropped on request, and said
     const auto input = modelPath("vulkan_torusknot/torusknot.gltf");
     const nlohmann::json kept = compressAndVerify(input, folder, "kept");
     CHECK(kept["region_classes"] == 0);
+    CompressOptions dropUnused;
+    dropUnused.dropUnusedTexcoords = true;
     CHECK_FALSE(readScene(folder / "kept.glb").meshes.at(0).primitives.at(0).texcoords.empty());
-    const nlohmann::json dropped = compressAndVerify(input, folder, "dropped", "--drop-unused-texcoords");
+    const nlohmann::json dropped = compressAndVerify(input, folder, "dropped", dropUnused);
     CHECK(dropped["warnings"].dump().find("texture coordinates of 1 primitives dropped") != std::string::npos);
     for (const Mesh& mesh : readScene(folder / "dropped.glb").meshes)
         for (const Primitive& primitive : mesh.primitives) CHECK(primitive.texcoords.empty());
@@ -537,7 +536,7 @@ TEST_CASE("Animation channels of nodes the scene does not draw are left out, and
     slide.values = {0, 0, 0, 1, 0, 0};
     scene.animations.push_back({"slide", {slide}});
     validateScene(scene);
-    const CompressedScene compressed = compressScene(scene);
+    const CompressedScene compressed = compressInMemory(scene);
     CHECK(compressed.scene.animations.empty());
     CHECK(compressed.stats.animatedNodesKept == 0);
     CHECK(compressed.scene.warnings.back() == "1 animation channels of nodes the scene does not draw left out");
@@ -587,4 +586,34 @@ TEST_CASE("The plan weighs parts by the writer's measure: the forest's trees, wi
     CHECK(report["assemblies"].get<std::size_t>() >= 2);
     CHECK(report["tiles_in_assemblies"].get<std::size_t>() >= 20);
     CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());
+}
+
+TEST_CASE("The report's bytes_per_instance counts the nodes that draw a shared mesh, by the writer's measure",
+          "[compress]") {
+    // A part with no symmetry and no copy: stored as it is, drawn by one node that is no instance.
+    TemporaryFolder folder;
+    Primitive lone;
+    lone.positions = {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}, {0, 0, 3}};
+    lone.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    const nlohmann::json alone = compressAndVerify(writePlainGlb(sceneOfOneMesh("lone", lone), folder, "lone"), folder, "lone-small");
+    CHECK(alone["instances"] == 0);
+    CHECK(alone["bytes_per_instance"] == 0);
+
+    // The bolts sample (12 copies of one bolt) with that part beside them: the bolts' 12 nodes, measured as
+    // the file holds them (their JSON, a comma and their index in the scene), not the merged part's node.
+    Scene scene = samples::makeBoltsScene();
+    Primitive placed = lone;
+    for (auto& p : placed.positions) p += Eigen::Vector3d(40, 0, 0);
+    placed.material = scene.meshes[0].primitives[0].material;
+    scene.meshes[0].primitives.push_back(placed);
+    const auto output = folder / "bolts-small.glb";
+    const CompressionReport report = compressFile(writePlainGlb(scene, folder, "bolts"), output);
+    REQUIRE(report.stats.instances == 12);
+    const nlohmann::json gltf = glbJson(output);
+    double total = 0;
+    std::size_t drawing = 0;
+    for (const auto& node : gltf["nodes"])
+        if (node.contains("mesh") && node["mesh"] == gltf["nodes"][0]["mesh"]) total += double(node.dump().size() + 1 + 3), ++drawing;
+    REQUIRE(drawing == 12);
+    CHECK(report.bytesPerInstance == Approx(total / 12));
 }

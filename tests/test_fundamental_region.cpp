@@ -1,7 +1,7 @@
 // Fundamental regions of tiles with known symmetry groups: the copies of the region must rebuild the tile
 // (area, coverage both ways, orientation), attributes must be interpolated at the cuts, and seams must
 // survive quantization where the frame makes that possible.
-#include "symcompress/fundamental_region.hpp"
+#include "symcompress/detail/fundamental_region.hpp"
 
 #include <catch2/catch.hpp>
 

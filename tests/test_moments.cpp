@@ -1,10 +1,10 @@
 // The moments engine against ground truth derived independently: brute-force quadrature of
 // |s x w|^(2p) over the triangles, orthonormality of the harmonics on the sphere, the action of
 // rotations and reflections, and the critical points that Theorem 1 of the paper predicts.
-#include "symcompress/congruence_descriptor.hpp"
-#include "symcompress/moments.hpp"
-#include "symcompress/solids.hpp"
-#include "symcompress/spherical_harmonics.hpp"
+#include "symcompress/detail/congruence_descriptor.hpp"
+#include "symcompress/detail/moments.hpp"
+#include "symcompress/detail/solids.hpp"
+#include "symcompress/detail/spherical_harmonics.hpp"
 
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>

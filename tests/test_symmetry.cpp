@@ -2,7 +2,7 @@
 // that the mesh itself is not symmetric, with float32 coordinates; the shared models; bad input.
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
-#include "symcompress/solids.hpp"
+#include "symcompress/detail/solids.hpp"
 #include "symcompress/symmetry.hpp"
 #include "test_support.hpp"
 

@@ -1,4 +1,5 @@
 #include "symcompress/tiles.hpp"
+#include "symcompress/detail/weld_positions.hpp"
 
 #include <catch2/catch.hpp>
 

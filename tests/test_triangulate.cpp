@@ -1,4 +1,4 @@
-#include "symcompress/triangulate_polygon.hpp"
+#include "symcompress/detail/triangulate_polygon.hpp"
 
 #include <catch2/catch.hpp>
 

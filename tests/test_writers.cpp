@@ -1,7 +1,7 @@
 // The glTF writer's numbers: each as short as what a reader keeps of it (float32 for positions and
 // translations, 1e-7 for rotations), and defaults left out; the file reads back to the same scene. And its
 // measure of a mesh, which the compression plan weighs its choices with.
-#include "io/rounded.hpp"
+#include "common/number_text.hpp"
 #include "sample_scenes.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
@@ -18,18 +18,6 @@
 
 using namespace symcompress;
 using namespace symcompress::testing;
-
-namespace {
-
-// The JSON chunk of a GLB file.
-nlohmann::json glbJson(const std::filesystem::path& file) {
-    const std::string bytes = readTextFile(file);
-    std::uint32_t length = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    return nlohmann::json::parse(bytes.substr(20, length));
-}
-
-}  // namespace
 
 TEST_CASE("Rounding helpers: float32 text reads back to the same float, rotation noise prints as 0", "[io]") {
     for (double value : {0.1, 1.0 / 3.0, -123456.789, 0.03323778510093689, 6.4000000953674316, 1e-30}) {

@@ -1,4 +1,4 @@
-// Symmetries of an assembly of tiles (paper 6.3, ALGORITHM.md 7), built from the tiles' congruence
+// Symmetries of an assembly of tiles (paper 6.3, docs/assembly.md), built from the tiles' congruence
 // classes and groups instead of from the whole surface.
 #pragma once
 
@@ -14,14 +14,13 @@ namespace symcompress {
 // the fewest candidates (members of its class times its group's order) fixes each candidate map: onto
 // tile t1 by J_t1 g J_t0^-1 for g in its group (paper property 4); a candidate is kept when every other
 // tile's centroid lands on a tile of its class and the map, seen from the two tiles' placements, is a
-// symmetry of their prototype. `tolerance` is relative to the scene's diagonal, as for the classes.
-SymmetryGroup assemblySymmetries(const TileClassification& classification, double tolerance);
+// symmetry of their prototype, within the classification's tolerance.
+SymmetryGroup assemblySymmetries(const TileClassification& classification);
 
 // For each element e of an assembly's group (assemblySymmetries), images[e][t] is the tile that e (about
 // the group's centroid) maps tile t onto: one of t's class, where the map is a symmetry of their
 // prototype seen from their placements; the number of tiles when there is none.
-std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group,
-                                                 double tolerance);
+std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group);
 
 // Tiles that recur together in one relative placement: the parts of a chair, a table with its legs, a
 // whole copied object. Copy 0 is the assembly as stored; copy j is placement j of it.
@@ -33,8 +32,8 @@ struct RepeatedAssembly {
     double deviation = 0;              // bound on any rebuilt tile's distance from its original, relative to the diagonal
 };
 
+// Copies are found within the classification's tolerance.
 struct AssemblyOptions {
-    double tolerance = 1e-5;  // relative to the scene's diagonal, as for the classes
     // Optional: whether tile `from`, placed by the isometry, may stand for tile `to` (e.g. attributes agree).
     std::function<bool(std::size_t from, std::size_t to, const Isometry&)> accept;
 };

@@ -1,9 +1,9 @@
-// Congruence classes of tiles (paper 6.2 and 6.3.3, ALGORITHM.md 6): tiles that are the same shape up
+// Congruence classes of tiles (paper 6.2 and 6.3.3, docs/congruence.md): tiles that are the same shape up
 // to a rotation or a reflection, found by descriptor, symmetry group and a geometric check, with the
 // isometry that places the class prototype onto each member.
 #pragma once
 
-#include "symcompress/congruence_descriptor.hpp"
+#include "symcompress/detail/congruence_descriptor.hpp"
 #include "symcompress/symmetry.hpp"
 #include "symcompress/tiles.hpp"
 
@@ -55,16 +55,13 @@ struct TileClassification {
     std::vector<TileShape> shapes;  // one per tile
     std::vector<CongruenceClass> classes;
     double sceneDiagonal = 0;
+    // The tolerance the classification was made with, as a distance and relative to sceneDiagonal: what the
+    // stages built on it (assemblies, the plan) use too.
+    double absoluteTolerance = 0, tolerance = 0;
     std::size_t descriptorMatches = 0;  // pairs that passed descriptor and group and went to the geometric check
     std::size_t verifiedMatches = 0;    // of those, the congruent ones
 };
 
-// The largest descriptorDifference between tiles that go on to the geometric check, for a tile of this
-// bounding-box diagonal and the classification's absolute tolerance.
-double descriptorTolerance(double tileDiagonal, double absoluteTolerance);
-// The relative tolerance of a tile's own symmetry group: the classification's absolute tolerance relative
-// to the tile, at least `relativeTolerance` and at most 1e-3 (a small tile is not allowed everything).
-double tileSymmetryTolerance(double tileDiagonal, double absoluteTolerance, double relativeTolerance);
 
 // Every tile in exactly one class. Tiles are grouped by area (a sorted index, never all pairs), then
 // material and descriptor, then checked geometrically (which also keeps tiles of different groups apart).

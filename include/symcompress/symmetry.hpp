@@ -1,9 +1,9 @@
-// Symmetries of a single shape (paper section 5, ALGORITHM.md 3-5): candidate axes from the critical
+// Symmetries of a single shape (paper section 5, docs/symmetry.md): candidate axes from the critical
 // points of the moment functions, the parameters each axis allows, verification on the shape with the
 // measure d_A, refinement, and the point group they form.
 #pragma once
 
-#include "symcompress/moments.hpp"
+#include "symcompress/detail/moments.hpp"
 #include "symcompress/scene.hpp"
 
 #include <Eigen/Core>

@@ -35,9 +35,4 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
 // what a writer stores for the tile. Vertices shared by several of its triangles in the source stay shared.
 Primitive tilePrimitive(const Tile& tile, const std::vector<WorldPrimitive>& soup);
 
-// Representative index of every position after welding within `tolerance` (absolute): points closer than
-// the tolerance to an earlier representative take its index. Order-dependent for chains of points each
-// within the tolerance of the next, which is harmless for the tiny tolerances used for welding.
-std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& positions, double tolerance);
-
 }  // namespace symcompress

@@ -81,13 +81,13 @@ private:
 
 }  // namespace
 
-SymmetryGroup assemblySymmetries(const TileClassification& classification, double tolerance) {
+SymmetryGroup assemblySymmetries(const TileClassification& classification) {
     SymmetryGroup result;
     result.elements.push_back(Symmetry{});
     result.diagonal = classification.sceneDiagonal;
     const std::size_t tileCount = classification.shapes.size();
     if (tileCount == 0) return result;
-    const double distance = tolerance * classification.sceneDiagonal;
+    const double distance = classification.absoluteTolerance;
     const TileLocator tiles(classification, distance);
     const Eigen::Vector3d center = tiles.center();
     result.centroid = center;
@@ -131,9 +131,8 @@ SymmetryGroup assemblySymmetries(const TileClassification& classification, doubl
     return result;
 }
 
-std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group,
-                                                 double tolerance) {
-    const TileLocator tiles(classification, tolerance * classification.sceneDiagonal);
+std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group) {
+    const TileLocator tiles(classification, classification.absoluteTolerance);
     std::vector<std::vector<std::size_t>> images(group.elements.size(), std::vector<std::size_t>(tiles.size()));
     for (std::size_t e = 0; e < group.elements.size(); ++e)
         for (std::size_t t = 0; t < tiles.size(); ++t) images[e][t] = tiles.image(group.elements[e].linear, t);

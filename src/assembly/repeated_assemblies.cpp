@@ -91,7 +91,7 @@ private:
 class AssemblyFinder {
 public:
     AssemblyFinder(const std::vector<Tile>& tiles, const TileClassification& classification, const AssemblyOptions& options)
-        : classification_(classification), options_(options), distance_(options.tolerance * classification.sceneDiagonal),
+        : classification_(classification), options_(options), distance_(classification.absoluteTolerance),
           placed_(placeTiles(tiles, classification)), touching_(placed_, kTouchingPerTolerance * distance_),
           free_(tiles.size(), true) {
         centroidCell_ = std::max(4 * distance_, 1e-300);

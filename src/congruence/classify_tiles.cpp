@@ -1,9 +1,11 @@
 // Congruence classes (paper 6.2): per-tile shapes in parallel, then candidates by area through a sorted
 // index, descriptor, material and group, then the geometric check.
 #include "symcompress/congruence.hpp"
+#include "symcompress/detail/congruence_tolerances.hpp"
 
 #include "find_isometry.hpp"
-#include "../common/with_threads.hpp"
+#include "common/with_threads.hpp"
+#include "geometry/bounds.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -73,6 +75,8 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
     result.sceneDiagonal = sceneBox.isEmpty() ? 0 : sceneBox.diagonal().norm();
     const double tolerance = options.absoluteTolerance > 0 ? options.absoluteTolerance : options.tolerance * result.sceneDiagonal;
     const double relativeTolerance = result.sceneDiagonal > 0 ? tolerance / result.sceneDiagonal : options.tolerance;
+    result.absoluteTolerance = tolerance;
+    result.tolerance = relativeTolerance;
 
     // Per tile, in parallel: moments, descriptor, second moments.
     result.shapes.resize(tiles.size());
@@ -82,8 +86,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
             TileShape& shape = result.shapes[i];
             shape.material = tile.material;
             shape.triangles = tile.mesh.triangles.size();
-            Eigen::AlignedBox3d box;
-            for (const auto& p : tile.mesh.positions) box.extend(p);
+            const Eigen::AlignedBox3d box = boundsOf(tile.mesh.positions);
             shape.diagonal = box.isEmpty() ? 0 : box.diagonal().norm();
             MomentOptions momentOptions;
             momentOptions.maxOrder = options.maxOrder;

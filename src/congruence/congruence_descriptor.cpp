@@ -1,4 +1,4 @@
-#include "symcompress/congruence_descriptor.hpp"
+#include "symcompress/detail/congruence_descriptor.hpp"
 
 #include <algorithm>
 #include <cmath>

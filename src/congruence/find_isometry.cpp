@@ -1,6 +1,6 @@
 #include "find_isometry.hpp"
 
-#include "../symmetry/candidate_axes.hpp"
+#include "geometry/candidate_axes.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>

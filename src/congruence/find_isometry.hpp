@@ -4,7 +4,7 @@
 
 #include "symcompress/congruence.hpp"
 
-#include "../symmetry/shape_verifier.hpp"
+#include "geometry/shape_verifier.hpp"
 
 #include <map>
 #include <optional>

@@ -1,9 +1,10 @@
 // glTF 2.0 reader (.gltf with external files or data URIs, .glb), on top of tinygltf's JSON and buffer
 // loading. Accessor decoding, Draco decoding and every range check are ours: tinygltf does not check
 // that accessors stay inside their buffers.
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "common/mime_type.hpp"
 
 #include <tiny_gltf.h>
 
@@ -388,16 +389,6 @@ Eigen::Matrix4d GltfReader::nodeTransform(const tinygltf::Node& node) const {
     return transform;
 }
 
-std::string mimeTypeFromUri(const std::string& uri) {
-    auto endsWith = [&](const char* suffix) {
-        const std::size_t n = std::strlen(suffix);
-        return uri.size() >= n && uri.compare(uri.size() - n, n, suffix) == 0;
-    };
-    if (endsWith(".png") || endsWith(".PNG")) return "image/png";
-    if (endsWith(".jpg") || endsWith(".jpeg") || endsWith(".JPG")) return "image/jpeg";
-    return "";
-}
-
 void GltfReader::readMaterials(Scene& scene) {
     std::map<int, int> textureOfImage;
     for (const tinygltf::Material& source : model_.materials) {
@@ -426,7 +417,7 @@ void GltfReader::readMaterials(Scene& scene) {
                     Texture out;
                     out.name = image.name;
                     out.uri = image.uri.rfind("data:", 0) == 0 ? "" : image.uri;
-                    out.mimeType = image.mimeType.empty() ? mimeTypeFromUri(image.uri) : image.mimeType;
+                    out.mimeType = image.mimeType.empty() ? imageMimeType(image.uri) : image.mimeType;
                     out.bytes = image.image;
                     if (out.bytes.empty()) warnAbout("image '" + image.uri + "' could not be read; materials using it are written without it");
                     scene.textures.push_back(std::move(out));

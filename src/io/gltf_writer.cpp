@@ -2,11 +2,12 @@
 // nodes stay shared (instancing, mirrors included: a negative-determinant node matrix is valid glTF and
 // renderers flip the winding for it). Geometry is compressed with KHR_draco_mesh_compression unless
 // WriteOptions::draco is false.
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "rotation_and_scale.hpp"
-#include "rounded.hpp"
+#include "common/number_text.hpp"
+#include "geometry/bounds.hpp"
 
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
@@ -126,9 +127,7 @@ std::pair<Primitive, Primitive> splitCollapsingTriangles(const Primitive& primit
     if (primitive.positionGrid) {
         grid = *primitive.positionGrid;
     } else {
-        Eigen::AlignedBox3d box;
-        for (const Triangle& t : primitive.triangles)
-            for (std::uint32_t v : t) box.extend(primitive.positions[v]);
+        const Eigen::AlignedBox3d box = boundsOfCorners(primitive.positions, primitive.triangles);
         grid = {box.min(), box.sizes().maxCoeff(), bits};
     }
     const double scale = grid.range > 0 ? double((1u << grid.bits) - 1) / grid.range : 0;

@@ -1,28 +1,21 @@
 // OBJ (with .mtl) and PLY writers. Both formats have no instancing: the scene is written flattened to
 // world space. Coordinates are printed with the shortest text that reads back to the same double.
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
-
-#include <charconv>
+#include "common/number_text.hpp"
 
 namespace symcompress {
 namespace fs = std::filesystem;
 
 namespace {
 
-void appendNumber(std::string& out, double value) {
-    char buffer[32];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    out.append(buffer, result.ptr);
-}
-
 template <typename Vector>
 void appendVector(std::string& out, const char* keyword, const Vector& vector, int components) {
     out += keyword;
     for (int c = 0; c < components; ++c) {
         out += ' ';
-        appendNumber(out, vector[c]);
+        appendShortest(out, vector[c]);
     }
     out += '\n';
 }
@@ -42,7 +35,7 @@ std::string mtlFile(const Scene& scene, const fs::path& file) {
         if (material.phong) appendVector(out, "Ks", material.phong->specularColor, 3);
         appendVector(out, "Ke", material.emissiveFactor, 3);
         out += "d ";
-        appendNumber(out, material.baseColorFactor[3]);
+        appendShortest(out, material.baseColorFactor[3]);
         out += '\n';
         if (material.baseColorTexture >= 0) {
             const Texture& texture = scene.textures[material.baseColorTexture];

@@ -1,8 +1,9 @@
 // Wavefront OBJ reader with its .mtl materials. Each o/g group becomes a node with its own mesh (one
 // primitive per material); vertices are split per distinct (v, vt, vn) triple; polygons are triangulated.
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
-#include "symcompress/triangulate_polygon.hpp"
+#include "symcompress/detail/triangulate_polygon.hpp"
+#include "common/mime_type.hpp"
 #include "text_scanner.hpp"
 
 #include <algorithm>
@@ -18,14 +19,6 @@ std::string rest(std::string_view line) {
     while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
     while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
     return std::string(line);
-}
-
-std::string mimeTypeOf(const fs::path& image) {
-    std::string extension = image.extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (extension == ".png") return "image/png";
-    if (extension == ".jpg" || extension == ".jpeg") return "image/jpeg";
-    return "";
 }
 
 // Reads a .mtl library into `scene`; returns the material index of every name.
@@ -86,7 +79,7 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
                 Texture texture;
                 texture.uri = name;
                 const fs::path image = library.parent_path() / name;
-                texture.mimeType = mimeTypeOf(image);
+                texture.mimeType = imageMimeType(image.string());
                 if (fs::is_regular_file(image, error))
                     texture.bytes = readFileBytes(image);
                 else

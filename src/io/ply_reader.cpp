@@ -1,9 +1,9 @@
 // PLY reader: ASCII, binary little and big endian; any scalar property types; faces as lists of any
 // length (polygons triangulated); properties we do not use are skipped.
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
-#include "symcompress/triangulate_polygon.hpp"
+#include "symcompress/detail/triangulate_polygon.hpp"
 #include "text_scanner.hpp"
 
 #include <algorithm>

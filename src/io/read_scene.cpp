@@ -1,4 +1,4 @@
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 

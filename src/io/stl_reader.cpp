@@ -1,6 +1,6 @@
 // STL reader, ASCII and binary. STL is a triangle soup: corners are shared here only where their
 // positions are bit-for-bit equal; welding within a tolerance is the tiles stage's job.
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "text_scanner.hpp"

@@ -1,11 +1,12 @@
 // X3D reader (XML encoding, X3D 3.x and 4.0). Keeps the node hierarchy with local transforms; a USE of
 // a Shape or geometry reuses the same symcompress Mesh, so that the file's instancing survives.
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
-#include "symcompress/triangulate_polygon.hpp"
+#include "symcompress/detail/triangulate_polygon.hpp"
 #include "x3d_fields.hpp"
 #include "x3d_primitives.hpp"
+#include "common/mime_type.hpp"
 
 #include <Eigen/Geometry>
 
@@ -567,10 +568,7 @@ int X3dReader::readTexture(const pugi::xml_node& appearance) {
     }
     if (out.uri.empty()) return -1;
     if (out.bytes.empty()) notes_.insert("texture '" + out.uri + "' not found; materials using it are written without it");
-    const std::string extension = fs::path(out.uri).extension().string();
-    out.mimeType = extension == ".png" || extension == ".PNG" ? "image/png"
-                   : extension == ".jpg" || extension == ".jpeg" || extension == ".JPG" ? "image/jpeg"
-                                                                                         : "";
+    out.mimeType = imageMimeType(out.uri);
     return addTexture(entry->second, std::move(out));
 }
 

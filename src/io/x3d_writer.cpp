@@ -3,11 +3,11 @@
 // and a USE afterwards; node transforms become Transforms (any affine matrix, mirrors included, through
 // rotation, scale and scaleOrientation); animations become a TimeSensor, interpolators and ROUTEs. `.x3dz`
 // is the same, gzip-compressed.
-#include "symcompress/atomic_file.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "rotation_and_scale.hpp"
-#include "rounded.hpp"
+#include "common/number_text.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -26,22 +26,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The shortest text that reads back to the same value: as float when the value is a float (most data
-// comes from float32 files), else as double.
-void appendNumber(std::string& out, double value) {
-    char buffer[32];
-    const float single = static_cast<float>(value);
-    const auto result = static_cast<double>(single) == value ? std::to_chars(buffer, buffer + sizeof buffer, single)
-                                                             : std::to_chars(buffer, buffer + sizeof buffer, value);
-    out.append(buffer, result.ptr);
-}
-
-// Each component cut by `round` (rounded.hpp) before it is printed.
+// Each component cut by `round` (number_text.hpp) before it is printed.
 template <typename Vector, typename Round = double (*)(double)>
 void appendVector(std::string& out, const Vector& v, int components, Round round = [](double x) { return x; }) {
     for (int c = 0; c < components; ++c) {
         if (c) out += ' ';
-        appendNumber(out, round(v[c]));
+        appendShortestFloat(out, round(v[c]));
     }
 }
 
@@ -89,7 +79,7 @@ void appendTransform(std::string& out, const Eigen::Vector3d& translation, const
         out += std::string(" ") + field + "='";
         appendVector(out, value.axis(), 3, turn);
         out += ' ';
-        appendNumber(out, turn(value.angle()));
+        appendShortestFloat(out, turn(value.angle()));
         out += "'";
     };
     appendRotation("rotation", rotation);
@@ -194,7 +184,7 @@ private:
             if (camera.aspectRatio > 0 && camera.aspectRatio < 1)
                 fieldOfView = 2 * std::atan(std::tan(camera.yfov / 2) * camera.aspectRatio);
             out_ += "<Viewpoint position='0 0 0' fieldOfView='";
-            appendNumber(out_, fieldOfView);
+            appendShortestFloat(out_, fieldOfView);
         }
         out_ += "'";
         if (!camera.name.empty()) out_ += " description='" + escapeXml(camera.name) + "'";
@@ -212,18 +202,18 @@ private:
         out_ += " global='true' color='";
         appendVector(out_, light.color, 3);
         out_ += "' intensity='";
-        appendNumber(out_, std::min(light.intensity, 1.0));
+        appendShortestFloat(out_, std::min(light.intensity, 1.0));
         out_ += "'";
         if (light.type != Light::Type::Directional) {
             out_ += " attenuation='0 0 1' radius='";
-            appendNumber(out_, light.range > 0 ? light.range : std::numeric_limits<float>::max());
+            appendShortestFloat(out_, light.range > 0 ? light.range : std::numeric_limits<float>::max());
             out_ += "'";
         }
         if (light.type == Light::Type::Spot) {
             out_ += " beamWidth='";
-            appendNumber(out_, light.innerConeAngle);
+            appendShortestFloat(out_, light.innerConeAngle);
             out_ += "' cutOffAngle='";
-            appendNumber(out_, light.outerConeAngle);
+            appendShortestFloat(out_, light.outerConeAngle);
             out_ += "'";
         }
         out_ += "/>\n";
@@ -239,7 +229,7 @@ private:
         if (!(cycle > 0)) cycle = 1;
         const std::string clock = uniqueName(animation.name.empty() ? "animation" + std::to_string(index) : animation.name);
         out_ += " <TimeSensor DEF='" + clock + "' cycleInterval='";
-        appendNumber(out_, cycle);
+        appendShortestFloat(out_, cycle);
         out_ += "' loop='true'/>\n";
         for (std::size_t c = 0; c < animation.channels.size(); ++c) {
             const AnimationChannel& channel = animation.channels[c];
@@ -257,7 +247,7 @@ private:
             out_ += std::string(" <") + (rotation ? "OrientationInterpolator" : "PositionInterpolator") + " DEF='" + interpolator + "' key='";
             for (std::size_t k = 0; k < keys.size(); ++k) {
                 if (k) out_ += ' ';
-                appendNumber(out_, static_cast<float>(keys[k].first));  // key times are float32 in glTF
+                appendShortestFloat(out_, static_cast<float>(keys[k].first));  // key times are float32 in glTF
             }
             out_ += "' keyValue='";
             for (std::size_t k = 0; k < keys.size(); ++k) {
@@ -268,7 +258,7 @@ private:
                     const auto decimals = [](double x) { return roundedDecimals(x, kRotationDecimals); };
                     appendVector(out_, turn.axis(), 3, decimals);
                     out_ += ' ';
-                    appendNumber(out_, decimals(turn.angle()));
+                    appendShortestFloat(out_, decimals(turn.angle()));
                 } else {
                     appendVector(out_, Eigen::Vector3d(value[0], value[1], value[2]), 3);
                 }
@@ -336,11 +326,11 @@ private:
         out_ += "' emissiveColor='";
         appendVector(out_, phong.emissiveColor, 3);
         out_ += "' ambientIntensity='";
-        appendNumber(out_, phong.ambientIntensity);
+        appendShortestFloat(out_, phong.ambientIntensity);
         out_ += "' shininess='";
-        appendNumber(out_, phong.shininess);
+        appendShortestFloat(out_, phong.shininess);
         out_ += "' transparency='";
-        appendNumber(out_, phong.transparency);
+        appendShortestFloat(out_, phong.transparency);
         out_ += "'/>";
         if (m.baseColorTexture >= 0) writeImageTexture(sameImage_[std::size_t(m.baseColorTexture)]);
         out_ += "</Appearance>\n";

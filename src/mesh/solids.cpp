@@ -1,4 +1,4 @@
-#include "symcompress/solids.hpp"
+#include "symcompress/detail/solids.hpp"
 
 #include <Eigen/Geometry>
 

@@ -1,4 +1,6 @@
 #include "symcompress/tiles.hpp"
+#include "symcompress/detail/weld_positions.hpp"
+#include "geometry/bounds.hpp"
 
 #include <Eigen/Geometry>
 
@@ -28,8 +30,7 @@ struct CellEqual {
 std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& positions, double tolerance) {
     std::vector<std::uint32_t> representative(positions.size());
     if (positions.empty()) return representative;
-    Eigen::AlignedBox3d bounds;
-    for (const Eigen::Vector3d& p : positions) bounds.extend(p);
+    const Eigen::AlignedBox3d bounds = boundsOf(positions);
     // A grid of cells kCellsPerTolerance times the tolerance: a point's partners lie in its own cell, or in
     // a neighbouring one only when the point is within the tolerance of that side, so most points need one
     // lookup. Exact welding (tolerance 0) uses a fine grid and exact equality. Cells count from the box's

@@ -1,7 +1,7 @@
 #include "moment_basis.hpp"
 
-#include "symcompress/moments.hpp"
-#include "symcompress/spherical_harmonics.hpp"
+#include "symcompress/detail/moments.hpp"
+#include "symcompress/detail/spherical_harmonics.hpp"
 
 #include <array>
 #include <memory>

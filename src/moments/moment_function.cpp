@@ -1,6 +1,6 @@
 #include "moment_basis.hpp"
 
-#include "symcompress/moments.hpp"
+#include "symcompress/detail/moments.hpp"
 
 namespace symcompress {
 

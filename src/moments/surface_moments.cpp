@@ -1,4 +1,4 @@
-// The monomial integrals of a triangle mesh, exactly (ALGORITHM.md 2).
+// The monomial integrals of a triangle mesh, exactly (docs/moments.md, "Integration").
 //
 // For a triangle T with vertices a, b, c and area A, and any direction t:
 //   integral over T of (t.s)^d ds = 2A d! / (d + 2)! * h_d(t.a, t.b, t.c),
@@ -9,9 +9,9 @@
 // So each triangle costs a few multiply-adds per monomial, and the factors beta! / (d + 2)! are applied once
 // to the sums.
 #include "moment_basis.hpp"
-#include "../common/with_threads.hpp"
+#include "common/with_threads.hpp"
 
-#include "symcompress/moments.hpp"
+#include "symcompress/detail/moments.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>

@@ -1,4 +1,4 @@
-#include "symcompress/homogeneous_polynomial.hpp"
+#include "symcompress/detail/homogeneous_polynomial.hpp"
 
 #include <stdexcept>
 

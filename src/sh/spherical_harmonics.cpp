@@ -1,4 +1,4 @@
-#include "symcompress/spherical_harmonics.hpp"
+#include "symcompress/detail/spherical_harmonics.hpp"
 
 #include <cmath>
 #include <stdexcept>

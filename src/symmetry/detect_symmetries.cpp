@@ -1,11 +1,12 @@
 // The single-shape detector (paper section 5): candidate axes, the maps each axis allows by the moments
-// (ALGORITHM.md 4), verification on the shape, refinement, and the group they generate.
+// (docs/symmetry.md §2), verification on the shape, refinement, and the group they generate.
 #include "symcompress/symmetry.hpp"
 
-#include "candidate_axes.hpp"
-#include "../common/with_threads.hpp"
+#include "geometry/candidate_axes.hpp"
+#include "common/with_threads.hpp"
 #include "point_group_closure.hpp"
-#include "shape_verifier.hpp"
+#include "geometry/shape_verifier.hpp"
+#include "geometry/bounds.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -182,9 +183,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         group.warnings.push_back("the shape has no triangles: only the identity");
         return group;
     }
-    Eigen::AlignedBox3d box;
-    for (const Triangle& t : mesh.triangles)
-        for (auto v : t) box.extend(mesh.positions[v]);
+    const Eigen::AlignedBox3d box = boundsOfCorners(mesh.positions, mesh.triangles);
     group.diagonal = box.diagonal().norm();
 
     MomentOptions momentOptions;

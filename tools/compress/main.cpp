@@ -1,24 +1,16 @@
-// symcompress: command-line front end. Thin: parses arguments, calls the library, prints.
-#include "symcompress/assembly.hpp"
-#include "symcompress/compress.hpp"
-#include "symcompress/congruence.hpp"
-#include "symcompress/io.hpp"
-#include "symcompress/scene_ops.hpp"
-#include "symcompress/symmetry.hpp"
+// symcompress: command-line front end. Thin: parses arguments, calls the library (symcompress.hpp), prints.
+#include "symcompress/symcompress.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+#include <algorithm>
 #include <chrono>
-#include <cstring>
-#include <iterator>
-#include <regex>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <set>
-#include <unistd.h>
-#include <algorithm>
 
 namespace fs = std::filesystem;
 using namespace symcompress;
@@ -73,14 +65,9 @@ int runInfo(const fs::path& file, bool json) {
     return 0;
 }
 
-// What the output's format cannot hold, said before the writer leaves it out.
-void warnAboutWhatTheFormatDrops(Scene& scene, const fs::path& output) {
-    for (std::string& loss : formatLosses(scene, output)) scene.warnings.push_back(std::move(loss));
-}
-
 int runConvert(const fs::path& input, const fs::path& output, const WriteOptions& options, bool quiet) {
     Scene scene = readScene(input);
-    warnAboutWhatTheFormatDrops(scene, output);
+    for (std::string& loss : formatLosses(scene, output)) scene.warnings.push_back(std::move(loss));
     if (!quiet)
         for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     writeScene(scene, output, options, {input});
@@ -115,7 +102,9 @@ nlohmann::json symmetryJson(const Symmetry& s) {
 }
 
 nlohmann::json groupJson(const SymmetryGroup& group) {
-    nlohmann::json out{{"group", group.name}, {"order", group.order()}, {"centroid", vectorJson(group.centroid)},
+    nlohmann::json out{{"group", group.name},
+                       {"order", group.order()},
+                       {"centroid", vectorJson(group.centroid)},
                        {"symmetries", nlohmann::json::array()}};
     for (const Symmetry& s : group.elements)
         if (s.kind != Symmetry::Kind::Identity) out["symmetries"].push_back(symmetryJson(s));
@@ -131,19 +120,25 @@ int runDetectTiles(const fs::path& file, const SymmetryOptions& options, bool js
     congruenceOptions.tolerance = options.tolerance;
     congruenceOptions.threads = options.threads;
     const TileClassification classification = classifyTiles(tiles, congruenceOptions);
-    const SymmetryGroup assembly = assemblySymmetries(classification, options.tolerance);
+    const SymmetryGroup assembly = assemblySymmetries(classification);
     std::vector<std::string> warnings = scene.warnings;
     if (json) {
-        nlohmann::json out{{"file", file.string()}, {"tiles", tiles.size()}, {"classes", nlohmann::json::array()},
-                           {"tolerance", options.tolerance}, {"warnings", warnings},
+        nlohmann::json out{{"file", file.string()},
+                           {"tiles", tiles.size()},
+                           {"classes", nlohmann::json::array()},
+                           {"tolerance", options.tolerance},
+                           {"warnings", warnings},
                            // Tile pairs that passed area, material and descriptor, and how many of them the
                            // geometric check found congruent.
                            {"descriptor_matches", classification.descriptorMatches},
                            {"verified_matches", classification.verifiedMatches}};
         for (const CongruenceClass& c : classification.classes) {
             const TileShape& prototype = classification.shapes[c.prototype];
-            nlohmann::json entry{{"prototype", c.prototype}, {"members", c.members.size()}, {"triangles", prototype.triangles},
-                                 {"group", prototype.symmetry.name}, {"instances", nlohmann::json::array()}};
+            nlohmann::json entry{{"prototype", c.prototype},
+                                 {"members", c.members.size()},
+                                 {"triangles", prototype.triangles},
+                                 {"group", prototype.symmetry.name},
+                                 {"instances", nlohmann::json::array()}};
             for (std::size_t i = 0; i < c.members.size(); ++i) {
                 const Eigen::Matrix4d m = c.placements[i].matrix();
                 entry["instances"].push_back({{"tile", c.members[i]},
@@ -160,14 +155,15 @@ int runDetectTiles(const fs::path& file, const SymmetryOptions& options, bool js
     }
     std::size_t repeated = 0;
     for (const CongruenceClass& c : classification.classes) repeated += c.members.size() > 1 ? c.members.size() : 0;
-    std::printf("%s: %zu tiles in %zu classes (%zu tiles in classes of 2 or more), tolerance %g\n", file.string().c_str(),
-                tiles.size(), classification.classes.size(), repeated, options.tolerance);
+    std::printf("%s: %zu tiles in %zu classes (%zu tiles in classes of 2 or more), tolerance %g\n",
+                file.string().c_str(), tiles.size(), classification.classes.size(), repeated, options.tolerance);
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         const CongruenceClass& c = classification.classes[k];
         const TileShape& prototype = classification.shapes[c.prototype];
-        const auto mirrored = std::count_if(c.placements.begin(), c.placements.end(), [](const Isometry& j) { return j.mirrors(); });
-        std::printf("  class %zu: %zu x tile %zu (%zu triangles, group %s), %td mirrored\n", k, c.members.size(), c.prototype,
-                    prototype.triangles, prototype.symmetry.name.c_str(), mirrored);
+        const auto mirrored =
+            std::count_if(c.placements.begin(), c.placements.end(), [](const Isometry& j) { return j.mirrors(); });
+        std::printf("  class %zu: %zu x tile %zu (%zu triangles, group %s), %td mirrored\n", k, c.members.size(),
+                    c.prototype, prototype.triangles, prototype.symmetry.name.c_str(), mirrored);
     }
     std::printf("  assembly: group %s, order %d\n", assembly.name.c_str(), assembly.order());
     for (const std::string& warning : warnings) std::printf("  warning: %s\n", warning.c_str());
@@ -205,7 +201,9 @@ int runDetect(const fs::path& file, const SymmetryOptions& options, bool json) {
             std::printf("  rotoreflection  axis   [% .9f % .9f % .9f] by %8.4f deg", a.x(), a.y(), a.z(),
                         s.angle * 180 / 3.14159265358979323846);
             break;
-        case Symmetry::Kind::Inversion: std::printf("  inversion                                                        "); break;
+        case Symmetry::Kind::Inversion:
+            std::printf("  inversion                                                        ");
+            break;
         }
         std::printf("  deviation %.2e\n", s.deviation);
     }
@@ -213,60 +211,9 @@ int runDetect(const fs::path& file, const SymmetryOptions& options, bool json) {
     return 0;
 }
 
-// The bytes the written file spends placing instances, per instance: glTF nodes but the one drawing the
-// tiles stored as they are, X3D Transforms around a USE. 0 when there are none or the file is compressed
-// (.x3dz).
-double bytesPerInstance(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    std::size_t total = 0, count = 0;
-    const FileFormat format = formatFromExtension(file);
-    if (format == FileFormat::Glb || format == FileFormat::Gltf) {
-        std::string text = bytes;
-        if (format == FileFormat::Glb) {
-            if (bytes.size() < 20) return 0;
-            std::uint32_t length = 0;
-            std::memcpy(&length, bytes.data() + 12, 4);
-            text = bytes.substr(20, length);
-        }
-        const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
-        if (json.is_discarded() || !json.contains("nodes")) return 0;
-        for (const auto& node : json["nodes"])
-            if (node.contains("mesh") && node.value("name", "") != "unique tiles") total += node.dump().size() + 1, ++count;
-    } else if (format == FileFormat::X3d) {
-        static const std::regex instance(R"(<Transform[^>]*>\s*<Group USE='[^']*'/>\s*</Transform>)");
-        for (auto it = std::sregex_iterator(bytes.begin(), bytes.end(), instance); it != std::sregex_iterator(); ++it)
-            total += std::size_t(it->length()), ++count;
-    }
-    return count ? double(total) / double(count) : 0;
-}
-
-// The bytes of a scene on disk: the file, and for .gltf the buffers and images it names by relative path.
-std::uintmax_t sceneBytes(const fs::path& file) {
-    std::error_code error;
-    std::uintmax_t total = fs::file_size(file, error);
-    if (error) return 0;
-    if (formatFromExtension(file) != FileFormat::Gltf) return total;
-    std::ifstream in(file);
-    const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
-    if (json.is_discarded()) return total;
-    for (const char* key : {"buffers", "images"})
-        if (json.contains(key) && json[key].is_array())
-            for (const auto& item : json[key])
-                if (item.contains("uri") && item["uri"].is_string()) {
-                    const std::string uri = item["uri"];
-                    if (uri.rfind("data:", 0) == 0 || uri.find("://") != std::string::npos) continue;
-                    const std::uintmax_t size = fs::file_size(file.parent_path() / uri, error);
-                    if (!error) total += size;
-                }
-    return total;
-}
-
 struct CompressRequest {
     fs::path input, output, report;
     CompressOptions options;
-    WriteOptions write;
-    bool dropUnusedTexcoords = false;
     bool quiet = false;
 };
 
@@ -278,8 +225,10 @@ public:
     void stage(const char* name, std::size_t count = 0, const char* unit = "") {
         if (!shown_) return;
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-        if (count) std::fprintf(stderr, "\r\033[Ksymcompress: %s %zu %s (%.1f s)", name, count, unit, seconds);
-        else std::fprintf(stderr, "\r\033[Ksymcompress: %s (%.1f s)", name, seconds);
+        if (count)
+            std::fprintf(stderr, "\r\033[Ksymcompress: %s %zu %s (%.1f s)", name, count, unit, seconds);
+        else
+            std::fprintf(stderr, "\r\033[Ksymcompress: %s (%.1f s)", name, seconds);
         std::fflush(stderr);
     }
     void clear() {
@@ -291,137 +240,14 @@ private:
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-int runCompress(const CompressRequest& request) {
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    ProgressLine progress(!request.quiet);
-    progress.stage("reading");
-    Scene scene = readScene(request.input);
-    if (request.dropUnusedTexcoords)
-        if (const std::size_t dropped = dropUnreadTexcoords(scene))
-            scene.warnings.push_back(request.input.filename().string() + ": texture coordinates of " + std::to_string(dropped) +
-                                     " primitives dropped (--drop-unused-texcoords): no texture reads them");
-    warnAboutWhatTheFormatDrops(scene, request.output);
-    const double readSeconds = std::chrono::duration<double>(Clock::now() - start).count();
-    if (!request.quiet)
-        for (const std::string& warning : scene.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-    CompressOptions options = request.options;
-    if (formatFromExtension(request.output) == FileFormat::X3d) useX3dCosts(options, request.write);
-    else useGltfCosts(options, request.write);
-    options.progress = [&progress](const char* stage, std::size_t count, const char* unit) { progress.stage(stage, count, unit); };
-    const SceneAnalysis analysis = analyzeScene(scene, options);
-    CompressedScene compressed = planCompression(scene, analysis, options);
-    WriteOptions write = request.write;
-    write.extrasJson = compressed.digest.json();
-    const auto writeStart = Clock::now();
-    progress.stage("writing", compressed.stats.trianglesStored, "triangles");
-    writeScene(compressed.scene, request.output, write, {request.input});
-    const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
-
-    // Ablation: the same scene with every tile stored as it is (Draco alone), and with instancing but no
-    // fundamental regions. The cost model only estimates: where a simpler plan's file is smaller, that
-    // file is the output (the report says which plan it is).
-    struct Variant {
-        const char* name;
-        CompressedScene plan;
-        std::uintmax_t bytes;
-    };
-    std::vector<Variant> variants;
-    auto tryVariant = [&](const char* name, CompressOptions variant) {
-        const fs::path temporary = request.output.parent_path() / (".symcompress-ablation-" + request.output.filename().string());
-        CompressedScene plan = planCompression(scene, analysis, variant);
-        writeScene(plan.scene, temporary, write, {request.input});
-        const std::uintmax_t size = sceneBytes(temporary);  // with a .gltf's .bin
-        std::error_code error;
-        fs::remove(temporary, error);
-        if (formatFromExtension(temporary) == FileFormat::Gltf) fs::remove(fs::path(temporary).replace_extension(".bin"), error);
-        variants.push_back({name, std::move(plan), size});
-    };
-    CompressOptions plain = options, instancingOnly = options;
-    plain.instancing = false;
-    instancingOnly.regions = false;
-    plain.progress = instancingOnly.progress = nullptr;
-    progress.stage("measuring the ablation");
-    if (request.options.instancing) tryVariant("draco_alone", plain);
-    if (request.options.instancing && request.options.regions) tryVariant("instancing", instancingOnly);
-    const std::uintmax_t dracoAlone = request.options.instancing ? variants[0].bytes : 0;
-    const std::uintmax_t withInstancing = request.options.instancing && request.options.regions ? variants[1].bytes : 0;
-    const std::uintmax_t fullPlanBytes = sceneBytes(request.output);
-    std::uintmax_t outputBytes = fullPlanBytes;
-    const char* chosen = "final";
-    for (Variant& variant : variants)
-        if (variant.bytes < outputBytes) {
-            writeScene(variant.plan.scene, request.output, write, {request.input});
-            compressed = std::move(variant.plan);
-            chosen = variant.name;
-            outputBytes = sceneBytes(request.output);
-        }
-    const CompressionStats& stats = compressed.stats;
-    // What the plan could not carry through, after the reader's own warnings.
-    const std::vector<std::string>& warnings = compressed.scene.warnings;
-    if (!request.quiet)
-        for (std::size_t i = scene.warnings.size(); i < warnings.size(); ++i) std::fprintf(stderr, "warning: %s\n", warnings[i].c_str());
-    std::uintmax_t inputBytes = sceneBytes(request.input);
-    // OBJ, PLY, STL and X3D name their images by path: those files are part of the input too.
-    const FileFormat inputFormat = formatFromExtension(request.input);
-    if (inputFormat != FileFormat::Gltf && inputFormat != FileFormat::Glb)
-        for (const Texture& texture : scene.textures) inputBytes += texture.bytes.size();
-    const double ratio = outputBytes ? double(inputBytes) / double(outputBytes) : 0;
-    const double instanceBytes = bytesPerInstance(request.output);
-    nlohmann::json report{{"input", request.input.string()},
-                          {"output", request.output.string()},
-                          {"input_bytes", inputBytes},
-                          {"output_bytes", outputBytes},
-                          {"ratio", ratio},
-                          {"plan", chosen},
-                          {"triangles_in", stats.trianglesIn},
-                          {"triangles_stored", stats.trianglesStored},
-                          {"tiles", stats.tiles},
-                          {"classes", stats.classes},
-                          {"instanced_classes", stats.instancedClasses},
-                          {"instances", stats.instances},
-                          {"symmetric_classes", stats.symmetricClasses},
-                          {"attribute_mismatches", stats.attributeMismatches},
-                          {"not_worth_instancing", stats.notWorthInstancing},
-                          {"max_deviation", stats.maxDeviation},
-                          {"tolerance", request.options.tolerance},
-                          {"seconds",
-                           {{"read", readSeconds},
-                            {"tiles", stats.secondsTiles},
-                            {"classes", stats.secondsClasses},
-                            {"plan", stats.secondsPlan},
-                            {"write", writeSeconds}}},
-                          {"region_classes", stats.regionClasses},
-                          {"assemblies", stats.assemblies},
-                          {"assembly_copies", stats.assemblyCopies},
-                          {"tiles_in_assemblies", stats.tilesInAssemblies},
-                          {"scene_group", stats.sceneGroup},
-                          {"tiles_in_scene_symmetry", stats.tilesInSceneSymmetry},
-                          {"input_instances_kept", stats.inputInstancesKept},
-                          {"animated_nodes_kept", stats.animatedNodesKept},
-                          {"cameras_and_lights_kept", stats.camerasAndLightsKept},
-                          {"bytes_per_instance", instanceBytes},
-                          {"ablation",
-                           {{"draco_alone", request.options.instancing ? dracoAlone : outputBytes},
-                            {"instancing", !request.options.instancing ? nlohmann::json(nullptr)
-                                           : request.options.regions ? nlohmann::json(withInstancing)
-                                                                     : nlohmann::json(fullPlanBytes)},
-                            {"instancing_and_regions", request.options.instancing && request.options.regions
-                                                           ? nlohmann::json(fullPlanBytes) : nlohmann::json(nullptr)},
-                            {"final", outputBytes}}},
-                          {"warnings", warnings}};
-    if (!request.report.empty()) {
-        std::ofstream out(request.report);
-        out << report.dump(2) << '\n';
-        if (!out) throw FileError(request.report, "cannot write the report");
-    }
-    progress.clear();
-    if (request.quiet) return 0;
-    std::printf("%s -> %s\n", request.input.string().c_str(), request.output.string().c_str());
-    std::printf("  size            %ju -> %ju bytes, ratio %.2f\n", inputBytes, outputBytes, ratio);
-    if (std::string(chosen) != "final")
+void printReport(const CompressionReport& report) {
+    const CompressionStats& stats = report.stats;
+    std::printf("%s -> %s\n", report.input.string().c_str(), report.output.string().c_str());
+    std::printf("  size            %ju -> %ju bytes, ratio %.2f\n", report.inputBytes, report.outputBytes,
+                report.ratio);
+    if (report.plan != "final")
         std::printf("  plan            %s: its file was smaller than the full plan's\n",
-                    std::string(chosen) == "draco_alone" ? "every tile as it is" : "instancing without regions");
+                    report.plan == "draco_alone" ? "every tile as it is" : "instancing without regions");
     std::printf("  triangles       %zu drawn, %zu stored\n", stats.trianglesIn, stats.trianglesStored);
     std::printf("  tiles           %zu in %zu classes; %zu classes stored once for %zu instances\n", stats.tiles,
                 stats.classes, stats.instancedClasses, stats.instances);
@@ -431,36 +257,60 @@ int runCompress(const CompressRequest& request) {
         std::printf("  scene symmetry  %s: one part of the scene stored for %zu tiles\n", stats.sceneGroup.c_str(),
                     stats.tilesInSceneSymmetry);
     if (stats.assemblies)
-        std::printf("  assemblies      %zu groups of tiles that recur together, stored once for %zu copies (%zu tiles)\n",
-                    stats.assemblies, stats.assemblyCopies, stats.tilesInAssemblies);
+        std::printf(
+            "  assemblies      %zu groups of tiles that recur together, stored once for %zu copies (%zu tiles)\n",
+            stats.assemblies, stats.assemblyCopies, stats.tilesInAssemblies);
     if (stats.inputInstancesKept)
         std::printf("  kept            %zu nodes of meshes the input already shares\n", stats.inputInstancesKept);
     if (stats.animatedNodesKept)
         std::printf("  animated        %zu nodes kept as they are, for the scene's animations (%zu)\n",
-                    stats.animatedNodesKept, compressed.scene.animations.size());
+                    stats.animatedNodesKept, report.animations);
     if (stats.camerasAndLightsKept)
         std::printf("  cameras, lights %zu nodes kept where they were (%zu cameras, %zu lights)\n",
-                    stats.camerasAndLightsKept, compressed.scene.cameras.size(), compressed.scene.lights.size());
-    if (stats.instances) std::printf("  per instance    %.0f bytes\n", instanceBytes);
+                    stats.camerasAndLightsKept, report.cameras, report.lights);
+    if (stats.instances) std::printf("  per instance    %.0f bytes\n", report.bytesPerInstance);
     if (stats.attributeMismatches)
-        std::printf("  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
-                    "(--geometry-only instances them anyway)\n", stats.attributeMismatches);
+        std::printf(
+            "  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
+            "(--geometry-only instances them anyway)\n",
+            stats.attributeMismatches);
     if (stats.notWorthInstancing)
-        std::printf("  stored apart    %zu tiles of classes too small for a node per copy to pay\n", stats.notWorthInstancing);
-    std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, request.options.tolerance);
-    if (request.options.instancing && request.options.regions)
-        std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju, with regions too %ju\n", dracoAlone,
-                    withInstancing, fullPlanBytes);
-    else if (request.options.instancing)
-        std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju\n", dracoAlone, fullPlanBytes);
-    std::printf("  seconds         read %.2f, tiles %.2f, classes %.2f, plan %.2f, write %.2f\n", readSeconds,
-                stats.secondsTiles, stats.secondsClasses, stats.secondsPlan, writeSeconds);
+        std::printf("  stored apart    %zu tiles of classes too small for a node per copy to pay\n",
+                    stats.notWorthInstancing);
+    std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, report.tolerance);
+    const auto& ablation = report.ablation;
+    if (ablation.instancingAndRegions)
+        std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju, with regions too %ju\n",
+                    *ablation.dracoAlone, *ablation.instancing, *ablation.instancingAndRegions);
+    else if (ablation.instancing)
+        std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju\n", *ablation.dracoAlone,
+                    *ablation.instancing);
+    std::printf("  seconds         read %.2f, tiles %.2f, classes %.2f, plan %.2f, write %.2f\n", report.secondsRead,
+                stats.secondsTiles, stats.secondsClasses, stats.secondsPlan, report.secondsWrite);
+}
+
+int runCompress(CompressRequest request) {
+    ProgressLine progress(!request.quiet);
+    request.options.progress = [&progress](const char* stage, std::size_t count, const char* unit) {
+        progress.stage(stage, count, unit);
+    };
+    const CompressionReport report = compressFile(request.input, request.output, request.options);
+    progress.clear();
+    if (!request.report.empty()) {
+        std::ofstream out(request.report);
+        out << report.json() << '\n';
+        if (!out) throw FileError(request.report, "cannot write the report");
+    }
+    if (request.quiet) return 0;
+    for (const std::string& warning : report.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    printReport(report);
     return 0;
 }
 
 void addWriteOptions(CLI::App& command, WriteOptions& options) {
-    command.add_flag("--no-draco", [&options](std::int64_t) { options.draco = false; },
-                     "glTF: write plain accessors instead of KHR_draco_mesh_compression");
+    command.add_flag(
+        "--no-draco", [&options](std::int64_t) { options.draco = false; },
+        "glTF: write plain accessors instead of KHR_draco_mesh_compression");
     command.add_option("--position-bits", options.positionBits, "Draco position quantization bits")
         ->check(CLI::Range(8, 30))
         ->capture_default_str();
@@ -492,8 +342,9 @@ int main(int argc, char** argv) {
     CLI::App* detect = app.add_subcommand("detect", "Find the symmetries of the whole scene taken as one shape");
     detect->add_option("FILE", detectFile, "scene file")->required();
     detect->add_flag("--json", json, "print one JSON object");
-    detect->add_option("--tolerance", symmetryOptions.tolerance,
-                       "largest deviation accepted, relative to the bounding-box diagonal")
+    detect
+        ->add_option("--tolerance", symmetryOptions.tolerance,
+                     "largest deviation accepted, relative to the bounding-box diagonal")
         ->check(CLI::Range(1e-9, 0.5))
         ->capture_default_str();
     detect->add_option("--max-order", symmetryOptions.maxOrder, "highest moment order used for candidate axes")
@@ -508,28 +359,33 @@ int main(int argc, char** argv) {
         "compress", "Store every repeated part once (the default command: symcompress IN -o OUT works too)");
     compress->add_option("IN", compressRequest.input, "input scene file")->required();
     compress->add_option("-o,--output", compressRequest.output, "output file (.glb .gltf .x3d)")->required();
-    compress->add_option("--tolerance", compressRequest.options.tolerance,
-                         "congruence and symmetry tolerance, relative to the scene's bounding-box diagonal")
+    compress
+        ->add_option("--tolerance", compressRequest.options.tolerance,
+                     "congruence and symmetry tolerance, relative to the scene's bounding-box diagonal")
         ->check(CLI::Range(1e-9, 0.5))
         ->capture_default_str();
-    compress->add_flag("--no-instancing", [&](std::int64_t) { compressRequest.options.instancing = false; },
-                       "store every tile as it is (Draco alone)");
-    compress->add_flag("--no-symmetry", [&](std::int64_t) { compressRequest.options.regions = false; },
-                       "instancing only: no fundamental regions");
+    compress->add_flag(
+        "--no-instancing", [&](std::int64_t) { compressRequest.options.instancing = false; },
+        "store every tile as it is (Draco alone)");
+    compress->add_flag(
+        "--no-symmetry", [&](std::int64_t) { compressRequest.options.regions = false; },
+        "instancing only: no fundamental regions");
     compress->add_flag("--geometry-only", compressRequest.options.geometryOnly,
                        "instance congruent tiles even when their normals, texture coordinates or colours differ");
-    compress->add_flag("--drop-unused-texcoords", compressRequest.dropUnusedTexcoords,
+    compress->add_flag("--drop-unused-texcoords", compressRequest.options.dropUnusedTexcoords,
                        "drop texture coordinates that no texture reads (as glTF-Transform's optimize and gltfpack do)");
     compress->add_option("--report", compressRequest.report, "also write the size report as JSON");
     compress->add_option("--threads", compressRequest.options.threads, "threads (0: all cores)")->capture_default_str();
     compress->add_flag("-q,--quiet", compressRequest.quiet, "print nothing but errors");
-    addWriteOptions(*compress, compressRequest.write);
+    addWriteOptions(*compress, compressRequest.options.write);
 
     // symcompress IN -o OUT: the compress command without its name.
     std::vector<std::string> arguments(argv + 1, argv + argc);
     const std::set<std::string> commands{"info", "convert", "detect", "compress"};
-    const bool named = std::any_of(arguments.begin(), arguments.end(), [&](const std::string& a) { return commands.count(a) > 0; });
-    const bool onlyAsking = !arguments.empty() && (arguments[0] == "-h" || arguments[0] == "--help" || arguments[0] == "--version");
+    const bool named =
+        std::any_of(arguments.begin(), arguments.end(), [&](const std::string& a) { return commands.count(a) > 0; });
+    const bool onlyAsking =
+        !arguments.empty() && (arguments[0] == "-h" || arguments[0] == "--help" || arguments[0] == "--version");
     if (!arguments.empty() && !named && !onlyAsking) arguments.insert(arguments.begin(), "compress");
     std::reverse(arguments.begin(), arguments.end());  // CLI11 takes them last first
 
@@ -544,7 +400,9 @@ int main(int argc, char** argv) {
         if (*info) return runInfo(infoFile, json);
         if (*convert) return runConvert(input, output, writeOptions, quiet);
         if (*compress) return runCompress(compressRequest);
-        if (*detect) return tiles ? runDetectTiles(detectFile, symmetryOptions, json) : runDetect(detectFile, symmetryOptions, json);
+        if (*detect)
+            return tiles ? runDetectTiles(detectFile, symmetryOptions, json)
+                         : runDetect(detectFile, symmetryOptions, json);
     } catch (const FileError& error) {
         std::fprintf(stderr, "symcompress: %s\n", error.what());
         return kExitBadInput;

@@ -1,7 +1,7 @@
 // The decoder's check: the rebuilt surface against the reference, vertex-to-surface both ways.
-#include "symcompress/compress.hpp"
+#include "symcompress/verify.hpp"
 
-#include "../symmetry/triangle_bvh.hpp"
+#include "geometry/triangle_bvh.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -24,7 +24,9 @@ double farthestVertex(const TriangleMesh& from, const TriangleBvh& to) {
         tbb::blocked_range<std::size_t>(0, from.positions.size(), 1024), 0.0,
         [&](const tbb::blocked_range<std::size_t>& range, double worst) {
             for (std::size_t i = range.begin(); i != range.end(); ++i)
-                if (used[i]) worst = std::max(worst, to.squaredDistance(from.positions[i], std::numeric_limits<double>::infinity()));
+                if (used[i])
+                    worst =
+                        std::max(worst, to.squaredDistance(from.positions[i], std::numeric_limits<double>::infinity()));
             return worst;
         },
         [](double a, double b) { return std::max(a, b); });
@@ -41,7 +43,8 @@ double flippedArea(const TriangleMesh& from, const TriangleBvh& to, double dista
                 const Eigen::Vector3d &a = from.positions[t[0]], &b = from.positions[t[1]], &c = from.positions[t[2]];
                 const Eigen::Vector3d normal = (b - a).cross(c - a);
                 const double bound = distance * distance;
-                if (normal.squaredNorm() > 0 && !(to.squaredDistance((a + b + c) / 3, bound, nullptr, nullptr, &normal) < bound))
+                if (normal.squaredNorm() > 0 &&
+                    !(to.squaredDistance((a + b + c) / 3, bound, nullptr, nullptr, &normal) < bound))
                     sum += 0.5 * normal.norm();
             }
             return sum;
@@ -60,7 +63,11 @@ SurfaceComparison compareSurfaces(const TriangleMesh& rebuilt, const TriangleMes
     result.maxDeviation = diagonal > 0 ? std::sqrt(worst) / diagonal : 0;
     result.areaRatio = b.area > 0 ? a.area / b.area : 0;
     // A centroid is a little farther from the surface than the vertices: twice the tolerance.
-    result.flippedArea = a.area > 0 ? flippedArea(rebuilt, referenceIndex, 2 * std::max(boundsTolerance * diagonal, std::sqrt(worst)) + 1e-12 * diagonal) / a.area : 0;
+    result.flippedArea =
+        a.area > 0 ? flippedArea(rebuilt, referenceIndex,
+                                 2 * std::max(boundsTolerance * diagonal, std::sqrt(worst)) + 1e-12 * diagonal) /
+                         a.area
+                   : 0;
     result.sameBounds = !a.bounds.isEmpty() && !b.bounds.isEmpty() &&
                         (a.bounds.min() - b.bounds.min()).cwiseAbs().maxCoeff() <= boundsTolerance * diagonal &&
                         (a.bounds.max() - b.bounds.max()).cwiseAbs().maxCoeff() <= boundsTolerance * diagonal;

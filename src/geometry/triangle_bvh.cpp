@@ -45,7 +45,8 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : mesh_(mesh) {
     build(0, 0, count, centers);
 }
 
-void TriangleBvh::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::vector<Eigen::Vector3d>& centers) {
+void TriangleBvh::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end,
+                        std::vector<Eigen::Vector3d>& centers) {
     Eigen::AlignedBox3d box, centerBox;
     for (std::uint32_t i = begin; i < end; ++i) {
         const Triangle& tri = mesh_.triangles[order_[i]];
@@ -88,8 +89,8 @@ double TriangleBvh::squaredDistance(const Eigen::Vector3d& p, double bound, Eige
                                       .cross(mesh_.positions[tri[2]] - mesh_.positions[tri[0]])
                                       .dot(*facing) <= 0)
                     continue;
-                const Eigen::Vector3d q =
-                    closestPointOnTriangle(p, mesh_.positions[tri[0]], mesh_.positions[tri[1]], mesh_.positions[tri[2]]);
+                const Eigen::Vector3d q = closestPointOnTriangle(p, mesh_.positions[tri[0]], mesh_.positions[tri[1]],
+                                                                 mesh_.positions[tri[2]]);
                 const double d = (q - p).squaredNorm();
                 if (d < best) {
                     best = d;

@@ -1,10 +1,10 @@
-// Generalized moments of a surface (paper section 4, ALGORITHM.md section 2):
+// Generalized moments of a surface (paper section 4, docs/moments.md):
 //   M_2p(w) = integral over S of |s x w|^(2p) ds,  |w| = 1, s measured from the area-weighted centroid,
 // and their spherical-harmonic coefficients C(2p; 2l, m) (paper eq. 4), computed exactly from the surface
 // integrals of the monomials of degree 2p: no sampling of directions, no rotation per triangle.
 #pragma once
 
-#include "symcompress/homogeneous_polynomial.hpp"
+#include "symcompress/detail/homogeneous_polynomial.hpp"
 #include "symcompress/scene.hpp"
 
 #include <Eigen/Core>

@@ -1,5 +1,6 @@
 // The frame of RegionFrame::Aligned and the quantization grid that keeps seams closed.
 #include "fundamental_region_parts.hpp"
+#include "geometry/bounds.hpp"
 
 #include <Eigen/Geometry>
 
@@ -128,8 +129,7 @@ namespace symcompress {
 QuantizationGrid seamPreservingGrid(const FundamentalRegion& region, int bits) {
     if (bits < 1 || bits > 30) throw std::invalid_argument("seamPreservingGrid: bits must be in [1, 30]");
     if (region.region.positions.empty()) throw std::invalid_argument("seamPreservingGrid: the region is empty");
-    Eigen::AlignedBox3d box;
-    for (const Eigen::Vector3d& p : region.region.positions) box.extend(p);
+    const Eigen::AlignedBox3d box = boundsOf(region.region.positions);
     const double levels = std::ldexp(1.0, bits) - 1;  // the largest quantized value
     const double extent = std::max(box.sizes().maxCoeff(), 1e-300);
     // The smallest power-of-two step whose grid, aligned on multiples of the step, reaches over the box.

@@ -1,4 +1,4 @@
-// The fundamental region of a symmetric tile (paper 7.1, ALGORITHM.md section 8): the part of the tile
+// The fundamental region of a symmetric tile (paper 7.1, docs/fundamental-regions.md): the part of the tile
 // that, copied once per element of its symmetry group, rebuilds the whole tile.
 //
 // The tile S is invariant under a finite group G of orthogonal maps x -> c + g (x - c). For a seed point p

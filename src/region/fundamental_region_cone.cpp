@@ -1,5 +1,5 @@
-// The Dirichlet cone of a seed (ALGORITHM.md section 8) and the choice of the seed that cuts fewest
-// triangles.
+// The Dirichlet cone of a seed (docs/fundamental-regions.md, "The cone construction") and the choice of the seed that
+// cuts fewest triangles.
 #include "fundamental_region_parts.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -36,7 +36,7 @@ bool boundsCone(const std::vector<Eigen::Vector3d>& normals, std::size_t k) {
             continue;
         }
         const double halfStart = std::atan2(w.y(), w.x()) - kPi / 2;  // the half-circle [halfStart, + pi]
-        if (length > kPi) {  // the first constraint
+        if (length > kPi) {                                           // the first constraint
             start = halfStart;
             length = kPi;
             continue;
@@ -184,7 +184,8 @@ DirichletCone dirichletCone(const std::vector<Eigen::Matrix3d>& nonIdentity, con
 
 SeedChoice chooseSeed(const Primitive& tile, const std::vector<Eigen::Matrix3d>& nonIdentity,
                       const Eigen::Vector3d& centre, double tolerance, const RegionOptions& options) {
-    const std::vector<std::size_t> sample = evenSample(tile.triangles.size(), std::max<std::size_t>(1, options.maxScoredTriangles));
+    const std::vector<std::size_t> sample =
+        evenSample(tile.triangles.size(), std::max<std::size_t>(1, options.maxScoredTriangles));
     SeedChoice best;
     double bestSeparation = -1;
     bool found = false;

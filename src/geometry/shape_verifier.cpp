@@ -1,4 +1,5 @@
 #include "shape_verifier.hpp"
+#include "geometry/bounds.hpp"
 
 #include <Eigen/Cholesky>
 
@@ -17,7 +18,8 @@ constexpr double kSnapCell = 1e-4;
 constexpr double kSnapDistance = 1e-6;
 }  // namespace
 
-ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& center) : mesh_(mesh), bvh_(mesh), center_(center) {
+ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& center)
+    : mesh_(mesh), bvh_(mesh), center_(center) {
     std::vector<Eigen::Vector3d> points;
     std::vector<char> used(mesh.positions.size(), 0);
     for (const Triangle& t : mesh.triangles) {
@@ -37,8 +39,7 @@ ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& ce
     samples_.reserve(n);
     for (std::size_t i = 0, at = 0; i < n; ++i, at = (at + stride) % n) samples_.push_back(points[at]);
 
-    Eigen::AlignedBox3d box;
-    for (const Eigen::Vector3d& p : samples_) box.extend(p);
+    const Eigen::AlignedBox3d box = boundsOf(samples_);
     cellSize_ = std::max(kSnapCell * box.diagonal().norm(), 1e-300);
     snapSquared_ = std::pow(kSnapDistance * box.diagonal().norm(), 2);
     sampleInCell_.reserve(samples_.size());
@@ -99,7 +100,8 @@ Eigen::Vector3d ShapeVerifier::farthestFromAxis(const Eigen::Vector3d& axis) con
     return best.normalized();
 }
 
-double deviationBetween(const ShapeVerifier& from, const ShapeVerifier& to, const Eigen::Matrix3d& linear, double reject) {
+double deviationBetween(const ShapeVerifier& from, const ShapeVerifier& to, const Eigen::Matrix3d& linear,
+                        double reject) {
     const double forward = from.farthestOnto(to, linear, reject);
     if (forward > reject) return forward;
     return std::max(forward, to.farthestOnto(from, linear.transpose(), reject));
@@ -109,8 +111,8 @@ Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, double sear
     return refineOnto(*this, linear, searchRadius, steps);
 }
 
-Eigen::Matrix3d ShapeVerifier::refineOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double searchRadius,
-                                          int steps) const {
+Eigen::Matrix3d ShapeVerifier::refineOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear,
+                                          double searchRadius, int steps) const {
     const double searchSquared = searchRadius * searchRadius;
     Eigen::Matrix3d current = linear;
     // At most this many sample points, spread over the shape (the samples' order does that).
@@ -126,10 +128,12 @@ Eigen::Matrix3d ShapeVerifier::refineOnto(const ShapeVerifier& target, const Eig
             Eigen::Vector3d closest;
             std::uint32_t triangle = 0;
             // Points with nothing near (a hole, or a wrong map) say nothing about the fit.
-            if (!(target.bvh_.squaredDistance(target.center_ + x, searchSquared, &closest, &triangle) < searchSquared)) continue;
+            if (!(target.bvh_.squaredDistance(target.center_ + x, searchSquared, &closest, &triangle) < searchSquared))
+                continue;
             const auto& positions = target.mesh_.positions;
             const Triangle& t = target.mesh_.triangles[triangle];
-            const Eigen::Vector3d normal = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).normalized();
+            const Eigen::Vector3d normal =
+                (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).normalized();
             if (!normal.allFinite()) continue;
             const Eigen::Vector3d jacobian = x.cross(normal);
             const double residual = normal.dot(target.center_ + x - closest);

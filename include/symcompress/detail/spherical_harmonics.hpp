@@ -7,7 +7,7 @@
 // Coefficients of band l are indexed by shIndex(l, m) = l^2 + l + m, m = -l..l.
 #pragma once
 
-#include "symcompress/homogeneous_polynomial.hpp"
+#include "symcompress/detail/homogeneous_polynomial.hpp"
 
 #include <Eigen/Core>
 

@@ -1,11 +1,13 @@
-// Numbers cut before they are printed: node transforms are written once per instance and accessor bounds
-// once per primitive, so their digits count in small files.
+// Numbers as text, the one formatter of the writers: numbers cut before they are printed (node transforms
+// are written once per instance and accessor bounds once per primitive, so their digits count in small
+// files), and the shortest text that reads back to a value.
 #pragma once
 
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 namespace symcompress {
 
@@ -30,6 +32,23 @@ inline double asFloat32(double value) {
     const auto result = std::to_chars(text, text + sizeof text - 1, static_cast<float>(value));
     *result.ptr = '\0';
     return std::strtod(text, nullptr);
+}
+
+// Appends the shortest text that reads back to exactly `value` as a double.
+inline void appendShortest(std::string& out, double value) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    out.append(buffer, result.ptr);
+}
+
+// Appends the shortest text that reads back to `value`, as a float where `value` is one (most data comes
+// from float32 files: 0.1f prints as 0.1, not 0.10000000149011612), else as a double.
+inline void appendShortestFloat(std::string& out, double value) {
+    char buffer[32];
+    const float single = static_cast<float>(value);
+    const auto result = static_cast<double>(single) == value ? std::to_chars(buffer, buffer + sizeof buffer, single)
+                                                             : std::to_chars(buffer, buffer + sizeof buffer, value);
+    out.append(buffer, result.ptr);
 }
 
 // Places kept in a rotation (quaternion or axis and angle): 1e-7, about float32's resolution at 1.

@@ -2,7 +2,7 @@
 // rotations, reflections and translations.
 #pragma once
 
-#include "symcompress/moments.hpp"
+#include "symcompress/detail/moments.hpp"
 
 #include <vector>
 

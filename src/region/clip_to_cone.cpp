@@ -135,7 +135,8 @@ private:
         if (!work_.normals.empty()) {
             const Eigen::Vector3d blended = (1 - t) * work_.normals[lo] + t * work_.normals[hi];
             const double length = blended.norm();
-            work_.normals.push_back(length > 0 ? Eigen::Vector3d(blended / length) : Eigen::Vector3d(work_.normals[lo]));
+            work_.normals.push_back(length > 0 ? Eigen::Vector3d(blended / length)
+                                               : Eigen::Vector3d(work_.normals[lo]));
         }
         if (!work_.texcoords.empty())
             work_.texcoords.push_back(Eigen::Vector2d((1 - t) * work_.texcoords[lo] + t * work_.texcoords[hi]));

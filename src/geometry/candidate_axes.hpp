@@ -1,8 +1,8 @@
-// Candidate symmetry axes (paper 5.1, ALGORITHM.md 3): the critical points of the moment functions on
+// Candidate symmetry axes (paper 5.1, docs/symmetry.md §1): the critical points of the moment functions on
 // the sphere, which contain every rotation axis and mirror normal (paper Theorem 1).
 #pragma once
 
-#include "symcompress/moments.hpp"
+#include "symcompress/detail/moments.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 namespace symcompress {
 namespace {
 
-constexpr int kStarts = 400;       // starting points on the hemisphere
+constexpr int kStarts = 400;  // starting points on the hemisphere
 constexpr int kIterations = 40;
 constexpr double kMaxStep = 0.3;  // radians: keeps Newton near its starting point's basin
 
@@ -45,8 +45,10 @@ bool newtonCriticalPoint(const MomentFunction& f, Eigen::Vector3d start, Eigen::
         const Eigen::Matrix2d h = e.transpose() * f.tangentialHessian(w, euclidean) * e;
         const Eigen::Vector2d g2 = e.transpose() * g;
         Eigen::Vector2d step;
-        if (std::abs(h.determinant()) > 1e-14 * h.squaredNorm()) step = -h.inverse() * g2;
-        else step = -g2 / std::max(h.norm(), scale);  // flat: a gradient step
+        if (std::abs(h.determinant()) > 1e-14 * h.squaredNorm())
+            step = -h.inverse() * g2;
+        else
+            step = -g2 / std::max(h.norm(), scale);  // flat: a gradient step
         Eigen::Vector3d delta = e * step;
         if (delta.norm() > kMaxStep) delta *= kMaxStep / delta.norm();
         w = (w + delta).normalized();
@@ -67,8 +69,9 @@ std::vector<Eigen::Vector3d> findCandidateAxes(const std::vector<MomentFunction>
         for (const Eigen::Vector3d& start : starts) {
             Eigen::Vector3d critical;
             if (!newtonCriticalPoint(f, start, critical)) continue;
-            const bool known = std::any_of(axes.begin(), axes.end(),
-                                           [&](const Eigen::Vector3d& a) { return std::abs(a.dot(critical)) >= mergeCosine; });
+            const bool known = std::any_of(axes.begin(), axes.end(), [&](const Eigen::Vector3d& a) {
+                return std::abs(a.dot(critical)) >= mergeCosine;
+            });
             if (!known) axes.push_back(critical.z() < 0 ? Eigen::Vector3d(-critical) : critical);
         }
     return axes;

@@ -1,7 +1,7 @@
 // The stages of computeFundamentalRegion (fundamental_region.hpp), private to the library.
 #pragma once
 
-#include "symcompress/fundamental_region.hpp"
+#include "symcompress/detail/fundamental_region.hpp"
 
 #include <Eigen/Core>
 
@@ -11,7 +11,7 @@
 
 namespace symcompress::region_detail {
 
-// The Dirichlet cone of a seed under a group (ALGORITHM.md section 8): the half-spaces
+// The Dirichlet cone of a seed under a group (docs/fundamental-regions.md, "The cone construction"): the half-spaces
 // n . (x - apex) >= 0 with n = (p - g p) / |p - g p|, keeping only the planes that bound the cone.
 struct DirichletCone {
     Eigen::Vector3d apex = Eigen::Vector3d::Zero();
@@ -48,7 +48,7 @@ ClippedRegion clipToCone(const Primitive& tile, const DirichletCone& cone, doubl
 
 struct AlignedFrame {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // columns: the frame's axes, det +1
-    bool signedPermutation = false;  // every element is a signed permutation in this frame
+    bool signedPermutation = false;                          // every element is a signed permutation in this frame
 };
 
 // The frame of RegionFrame::Aligned (see fundamental_region.hpp) for the group and the cone's normals.

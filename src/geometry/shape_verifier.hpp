@@ -1,4 +1,4 @@
-// Verification of a candidate symmetry on the shape itself (paper 5.3, ALGORITHM.md 5):
+// Verification of a candidate symmetry on the shape itself (paper 5.3, docs/symmetry.md §3):
 //   d_A(S) = max(d_M(S, A S), d_M(A S, S)),  d_M(S, R) = max over sample points p of S of dist(p, R),
 // with the vertices of S as sample points (and the triangle centroids too for meshes of up to
 // kCentroidSamplesUpTo triangles, which catches differently split quads), and a refinement of accepted maps by
@@ -66,6 +66,7 @@ private:
 };
 
 // d_A between two shapes under x -> to.center() + linear (x - from.center()): both ways, with early rejection.
-double deviationBetween(const ShapeVerifier& from, const ShapeVerifier& to, const Eigen::Matrix3d& linear, double reject);
+double deviationBetween(const ShapeVerifier& from, const ShapeVerifier& to, const Eigen::Matrix3d& linear,
+                        double reject);
 
 }  // namespace symcompress

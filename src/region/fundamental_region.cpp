@@ -1,6 +1,6 @@
-// The fundamental region of a symmetric tile (paper 7.1, ALGORITHM.md section 8): checks, the choice of
+// The fundamental region of a symmetric tile (paper 7.1, docs/fundamental-regions.md): checks, the choice of
 // the seed and frame, the clipping, and the inverse (rebuilding the tile from the region).
-#include "symcompress/fundamental_region.hpp"
+#include "symcompress/detail/fundamental_region.hpp"
 
 #include "fundamental_region_parts.hpp"
 
@@ -28,10 +28,12 @@ double triangleArea(const Primitive& primitive, const Triangle& triangle) {
 void checkTile(const Primitive& tile) {
     const std::size_t count = tile.positions.size();
     if (count == 0 || tile.triangles.empty()) fail("the tile is empty");
-    if (!tile.normals.empty() && tile.normals.size() != count) fail("the tile has a normal count other than its vertex count");
+    if (!tile.normals.empty() && tile.normals.size() != count)
+        fail("the tile has a normal count other than its vertex count");
     if (!tile.texcoords.empty() && tile.texcoords.size() != count)
         fail("the tile has a texcoord count other than its vertex count");
-    if (!tile.colors.empty() && tile.colors.size() != count) fail("the tile has a color count other than its vertex count");
+    if (!tile.colors.empty() && tile.colors.size() != count)
+        fail("the tile has a color count other than its vertex count");
     for (const Eigen::Vector3d& p : tile.positions)
         if (!p.allFinite()) fail("the tile has a non-finite position");
     for (const Eigen::Vector3d& n : tile.normals)
@@ -63,8 +65,10 @@ std::size_t checkGroup(const std::vector<Eigen::Matrix3d>& group, double toleran
         if (!g.allFinite()) fail("group matrix " + std::to_string(i) + " is not finite");
         const double deviation = (g.transpose() * g - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
         if (deviation > tolerance)
-            fail("group matrix " + std::to_string(i) + " is not orthogonal (|g^T g - I| = " + std::to_string(deviation) + ")");
-        if (findElement(group, g, tolerance) != i) fail("group matrix " + std::to_string(i) + " repeats an earlier one");
+            fail("group matrix " + std::to_string(i) +
+                 " is not orthogonal (|g^T g - I| = " + std::to_string(deviation) + ")");
+        if (findElement(group, g, tolerance) != i)
+            fail("group matrix " + std::to_string(i) + " repeats an earlier one");
     }
     const std::size_t identity = findElement(group, Eigen::Matrix3d::Identity(), tolerance);
     if (identity == group.size()) fail("the group does not contain the identity");
@@ -72,8 +76,8 @@ std::size_t checkGroup(const std::vector<Eigen::Matrix3d>& group, double toleran
     for (std::size_t i = 0; i < group.size(); ++i)
         for (std::size_t j = 0; j < group.size(); ++j)
             if (findElement(group, group[i] * group[j], 4 * tolerance) == group.size())
-                fail("the group is not closed: the product of matrices " + std::to_string(i) + " and " + std::to_string(j) +
-                     " is not in it");
+                fail("the group is not closed: the product of matrices " + std::to_string(i) + " and " +
+                     std::to_string(j) + " is not in it");
     return identity;
 }
 
@@ -93,7 +97,8 @@ std::vector<Eigen::Matrix3d> actingElements(const Primitive& tile, const std::ve
         if (!fixesAll) continue;
         // Only a mirror fixes a surface of non-zero area pointwise.
         const std::optional<Eigen::Vector3d> normal = region_detail::elementAxis(group[i]);
-        if (group[i].determinant() > 0 || !normal) fail("a group element other than a mirror fixes every vertex of the tile");
+        if (group[i].determinant() > 0 || !normal)
+            fail("a group element other than a mirror fixes every vertex of the tile");
         std::vector<Eigen::Matrix3d> acting;
         for (const Eigen::Matrix3d& g : group)
             if (normal->dot(g * *normal) > 0) acting.push_back(g);
@@ -116,9 +121,7 @@ void roundAxisNormals(DirichletCone& cone) {
     }
 }
 
-Eigen::Matrix3d roundSignedPermutation(const Eigen::Matrix3d& matrix) {
-    return matrix.array().round().matrix();
-}
+Eigen::Matrix3d roundSignedPermutation(const Eigen::Matrix3d& matrix) { return matrix.array().round().matrix(); }
 
 // The tile's positions and normals in the frame (origin at the centre, axes the columns of `rotation`).
 Primitive toFrame(const Primitive& tile, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& centre) {

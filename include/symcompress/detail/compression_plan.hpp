@@ -1,0 +1,142 @@
+// The stages of compression, for tests and benchmarks that look inside the job compressFile runs
+// (docs/ARCHITECTURE.md): the analysis (tiles and classes, once), the plan (decisions as data: which tiles
+// each stored mesh draws, and where), and the scene a plan draws.
+#pragma once
+
+#include "symcompress/compress.hpp"
+#include "symcompress/congruence.hpp"
+#include "symcompress/scene.hpp"
+#include "symcompress/scene_ops.hpp"
+#include "symcompress/tiles.hpp"
+#include "symcompress/verify.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace symcompress {
+
+struct AnalysisOptions {
+    double tolerance = 1e-5;  // relative to the diagonal of the tiles' bounding box
+    bool classify = true;     // false: tiles only (every plan will store every tile as it is)
+    bool keepInputInstances = true;
+    int threads = 0;
+    ProgressCallback progress;
+};
+
+// A node of the input that draws a mesh several nodes draw, one of them scaling or shearing it: the
+// author's own instancing of copies that are not congruent, kept as it is.
+struct KeptInstance {
+    int mesh = -1;                                            // in the input
+    Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // world
+    std::string name;
+};
+
+// What every plan is made from: the tiles and their congruence classes (the expensive part), computed once
+// for any number of plans (the job tries three).
+struct SceneAnalysis {
+    AnalysisOptions options;  // those it was made with
+    // options.tolerance as a distance (times the diagonal of the tiles' bounds): the one every stage uses.
+    double absoluteTolerance = 0;
+    std::vector<KeptInstance> keptInstances;  // not in the soup: their meshes are stored as they are
+    // The input's animated nodes that have no animated ancestor: kept with their subtrees as they are
+    // (nodes, transforms, meshes) and their animations, so that the animations still drive them; what
+    // they draw is not in the soup.
+    std::vector<int> animatedSubtrees;
+    std::vector<WorldPrimitive> soup;
+    std::vector<Tile> tiles;
+    TileClassification classification;  // empty unless options.classify
+    SurfaceDigest digest;
+    double secondsTiles = 0, secondsClasses = 0;
+};
+
+SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options = {});
+
+// What storing parts costs in the output, in bytes: measured by the writer where it gives a measure
+// (meshBytes, nodeBytes), else the constants (a rough Draco glTF of bare positions).
+struct StorageCostModel {
+    double bytesPerTriangle = 1.5;
+    double bytesPerInstance = 120;
+    double bytesPerMesh = 500;
+    // What a part costs as a mesh of its own, as written: it takes the place of bytesPerTriangle and
+    // bytesPerMesh, which cannot tell a part with normals and texture coordinates (Draco: 8 bytes a
+    // triangle) from a bare one (2 to 4). Parts merged with others are then measured on a sample of the
+    // scene's parts stored together.
+    std::function<double(const Primitive&)> meshBytes;
+    // What a node drawing a shared mesh costs (its transform and name): a rigid placement costs less than
+    // a mirrored or scaled one. Else bytesPerInstance.
+    std::function<double(const Node&)> nodeBytes;
+    // Draco's position bits when the output is quantized, else 0. A fundamental region whose instances are
+    // signed permutations in its frame is then stored on a power-of-two grid through its centre
+    // (seamPreservingGrid), in units of the grid's step, so that its seams stay closed.
+    int seamGridBits = 0;
+};
+
+// The cost model of a file written with `write`: every part measured by the format's writer (gltfMeshBytes,
+// x3dMeshBytes and their node measures), and for Draco glTF the seams' grid.
+StorageCostModel costModelFor(FileFormat format, const WriteOptions& write);
+
+struct PlanOptions {
+    bool instancing = true;     // false: every tile stored as it is (Draco alone)
+    bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
+    bool regions = true;        // fundamental regions where they pay
+    bool assemblies = true;     // the scene's symmetry and repeated assemblies
+    StorageCostModel costs;
+    ProgressCallback progress;
+};
+
+// A node drawing a stored mesh.
+struct PlacedCopy {
+    Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // world
+    std::string name;
+};
+
+// One mesh stored once and the nodes that draw it: a decision of one of the planners.
+struct SharedPart {
+    enum class Mechanism { SceneSymmetry, Assembly, Class, Region } mechanism = Mechanism::Class;
+    Mesh mesh;                       // in its own frame (about a centroid: a small range to quantize)
+    std::vector<PlacedCopy> nodes;   // each draws `mesh`
+    std::vector<std::size_t> tiles;  // the tiles those nodes rebuild
+    std::size_t copies = 0;          // copies of the part (class members, assembly copies, group elements)
+    std::string group;               // SceneSymmetry: the scene's symmetry group, whose elements the nodes are
+    double deviation = 0;            // the largest of a rebuilt tile from its original, relative to the diagonal
+};
+
+// A plan: what is stored once and drawn by nodes, and what is stored as it is. Turned into a Scene by
+// emitScene.
+struct CompressionPlan {
+    bool shareInputInstances = true;          // false: the input's own shared meshes stored as they are too
+    std::vector<SharedPart> shared;           // in the order they are written
+    std::vector<std::size_t> tilesAsTheyAre;  // in the order they are merged (one mesh per material)
+    std::size_t classes = 0, symmetricClasses = 0, attributeMismatches = 0, notWorthInstancing = 0;
+    std::string sceneGroup = "C1";
+};
+
+// The three planners in turn: the scene's own symmetry, repeated assemblies, then every class.
+CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options);
+
+struct CompressedScene {
+    Scene scene;
+    CompressionStats stats;
+    SurfaceDigest digest;
+    std::vector<int> instanceNodes;  // the nodes of `scene` that draw a shared mesh
+};
+
+// The scene a plan draws. The input's materials, textures and animations are kept. Apart from animated
+// subtrees (kept as they are under a node holding their parent's world transform) and cameras and lights
+// (on nodes of their own at their world placement), the output is one level of nodes: an instance node
+// takes the name of the input node its tile came from; tiles stored as they are share one mesh per
+// material, and the names of their nodes are reported as not kept (scene.warnings).
+CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, const CompressionPlan& plan);
+
+// planCompression, then emitScene, timed (stats.secondsPlan).
+CompressedScene compressAnalyzed(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options);
+
+// The stages' options as the job's options ask (PlanOptions::costs left at the constant model).
+AnalysisOptions analysisOptionsOf(const CompressOptions& options);
+PlanOptions planOptionsOf(const CompressOptions& options);
+
+// analyzeScene, then compressAnalyzed, with the constant cost model: the plan in memory, no file.
+CompressedScene compressInMemory(const Scene& input, const CompressOptions& options = {});
+
+}  // namespace symcompress

@@ -1,0 +1,165 @@
+// symcompress's whole job: read, analyse once, plan three ways (the full plan, instancing without regions,
+// every tile as it is), write and measure each, keep the smallest file, and report.
+#include "symcompress/compress.hpp"
+#include "symcompress/detail/compression_plan.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <fstream>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+namespace {
+
+double since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The bytes of a scene on disk: the file, and for .gltf the buffers and images it names by relative path.
+std::uintmax_t sceneBytes(const fs::path& file) {
+    std::error_code error;
+    std::uintmax_t total = fs::file_size(file, error);
+    if (error) return 0;
+    if (formatFromExtension(file) != FileFormat::Gltf) return total;
+    std::ifstream in(file);
+    const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+    if (json.is_discarded()) return total;
+    for (const char* key : {"buffers", "images"})
+        if (json.contains(key) && json[key].is_array())
+            for (const auto& item : json[key])
+                if (item.contains("uri") && item["uri"].is_string()) {
+                    const std::string uri = item["uri"];
+                    if (uri.rfind("data:", 0) == 0 || uri.find("://") != std::string::npos) continue;
+                    const std::uintmax_t size = fs::file_size(file.parent_path() / uri, error);
+                    if (!error) total += size;
+                }
+    return total;
+}
+
+// The input's bytes: the scene's files, and the images OBJ, PLY, STL and X3D name by path.
+std::uintmax_t inputBytesOf(const Scene& scene, const fs::path& input) {
+    std::uintmax_t bytes = sceneBytes(input);
+    const FileFormat format = formatFromExtension(input);
+    if (format != FileFormat::Gltf && format != FileFormat::Glb)
+        for (const Texture& texture : scene.textures) bytes += texture.bytes.size();
+    return bytes;
+}
+
+// A plan written to a file beside the output, measured, and removed.
+std::uintmax_t measuredBytes(const CompressedScene& plan, const fs::path& output, const WriteOptions& write,
+                             const std::vector<fs::path>& inputs) {
+    const fs::path temporary = output.parent_path() / (".symcompress-ablation-" + output.filename().string());
+    writeScene(plan.scene, temporary, write, inputs);
+    const std::uintmax_t size = sceneBytes(temporary);  // with a .gltf's .bin
+    std::error_code error;
+    fs::remove(temporary, error);
+    if (formatFromExtension(temporary) == FileFormat::Gltf)
+        fs::remove(fs::path(temporary).replace_extension(".bin"), error);
+    return size;
+}
+
+// The mean of the writer's measure over the nodes that draw a shared mesh.
+double bytesPerInstance(const CompressedScene& compressed, const StorageCostModel& costs) {
+    if (compressed.instanceNodes.empty()) return 0;
+    double total = 0;
+    for (int node : compressed.instanceNodes) {
+        const Node& drawing = compressed.scene.nodes[std::size_t(node)];
+        total += costs.nodeBytes ? costs.nodeBytes(drawing) : costs.bytesPerInstance;
+    }
+    return total / double(compressed.instanceNodes.size());
+}
+
+}  // namespace
+
+CompressionReport compressToFile(Scene scene, const fs::path& output, const CompressOptions& options,
+                                 const std::vector<fs::path>& inputs) {
+    CompressionReport report;
+    report.input = inputs.empty() ? fs::path() : inputs.front();
+    report.output = output;
+    report.tolerance = options.tolerance;
+    if (options.dropUnusedTexcoords)
+        if (const std::size_t dropped = dropUnreadTexcoords(scene))
+            scene.warnings.push_back(report.input.filename().string() + ": texture coordinates of " +
+                                     std::to_string(dropped) +
+                                     " primitives dropped (--drop-unused-texcoords): no texture reads them");
+    // What the output's format cannot hold, said before the writer leaves it out.
+    for (std::string& loss : formatLosses(scene, output)) scene.warnings.push_back(std::move(loss));
+    report.readerWarnings = scene.warnings.size();
+
+    PlanOptions planOptions = planOptionsOf(options);
+    planOptions.costs = costModelFor(formatFromExtension(output), options.write);
+    const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
+    CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions);
+    WriteOptions write = options.write;
+    write.extrasJson = compressed.digest.json();
+    const auto writeStart = std::chrono::steady_clock::now();
+    if (options.progress) options.progress("writing", compressed.stats.trianglesStored, "triangles");
+    writeScene(compressed.scene, output, write, inputs);
+    report.secondsWrite = since(writeStart);
+
+    // The ablation: the same scene with every tile stored as it is (Draco alone), and with instancing but no
+    // fundamental regions. The cost model only estimates: where a simpler plan's file is smaller, that file
+    // is the output (the report says which plan it is).
+    struct Variant {
+        const char* name;
+        CompressedScene plan;
+        std::uintmax_t bytes;
+    };
+    std::vector<Variant> variants;
+    auto tryVariant = [&](const char* name, PlanOptions variant) {
+        variant.progress = nullptr;
+        CompressedScene plan = compressAnalyzed(scene, analysis, variant);
+        const std::uintmax_t bytes = measuredBytes(plan, output, write, inputs);
+        variants.push_back({name, std::move(plan), bytes});
+    };
+    if (options.progress) options.progress("measuring the ablation", 0, "");
+    const std::uintmax_t fullPlanBytes = sceneBytes(output);
+    if (options.instancing) {
+        PlanOptions dracoAlone = planOptions;
+        dracoAlone.instancing = false;
+        tryVariant("draco_alone", dracoAlone);
+        report.ablation.dracoAlone = variants.back().bytes;
+        if (options.regions) {
+            PlanOptions instancingOnly = planOptions;
+            instancingOnly.regions = false;
+            tryVariant("instancing", instancingOnly);
+            report.ablation.instancing = variants.back().bytes;
+            report.ablation.instancingAndRegions = fullPlanBytes;
+        } else {
+            report.ablation.instancing = fullPlanBytes;
+        }
+    } else {
+        report.ablation.dracoAlone = fullPlanBytes;
+    }
+    report.outputBytes = fullPlanBytes;
+    for (Variant& variant : variants)
+        if (variant.bytes < report.outputBytes) {
+            writeScene(variant.plan.scene, output, write, inputs);
+            compressed = std::move(variant.plan);
+            report.plan = variant.name;
+            report.outputBytes = sceneBytes(output);
+        }
+
+    report.stats = compressed.stats;
+    report.warnings = std::move(compressed.scene.warnings);
+    report.animations = compressed.scene.animations.size();
+    report.cameras = compressed.scene.cameras.size();
+    report.lights = compressed.scene.lights.size();
+    report.bytesPerInstance = bytesPerInstance(compressed, planOptions.costs);
+    report.inputBytes = inputs.empty() ? 0 : inputBytesOf(scene, inputs.front());
+    report.ratio = report.outputBytes ? double(report.inputBytes) / double(report.outputBytes) : 0;
+    return report;
+}
+
+CompressionReport compressFile(const fs::path& input, const fs::path& output, const CompressOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    if (options.progress) options.progress("reading", 0, "");
+    Scene scene = readScene(input);
+    const double readSeconds = since(start);
+    CompressionReport report = compressToFile(std::move(scene), output, options, {input});
+    report.secondsRead = readSeconds;
+    return report;
+}
+
+}  // namespace symcompress

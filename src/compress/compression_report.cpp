@@ -1,0 +1,54 @@
+// The size report's JSON (symcompress --report): the keys the README lists.
+#include "symcompress/compress.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace symcompress {
+
+std::string CompressionReport::json() const {
+    auto orNull = [](const std::optional<std::uintmax_t>& bytes) {
+        return bytes ? nlohmann::json(*bytes) : nlohmann::json(nullptr);
+    };
+    const nlohmann::json report{{"input", input.string()},
+                                {"output", output.string()},
+                                {"input_bytes", inputBytes},
+                                {"output_bytes", outputBytes},
+                                {"ratio", ratio},
+                                {"plan", plan},
+                                {"triangles_in", stats.trianglesIn},
+                                {"triangles_stored", stats.trianglesStored},
+                                {"tiles", stats.tiles},
+                                {"classes", stats.classes},
+                                {"instanced_classes", stats.instancedClasses},
+                                {"instances", stats.instances},
+                                {"symmetric_classes", stats.symmetricClasses},
+                                {"attribute_mismatches", stats.attributeMismatches},
+                                {"not_worth_instancing", stats.notWorthInstancing},
+                                {"max_deviation", stats.maxDeviation},
+                                {"tolerance", tolerance},
+                                {"seconds",
+                                 {{"read", secondsRead},
+                                  {"tiles", stats.secondsTiles},
+                                  {"classes", stats.secondsClasses},
+                                  {"plan", stats.secondsPlan},
+                                  {"write", secondsWrite}}},
+                                {"region_classes", stats.regionClasses},
+                                {"assemblies", stats.assemblies},
+                                {"assembly_copies", stats.assemblyCopies},
+                                {"tiles_in_assemblies", stats.tilesInAssemblies},
+                                {"scene_group", stats.sceneGroup},
+                                {"tiles_in_scene_symmetry", stats.tilesInSceneSymmetry},
+                                {"input_instances_kept", stats.inputInstancesKept},
+                                {"animated_nodes_kept", stats.animatedNodesKept},
+                                {"cameras_and_lights_kept", stats.camerasAndLightsKept},
+                                {"bytes_per_instance", bytesPerInstance},
+                                {"ablation",
+                                 {{"draco_alone", orNull(ablation.dracoAlone)},
+                                  {"instancing", orNull(ablation.instancing)},
+                                  {"instancing_and_regions", orNull(ablation.instancingAndRegions)},
+                                  {"final", outputBytes}}},
+                                {"warnings", warnings}};
+    return report.dump(2);
+}
+
+}  // namespace symcompress

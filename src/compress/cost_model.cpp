@@ -1,0 +1,22 @@
+// The cost model of each output format: what its writer measures for a part and a node.
+#include "symcompress/detail/compression_plan.hpp"
+
+namespace symcompress {
+
+StorageCostModel costModelFor(FileFormat format, const WriteOptions& write) {
+    StorageCostModel model;
+    if (format == FileFormat::X3d) {
+        // Every part measured by the X3D writer itself, a Transform with a USE per instance.
+        model.bytesPerInstance = 150;
+        model.meshBytes = [write](const Primitive& part) { return double(x3dMeshBytes(part, write)); };
+        model.nodeBytes = [](const Node& node) { return double(x3dNodeBytes(node)); };
+    } else {
+        // glTF: every part measured by the writer, Draco's positions on the grid its quantization uses.
+        model.seamGridBits = write.draco ? write.positionBits : 0;
+        model.meshBytes = [write](const Primitive& part) { return double(gltfMeshBytes(part, write)); };
+        model.nodeBytes = [](const Node& node) { return double(gltfNodeBytes(node)); };
+    }
+    return model;
+}
+
+}  // namespace symcompress

@@ -1,0 +1,220 @@
+// The one step that turns a plan into a Scene: what is kept as it is (the author's shared meshes, animated
+// subtrees, cameras and lights), every shared part with its nodes, the tiles stored as they are merged into
+// one mesh per material, and the stats counted from the plan.
+#include "plan/planners.hpp"
+#include "plan/primitives_by_kind.hpp"
+#include "symcompress/detail/compression_plan.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace symcompress {
+namespace {
+
+int addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const std::string& name) {
+    Node node;
+    node.name = name;
+    node.mesh = mesh;
+    node.transform = transform;
+    out.roots.push_back(int(out.nodes.size()));
+    out.nodes.push_back(std::move(node));
+    return out.roots.back();
+}
+
+// The animated subtrees as they are (SceneAnalysis::animatedSubtrees), each under a root node holding its
+// parent's world transform, and the input's animations retargeted to them. Meshes are shared with the
+// other kept meshes through `keptMesh` (input mesh -> output mesh).
+void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Scene& out, std::map<int, int>& keptMesh,
+                          CompressionStats& stats) {
+    if (input.animations.empty()) return;
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+    std::vector<int> parent(input.nodes.size(), -1);
+    for (std::size_t n = 0; n < input.nodes.size(); ++n)
+        for (int child : input.nodes[n].children) parent[std::size_t(child)] = int(n);
+    std::map<int, int> nodeOf;  // input node -> output node
+    auto copy = [&](auto&& self, int node) -> int {
+        const Node& from = input.nodes[std::size_t(node)];
+        Node to;
+        to.name = from.name;
+        to.transform = from.transform;
+        to.camera = from.camera;
+        to.light = from.light;
+        if (from.mesh >= 0) {
+            auto [entry, added] = keptMesh.emplace(from.mesh, int(out.meshes.size()));
+            if (added) out.meshes.push_back(input.meshes[std::size_t(from.mesh)]);
+            to.mesh = entry->second;
+        }
+        const int index = int(out.nodes.size());
+        out.nodes.push_back(std::move(to));
+        nodeOf[node] = index;
+        ++stats.animatedNodesKept;
+        for (int child : from.children) {
+            const int copied = self(self, child);
+            out.nodes[std::size_t(index)].children.push_back(copied);
+        }
+        return index;
+    };
+    for (int top : analysis.animatedSubtrees) {
+        // The parent's own world transform, not the node's times its inverse: an animated node may have a
+        // scale of 0 at rest (hidden until its animation shows it).
+        const int above = parent[std::size_t(top)];
+        const int holder =
+            addRootNode(out, -1, above < 0 ? Eigen::Matrix4d::Identity() : world[std::size_t(above)], "");
+        const int copied = copy(copy, top);
+        out.nodes[std::size_t(holder)].children.push_back(copied);
+    }
+    std::size_t undrawn = 0;  // channels of nodes that no root reaches
+    for (Animation animation : input.animations) {
+        std::vector<AnimationChannel> kept;
+        for (AnimationChannel& channel : animation.channels) {
+            const auto copied = nodeOf.find(channel.node);
+            if (copied == nodeOf.end()) {
+                ++undrawn;
+                continue;
+            }
+            channel.node = copied->second;
+            kept.push_back(std::move(channel));
+        }
+        animation.channels = std::move(kept);
+        if (!animation.channels.empty()) out.animations.push_back(std::move(animation));
+    }
+    if (undrawn)
+        out.warnings.push_back(std::to_string(undrawn) +
+                               " animation channels of nodes the scene does not draw left out");
+}
+
+// Every node with a camera or a light, outside the animated subtrees (which keep theirs), as a root node at
+// its world placement: the tiles are rebuilt elsewhere, the viewpoints and lights stay where they were.
+void keepCamerasAndLights(const Scene& input, const SceneAnalysis& analysis, Scene& out, CompressionStats& stats) {
+    out.cameras = input.cameras;
+    out.lights = input.lights;
+    const std::vector<int>& animated = analysis.animatedSubtrees;  // their tops, sorted: a subtree is skipped whole
+    std::vector<std::pair<int, Eigen::Matrix4d>> stack;            // node, its parent's world transform
+    for (auto root = input.roots.rbegin(); root != input.roots.rend(); ++root)
+        stack.push_back({*root, Eigen::Matrix4d::Identity()});
+    while (!stack.empty()) {
+        const auto [node, parentWorld] = stack.back();
+        stack.pop_back();
+        const Node& from = input.nodes[std::size_t(node)];
+        if (std::binary_search(animated.begin(), animated.end(), node)) continue;
+        const Eigen::Matrix4d world = parentWorld * from.transform;
+        if (from.camera >= 0 || from.light >= 0) {
+            const int kept = addRootNode(out, -1, world, from.name);
+            out.nodes[std::size_t(kept)].camera = from.camera;
+            out.nodes[std::size_t(kept)].light = from.light;
+            ++stats.camerasAndLightsKept;
+        }
+        for (auto child = from.children.rbegin(); child != from.children.rend(); ++child)
+            stack.push_back({*child, world});
+    }
+}
+
+// What a shared part adds to the stats.
+void count(const SharedPart& part, CompressionStats& stats) {
+    stats.instances += part.nodes.size();
+    stats.maxDeviation = std::max(stats.maxDeviation, part.deviation);
+    switch (part.mechanism) {
+    case SharedPart::Mechanism::SceneSymmetry: stats.tilesInSceneSymmetry += part.tiles.size(); break;
+    case SharedPart::Mechanism::Assembly:
+        ++stats.assemblies;
+        stats.assemblyCopies += part.nodes.size();
+        stats.tilesInAssemblies += part.tiles.size();
+        break;
+    case SharedPart::Mechanism::Region: ++stats.regionClasses; [[fallthrough]];
+    case SharedPart::Mechanism::Class:
+        if (part.copies > 1) ++stats.instancedClasses;
+        break;
+    }
+}
+
+// Triangles with two corners at one point draw nothing; kept, they would cost Draco's edgebreaker (which
+// drops them) a sequential primitive (the subpass scene has 4100 of them).
+void dropPointLikeTriangles(Scene& out, CompressionStats& stats) {
+    std::size_t pointLike = 0;
+    for (Mesh& mesh : out.meshes)
+        for (Primitive& p : mesh.primitives) {
+            const std::size_t before = p.triangles.size();
+            p.triangles.erase(std::remove_if(p.triangles.begin(), p.triangles.end(),
+                                             [&](const Triangle& t) {
+                                                 return p.positions[t[0]] == p.positions[t[1]] ||
+                                                        p.positions[t[1]] == p.positions[t[2]] ||
+                                                        p.positions[t[0]] == p.positions[t[2]];
+                                             }),
+                              p.triangles.end());
+            pointLike += before - p.triangles.size();
+            stats.trianglesStored += p.triangles.size();
+        }
+    if (pointLike)
+        out.warnings.push_back(
+            std::to_string(pointLike) +
+            " stored triangles with two corners at one point (zero area, they draw nothing) left out");
+}
+
+}  // namespace
+
+CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, const CompressionPlan& plan) {
+    CompressedScene result;
+    CompressionStats& stats = result.stats;
+    result.digest = analysis.digest;
+    stats.trianglesIn = analysis.digest.triangles;
+    stats.tiles = analysis.tiles.size();
+    stats.secondsTiles = analysis.secondsTiles;
+    stats.secondsClasses = analysis.secondsClasses;
+    stats.classes = plan.classes;
+    stats.symmetricClasses = plan.symmetricClasses;
+    stats.attributeMismatches = plan.attributeMismatches;
+    stats.notWorthInstancing = plan.notWorthInstancing;
+    stats.sceneGroup = plan.sceneGroup;
+
+    Scene& out = result.scene;
+    out.textures = input.textures;
+    out.materials = input.materials;
+    out.x3dEnvironment = input.x3dEnvironment;
+    out.warnings = input.warnings;
+    std::map<int, int> keptMesh;   // input mesh -> output mesh
+    PrimitivesByKind unique;       // what is stored as it is
+    std::set<std::string> merged;  // names of the input nodes whose parts are merged into `unique`
+    for (const KeptInstance& kept : analysis.keptInstances) {
+        if (!plan.shareInputInstances) {
+            for (const Primitive& primitive : input.meshes[std::size_t(kept.mesh)].primitives)
+                unique.add(transformPrimitive(primitive, kept.transform));
+            if (!kept.name.empty()) merged.insert(kept.name);
+            continue;
+        }
+        auto [entry, added] = keptMesh.emplace(kept.mesh, int(out.meshes.size()));
+        if (added) out.meshes.push_back(input.meshes[std::size_t(kept.mesh)]);
+        result.instanceNodes.push_back(addRootNode(out, entry->second, kept.transform, kept.name));
+        ++stats.inputInstancesKept;
+        ++stats.instances;
+    }
+    keepAnimatedSubtrees(input, analysis, out, keptMesh, stats);
+    keepCamerasAndLights(input, analysis, out, stats);
+    for (const SharedPart& part : plan.shared) {
+        const int mesh = int(out.meshes.size());
+        out.meshes.push_back(part.mesh);
+        for (const PlacedCopy& node : part.nodes)
+            result.instanceNodes.push_back(addRootNode(out, mesh, node.transform, node.name));
+        count(part, stats);
+    }
+    for (std::size_t t : plan.tilesAsTheyAre) {
+        unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
+        if (std::string name = sourceNodeName(input, analysis, t); !name.empty()) merged.insert(name);
+    }
+    if (!unique.empty()) {
+        // One mesh per material for every tile stored as it is, drawn by one node: it takes the name of the
+        // node its tiles came from when that is a single one; otherwise the names are lost.
+        if (merged.size() > 1)
+            out.warnings.push_back(std::to_string(merged.size()) + " node names (e.g. '" + *merged.begin() +
+                                   "') not kept: their tiles are stored as they are in one mesh per material");
+        Mesh mesh;
+        unique.moveInto(mesh);
+        out.meshes.push_back(std::move(mesh));
+        addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(),
+                    merged.size() == 1 ? *merged.begin() : "");
+    }
+    dropPointLikeTriangles(out, stats);
+    return result;
+}
+
+}  // namespace symcompress

@@ -1,0 +1,152 @@
+// Every congruence class: the members the prototype reproduces are drawn from one stored mesh, the tile or
+// its fundamental region, by a node per member (and per region copy), where that costs less than storing
+// them as they are.
+#include "plan/member_check.hpp"
+#include "plan/planners.hpp"
+#include "plan/region_choice.hpp"
+
+#include <limits>
+#include <tuple>
+
+namespace symcompress {
+namespace {
+
+// The placement of the prototype onto member i that the member check accepts, if any: every J g (g in the
+// prototype's group) places the geometry (paper property 4); the attributes and the faces' orientation pick
+// among them.
+std::optional<Isometry> acceptedPlacement(const PlanContext& context, const CongruenceClass& c, std::size_t i,
+                                          const Primitive& prototype, const Primitive& member) {
+    const TileShape& shape = context.analysis.classification.shapes[c.prototype];
+    for (const Symmetry& g : shape.symmetry.elements) {
+        Isometry candidate;
+        candidate.linear = c.placements[i].linear * g.linear;
+        candidate.translation = c.placements[i].linear * (shape.moments.centroid - g.linear * shape.moments.centroid) +
+                                c.placements[i].translation;
+        if (reproduces(prototype, member, candidate, context.tolerance(), context.options.geometryOnly))
+            return candidate;
+    }
+    return std::nullopt;
+}
+
+// The prototype's symmetries that also carry its attributes onto themselves: the group its fundamental
+// region may use (a textured part is rarely symmetric in its texture coordinates).
+std::vector<Eigen::Matrix3d> attributeGroup(const PlanContext& context, const TileShape& shape,
+                                            const Primitive& prototype) {
+    const Eigen::Vector3d center = shape.moments.centroid;
+    std::vector<Eigen::Matrix3d> group;
+    for (const Symmetry& g : shape.symmetry.elements) {
+        Isometry about;
+        about.linear = g.linear;
+        about.translation = center - g.linear * center;
+        if (reproduces(prototype, prototype, about, context.tolerance(), context.options.geometryOnly))
+            group.push_back(g.linear);
+    }
+    return group;
+}
+
+// One class: its stored part, if any, and the members stored as they are appended to `plan`.
+void planClass(const PlanContext& context, std::size_t k, const std::vector<bool>& drawn, CompressionPlan& plan) {
+    const SceneAnalysis& analysis = context.analysis;
+    const std::vector<Tile>& tiles = analysis.tiles;
+    const CongruenceClass& c = analysis.classification.classes[k];
+    const TileShape& shape = analysis.classification.shapes[c.prototype];
+    StorageCosts& costs = context.costs;
+    const PlanOptions& options = context.options;
+    const Primitive prototype = tilePrimitive(tiles[c.prototype], analysis.soup);
+    // Indices into c.members drawn from the prototype's mesh (members already drawn are left out).
+    std::vector<std::size_t> placed;
+    if (!drawn[c.prototype]) placed.push_back(0);
+    std::vector<Isometry> placements = c.placements;
+    for (std::size_t i = 1; i < c.members.size(); ++i) {
+        if (drawn[c.members[i]]) continue;
+        if (const auto placement =
+                acceptedPlacement(context, c, i, prototype, tilePrimitive(tiles[c.members[i]], analysis.soup))) {
+            placements[i] = *placement;
+            placed.push_back(i);
+        } else {
+            ++plan.attributeMismatches;
+            plan.tilesAsTheyAre.push_back(c.members[i]);
+        }
+    }
+    if (placed.empty()) return;
+
+    // The nodes drawing the class's mesh: one per placed member and copy in its tile.
+    auto nodesCost = [&](const std::vector<Eigen::Matrix4d>& copiesInTile) {
+        double bytes = 0;
+        for (std::size_t i : placed)
+            for (const Eigen::Matrix4d& copy : copiesInTile)
+                bytes += costs.node(placements[i].matrix() * copy, context.sourceName(c.members[i]));
+        return bytes;
+    };
+    const Eigen::Vector3d center = shape.moments.centroid;
+    const Eigen::Matrix4d atCenter = translationTo(center);
+    // Store whichever costs least: every copy as it is, the tile once with a node per copy, or a fundamental
+    // region once with a node per copy and group element. A single copy with no symmetry is stored as it is
+    // without measuring (most classes of a big scene).
+    constexpr double kNever = std::numeric_limits<double>::infinity();
+    const double copies = double(placed.size());
+    std::optional<FundamentalRegion> region;
+    double regional = kNever;
+    double instanced = kNever;
+    if (placed.size() > 1 || (options.regions && shape.symmetry.order() > 1))
+        instanced = costs.alone(c.prototype) + nodesCost({atCenter});
+    if (options.regions && shape.symmetry.order() > 1) {
+        const std::vector<Eigen::Matrix3d> group = attributeGroup(context, shape, prototype);
+        auto regionNodes = [&](const FundamentalRegion& r) {
+            std::vector<Eigen::Matrix4d> copiesInTile;
+            for (std::size_t j = 0; j < r.instances.size(); ++j) copiesInTile.push_back(instanceTransform(r, j));
+            return nodesCost(copiesInTile);
+        };
+        const double alone = costs.alone(c.prototype), perNode = (instanced - alone) / copies;
+        if (group.size() > 1)
+            std::tie(region, regional) =
+                cheapestRegion({prototype, group, center, context.tolerance(), options.costs.seamGridBits}, costs,
+                               alone, perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
+    }
+    const bool single = placed.size() == 1 && !region;
+    if (single || copies * costs.merged(c.prototype) <= std::min(instanced, regional)) {
+        if (placed.size() > 1) plan.notWorthInstancing += placed.size();
+        for (std::size_t i : placed) plan.tilesAsTheyAre.push_back(c.members[i]);
+        return;
+    }
+    const bool useRegion = regional < instanced;
+    // The shared mesh is stored about the prototype's centroid (a small range for quantization); a region in
+    // its aligned frame, also about the centroid (see RegionFrame::Aligned).
+    SharedPart shared;
+    shared.mechanism = useRegion ? SharedPart::Mechanism::Region : SharedPart::Mechanism::Class;
+    shared.mesh.name = "class " + std::to_string(k) + (useRegion ? " (fundamental region)" : "");
+    Primitive local = useRegion ? region->region : prototype;
+    if (!useRegion)
+        for (auto& p : local.positions) p -= center;
+    shared.mesh.primitives.push_back(std::move(local));
+    std::vector<Eigen::Matrix4d> copiesInTile;
+    if (useRegion) {
+        for (std::size_t j = 0; j < region->instances.size(); ++j)
+            copiesInTile.push_back(instanceTransform(*region, j));
+    } else {
+        copiesInTile.push_back(atCenter);
+    }
+    for (std::size_t i : placed) {
+        for (const Eigen::Matrix4d& copy : copiesInTile)
+            shared.nodes.push_back({placements[i].matrix() * copy, context.sourceName(c.members[i])});
+        shared.tiles.push_back(c.members[i]);
+        shared.deviation = std::max(shared.deviation, c.deviations[i]);
+    }
+    shared.copies = placed.size();
+    plan.shared.push_back(std::move(shared));
+}
+
+}  // namespace
+
+CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>& drawn) {
+    CompressionPlan plan;
+    const TileClassification& classification = context.analysis.classification;
+    for (std::size_t k = 0; k < classification.classes.size(); ++k) {
+        ++plan.classes;
+        if (classification.shapes[classification.classes[k].prototype].symmetry.order() > 1) ++plan.symmetricClasses;
+        planClass(context, k, drawn, plan);
+    }
+    return plan;
+}
+
+}  // namespace symcompress

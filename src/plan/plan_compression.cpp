@@ -1,0 +1,91 @@
+// The plan, in order: the scene's own symmetry, repeated assemblies, then every class; and the short
+// sequences that run the stages (docs/compression-plan.md).
+#include "plan/member_check.hpp"
+#include "plan/planners.hpp"
+
+#include <chrono>
+
+namespace symcompress {
+
+std::string sourceNodeName(const Scene& input, const SceneAnalysis& analysis, std::size_t t) {
+    const Tile& tile = analysis.tiles[t];
+    if (tile.sources.empty()) return {};
+    const int node = analysis.soup[tile.sources.front().primitive].node;
+    return node >= 0 && std::size_t(node) < input.nodes.size() ? input.nodes[std::size_t(node)].name : std::string();
+}
+
+bool PlanContext::reproduces(std::size_t from, std::size_t to, const Isometry& map) const {
+    return symcompress::reproduces(tilePrimitive(analysis.tiles[from], analysis.soup),
+                                   tilePrimitive(analysis.tiles[to], analysis.soup), map, tolerance(),
+                                   options.geometryOnly);
+}
+
+Eigen::Matrix4d translationTo(const Eigen::Vector3d& center) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    m.topRightCorner<3, 1>() = center;
+    return m;
+}
+
+CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options) {
+    CompressionPlan plan;
+    if (!options.instancing || !analysis.options.classify) {
+        // Every copy as it is, as Draco alone stores it, the author's shared meshes too: their sharing may
+        // cost more than it saves (hundreds of small scaled copies), and this plan stores nothing shared.
+        plan.shareInputInstances = false;
+        for (std::size_t t = 0; t < analysis.tiles.size(); ++t) plan.tilesAsTheyAre.push_back(t);
+        return plan;
+    }
+    if (options.progress) options.progress("planning", analysis.classification.classes.size(), "classes");
+    StorageCosts costs(analysis, options.costs);
+    const PlanContext context{input, analysis, options, costs};
+    std::vector<bool> drawn(analysis.tiles.size(), false);  // by the scene's symmetry or a repeated assembly
+    if (options.assemblies) {
+        if (std::optional<SharedPart> part = planSceneSymmetry(context)) {
+            for (std::size_t t : part->tiles) drawn[t] = true;
+            plan.sceneGroup = part->group;
+            plan.shared.push_back(std::move(*part));
+        }
+        for (SharedPart& part : planAssemblies(context, drawn)) plan.shared.push_back(std::move(part));
+    }
+    CompressionPlan classes = planClasses(context, drawn);
+    for (SharedPart& part : classes.shared) plan.shared.push_back(std::move(part));
+    plan.tilesAsTheyAre = std::move(classes.tilesAsTheyAre);
+    plan.classes = classes.classes;
+    plan.symmetricClasses = classes.symmetricClasses;
+    plan.attributeMismatches = classes.attributeMismatches;
+    plan.notWorthInstancing = classes.notWorthInstancing;
+    return plan;
+}
+
+CompressedScene compressAnalyzed(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    CompressedScene result = emitScene(input, analysis, planCompression(input, analysis, options));
+    result.stats.secondsPlan = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+AnalysisOptions analysisOptionsOf(const CompressOptions& options) {
+    AnalysisOptions analysis;
+    analysis.tolerance = options.tolerance;
+    analysis.classify = options.instancing;
+    analysis.keepInputInstances = options.keepInputInstances;
+    analysis.threads = options.threads;
+    analysis.progress = options.progress;
+    return analysis;
+}
+
+PlanOptions planOptionsOf(const CompressOptions& options) {
+    PlanOptions plan;
+    plan.instancing = options.instancing;
+    plan.geometryOnly = options.geometryOnly;
+    plan.regions = options.regions;
+    plan.assemblies = options.assemblies;
+    plan.progress = options.progress;
+    return plan;
+}
+
+CompressedScene compressInMemory(const Scene& input, const CompressOptions& options) {
+    return compressAnalyzed(input, analyzeScene(input, analysisOptionsOf(options)), planOptionsOf(options));
+}
+
+}  // namespace symcompress

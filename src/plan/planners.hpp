@@ -1,0 +1,44 @@
+// The planners, one per mechanism: each returns its decisions as data (SharedPart: which tiles, which
+// stored mesh, which placements, the deviation), in the order planCompression runs them.
+#pragma once
+
+#include "plan/storage_costs.hpp"
+#include "symcompress/detail/compression_plan.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace symcompress {
+
+// The name of the input node that draws tile t (empty when it has none): instance nodes keep it.
+std::string sourceNodeName(const Scene& input, const SceneAnalysis& analysis, std::size_t t);
+
+// What every planner reads.
+struct PlanContext {
+    const Scene& input;
+    const SceneAnalysis& analysis;
+    const PlanOptions& options;
+    StorageCosts& costs;
+    double tolerance() const { return analysis.absoluteTolerance; }
+    std::string sourceName(std::size_t t) const { return sourceNodeName(input, analysis, t); }
+    // Whether tile `from` placed by `map` reproduces tile `to` (the member check, as the options ask).
+    bool reproduces(std::size_t from, std::size_t to, const Isometry& map) const;
+};
+
+// The scene's own symmetry (paper 6.3): one part of the scene stored once, drawn by a node per element of
+// the scene's group, where that costs less than storing its copies apart.
+std::optional<SharedPart> planSceneSymmetry(const PlanContext& context);
+
+// The repeated assemblies worth storing once, none with a tile already `drawn`; marks the tiles they draw.
+std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<bool>& drawn);
+
+// Every class: the members the prototype reproduces drawn from one mesh (the tile, or its fundamental
+// region) where that pays, the rest stored as they are (CompressionPlan::tilesAsTheyAre). Tiles already
+// `drawn` are left out.
+CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>& drawn);
+
+// The translation taking a mesh stored about `center` to where it was.
+Eigen::Matrix4d translationTo(const Eigen::Vector3d& center);
+
+}  // namespace symcompress

@@ -1,0 +1,103 @@
+// The analysis every plan is made from: the input flattened into world primitives, what is kept as it is
+// (animated subtrees, the author's scaled instances) set aside, the rest split into tiles and classified.
+#include "symcompress/detail/compression_plan.hpp"
+
+#include "geometry/bounds.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <set>
+
+namespace symcompress {
+namespace {
+
+double since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Which nodes are animated or under an animated node (reached from the roots); `tops` gets the animated
+// nodes with no animated ancestor, in increasing order.
+std::vector<bool> markAnimatedSubtrees(const Scene& input, std::vector<int>& tops) {
+    std::vector<bool> animated(input.nodes.size(), false), inSubtree(input.nodes.size(), false);
+    for (const Animation& animation : input.animations)
+        for (const AnimationChannel& channel : animation.channels) animated[std::size_t(channel.node)] = true;
+    std::vector<std::pair<int, bool>> stack;  // node, whether an ancestor is animated
+    for (int root : input.roots) stack.push_back({root, false});
+    while (!stack.empty()) {
+        const auto [node, under] = stack.back();
+        stack.pop_back();
+        if (animated[std::size_t(node)] && !under) tops.push_back(node);
+        inSubtree[std::size_t(node)] = under || animated[std::size_t(node)];
+        for (int child : input.nodes[std::size_t(node)].children)
+            stack.push_back({child, inSubtree[std::size_t(node)]});
+    }
+    std::sort(tops.begin(), tops.end());
+    return inSubtree;
+}
+
+// A mesh drawn by two or more nodes, one of them scaling or shearing it, is the author's instancing of
+// copies that are not congruent: kept as it is, and left out of the soup. (Rigid copies are left to the
+// classes, which may also find more of them baked elsewhere.)
+void setAsideScaledInstances(const Scene& input, SceneAnalysis& analysis) {
+    std::map<int, std::set<int>> nodesOfMesh;
+    for (const WorldPrimitive& placed : analysis.soup) nodesOfMesh[placed.mesh].insert(placed.node);
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+    auto rigid = [&](int node) {
+        const Eigen::Matrix3d linear = world[std::size_t(node)].topLeftCorner<3, 3>();
+        return (linear.transpose() * linear - Eigen::Matrix3d::Identity()).norm() < 1e-6;
+    };
+    std::set<int> kept;
+    for (const auto& [mesh, nodes] : nodesOfMesh)
+        if (mesh >= 0 && nodes.size() > 1 && !std::all_of(nodes.begin(), nodes.end(), rigid)) {
+            kept.insert(mesh);
+            for (int node : nodes)
+                analysis.keptInstances.push_back({mesh, world[std::size_t(node)], input.nodes[std::size_t(node)].name});
+        }
+    analysis.soup.erase(std::remove_if(analysis.soup.begin(), analysis.soup.end(),
+                                       [&](const WorldPrimitive& placed) { return kept.count(placed.mesh) > 0; }),
+                        analysis.soup.end());
+}
+
+// The diagonal of the tiles' bounding box, as the classification measures it.
+double tilesDiagonal(const std::vector<Tile>& tiles) {
+    Eigen::AlignedBox3d box;
+    for (const Tile& tile : tiles) box.extend(boundsOf(tile.mesh.positions));
+    return box.isEmpty() ? 0 : box.diagonal().norm();
+}
+
+}  // namespace
+
+SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
+    SceneAnalysis analysis;
+    analysis.options = options;
+    auto start = std::chrono::steady_clock::now();
+    analysis.soup = flattenScene(input);
+    const std::vector<bool> animated = markAnimatedSubtrees(input, analysis.animatedSubtrees);
+    analysis.soup.erase(
+        std::remove_if(analysis.soup.begin(), analysis.soup.end(),
+                       [&](const WorldPrimitive& placed) { return animated[std::size_t(placed.node)]; }),
+        analysis.soup.end());
+    if (options.keepInputInstances) setAsideScaledInstances(input, analysis);
+    std::size_t triangles = 0;
+    for (const WorldPrimitive& placed : analysis.soup) triangles += placed.primitive.triangles.size();
+    if (options.progress) options.progress("splitting into tiles", triangles, "triangles");
+    analysis.tiles = splitIntoTiles(analysis.soup);
+    analysis.digest = digestOf(worldMesh(input), options.tolerance);
+    analysis.secondsTiles = since(start);
+    start = std::chrono::steady_clock::now();
+    if (options.classify) {
+        if (options.progress) options.progress("classifying", analysis.tiles.size(), "tiles");
+        CongruenceOptions congruenceOptions;
+        congruenceOptions.tolerance = options.tolerance;
+        congruenceOptions.threads = options.threads;
+        analysis.classification = classifyTiles(analysis.tiles, congruenceOptions);
+        analysis.absoluteTolerance = analysis.classification.absoluteTolerance;
+    } else {
+        analysis.absoluteTolerance = options.tolerance * tilesDiagonal(analysis.tiles);
+    }
+    analysis.secondsClasses = since(start);
+    return analysis;
+}
+
+}  // namespace symcompress

@@ -1,0 +1,94 @@
+#include "plan/storage_costs.hpp"
+
+#include "plan/primitives_by_kind.hpp"
+
+#include <algorithm>
+
+namespace symcompress {
+
+StorageCosts::StorageCosts(const SceneAnalysis& analysis, const StorageCostModel& model)
+    : analysis_(analysis), model_(model), classOf_(analysis.tiles.size(), kNone), memberOf_(analysis.tiles.size(), 0) {
+    const auto& classes = analysis.classification.classes;
+    for (std::size_t k = 0; k < classes.size(); ++k)
+        for (std::size_t i = 0; i < classes[k].members.size(); ++i) {
+            classOf_[classes[k].members[i]] = k;
+            memberOf_[classes[k].members[i]] = i;
+        }
+    classMesh_.assign(classes.size(), -1);
+}
+
+double StorageCosts::asMesh(const Primitive& part) const {
+    if (model_.meshBytes) return model_.meshBytes(part);
+    return double(part.triangles.size()) * model_.bytesPerTriangle + model_.bytesPerMesh;
+}
+
+double StorageCosts::node(const Node& node) const {
+    return model_.nodeBytes ? model_.nodeBytes(node) : model_.bytesPerInstance;
+}
+
+double StorageCosts::node(const Eigen::Matrix4d& transform, const std::string& name) const {
+    Node drawing;
+    drawing.transform = transform;
+    drawing.name = name;
+    return node(drawing);
+}
+
+double StorageCosts::alone(std::size_t t) {
+    const std::size_t k = classOf_[t];
+    if (k == kNone) return asMesh(tilePrimitive(analysis_.tiles[t], analysis_.soup));
+    if (classMesh_[k] < 0) {
+        const std::size_t prototype = analysis_.classification.classes[k].prototype;
+        classMesh_[k] = asMesh(tilePrimitive(analysis_.tiles[prototype], analysis_.soup));
+    }
+    return classMesh_[k];
+}
+
+double StorageCosts::apart(std::size_t t) {
+    if (classOf_[t] == kNone) return std::min(merged(t), model_.bytesPerInstance + alone(t));
+    const CongruenceClass& c = analysis_.classification.classes[classOf_[t]];
+    return std::min(merged(t), node(c.placements[memberOf_[t]].matrix(), "") + alone(t) / double(c.members.size()));
+}
+
+double StorageCosts::meshOf(const std::vector<std::size_t>& tiles, bool overhead) {
+    double bytes = 0;
+    std::set<std::pair<int, Attributes>> primitives;
+    for (std::size_t t : tiles) {
+        bytes += merged(t);
+        if (overhead && primitives.insert({analysis_.tiles[t].material, attributesOf(t)}).second)
+            bytes += kindOf(t).overhead;
+    }
+    return bytes;
+}
+
+StorageCosts::Attributes StorageCosts::attributesOf(std::size_t t) const {
+    const WorldPrimitive& from = analysis_.soup[analysis_.tiles[t].sources.front().primitive];
+    return {!from.primitive.normals.empty(), !from.primitive.texcoords.empty(), !from.primitive.colors.empty()};
+}
+
+const StorageCosts::KindCosts& StorageCosts::kindOf(std::size_t t) {
+    const Attributes attributes = attributesOf(t);
+    if (const auto known = kinds_.find(attributes); known != kinds_.end()) return known->second;
+    std::vector<std::size_t> same;
+    std::size_t triangles = 0;
+    for (std::size_t u = 0; u < analysis_.tiles.size(); ++u)
+        if (attributesOf(u) == attributes) {
+            same.push_back(u);
+            triangles += analysis_.tiles[u].mesh.triangles.size();
+        }
+    const std::size_t step = std::max<std::size_t>(1, triangles / kSampleTriangles);
+    Primitive sample;
+    for (std::size_t i = 0; i < same.size(); i += step) {
+        Primitive part = tilePrimitive(analysis_.tiles[same[i]], analysis_.soup);
+        part.material = -1;
+        PrimitivesByKind::append(sample, part);
+    }
+    const Primitive one = triangleOf(sample, 0);
+    KindCosts costs;
+    costs.overhead = asMesh(one);
+    costs.perTriangle = sample.triangles.size() > 1
+                            ? std::max(0.0, (asMesh(sample) - costs.overhead) / double(sample.triangles.size() - 1))
+                            : costs.overhead;
+    return kinds_[attributes] = costs;
+}
+
+}  // namespace symcompress

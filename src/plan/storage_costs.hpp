@@ -1,0 +1,56 @@
+// The plan's measure of what storing parts costs, in bytes of output (StorageCostModel: the writer's own
+// measure where it gives one). A part's triangles merged into a mesh with other parts cost what the scene's
+// parts with the same attributes cost a triangle (measured on a sample of them together, as Draco codes
+// them: a box among boxes in far fewer bytes than alone); a part as a mesh of its own costs what the writer
+// measures for it, its class's prototype measured once.
+#pragma once
+
+#include "symcompress/detail/compression_plan.hpp"
+
+#include <limits>
+#include <map>
+#include <set>
+#include <tuple>
+#include <vector>
+
+namespace symcompress {
+
+class StorageCosts {
+public:
+    StorageCosts(const SceneAnalysis& analysis, const StorageCostModel& model);
+
+    double asMesh(const Primitive& part) const;
+    // A node drawing a shared mesh with this transform and name, as the writer measures it.
+    double node(const Eigen::Matrix4d& transform, const std::string& name) const;
+    double node(const Node& node) const;
+    // Tile t's triangles in a mesh with other parts.
+    double merged(std::size_t t) { return double(analysis_.tiles[t].mesh.triangles.size()) * kindOf(t).perTriangle; }
+    // Tile t as a mesh of its own (its class's prototype).
+    double alone(std::size_t t);
+    // The cheaper way of storing tile t apart from a group of tiles: as it is, or drawn by its class's mesh
+    // (a node placing it, and its share of the mesh).
+    double apart(std::size_t t);
+    // A mesh of these tiles: their triangles, and with `overhead` that of a primitive per material and
+    // attributes.
+    double meshOf(const std::vector<std::size_t>& tiles, bool overhead = true);
+
+private:
+    static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+    static constexpr std::size_t kSampleTriangles = 20000;
+    using Attributes = std::tuple<bool, bool, bool>;  // normals, texture coordinates, colours
+    struct KindCosts {
+        double perTriangle = 0, overhead = 0;
+    };
+
+    Attributes attributesOf(std::size_t t) const;
+    // Measured on tiles spread over the scene, up to kSampleTriangles, merged as the writer would.
+    const KindCosts& kindOf(std::size_t t);
+
+    const SceneAnalysis& analysis_;
+    const StorageCostModel& model_;
+    std::vector<std::size_t> classOf_, memberOf_;  // a tile's class, and its index among the class's members
+    std::vector<double> classMesh_;                // < 0: not measured yet
+    std::map<Attributes, KindCosts> kinds_;
+};
+
+}  // namespace symcompress

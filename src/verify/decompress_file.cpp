@@ -1,0 +1,106 @@
+// symdecompress's job: every instance expanded, written, and the rebuilt surface verified.
+#include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
+#include "symcompress/verify.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace symcompress {
+namespace {
+
+// Beyond the symmetry tolerance, the rebuilt surface may differ by Draco's quantization: half a step of
+// the position grid, 2^-bits of the largest mesh extent; 14 bits and a mesh as large as the scene bound it.
+constexpr double kQuantizationAllowance = 1.0 / (1 << 13);
+// Share of the area that may face the other way: slivers that quantization turns over.
+constexpr double kFlippedAllowance = 1e-4;
+
+// Against the original: the surfaces must agree (distance both ways, area, bounds); triangle counts may
+// differ, since fundamental regions split the triangles their planes cut. Quantization may turn over a
+// sliver or two, not a part.
+void verifyAgainstOriginal(const TriangleMesh& rebuilt, const Scene& original, RebuildReport& report) {
+    const TriangleMesh reference = worldMesh(original);
+    const SurfaceComparison comparison = compareSurfaces(rebuilt, reference, report.allowedDeviation);
+    report.against = RebuildReport::Against::Original;
+    report.maxDeviation = comparison.maxDeviation;
+    report.areaRatio = comparison.areaRatio;
+    report.sameBounds = comparison.sameBounds;
+    report.flippedArea = comparison.flippedArea;
+    report.trianglesOriginal = reference.triangles.size();
+    const double allowed = report.allowedDeviation;
+    report.verified = comparison.maxDeviation <= allowed && std::abs(comparison.areaRatio - 1) <= 10 * allowed &&
+                      comparison.sameBounds && comparison.flippedArea <= kFlippedAllowance;
+}
+
+// Against the digest: it has no surface, so the bounds and the area are what can be compared.
+void verifyAgainstDigest(const SurfaceDigest& rebuilt, const SurfaceDigest& stored, RebuildReport& report) {
+    const double diagonal = stored.bounds.isEmpty() ? 0 : stored.bounds.diagonal().norm();
+    const double boundsError = diagonal > 0
+                                   ? std::max((rebuilt.bounds.min() - stored.bounds.min()).cwiseAbs().maxCoeff(),
+                                              (rebuilt.bounds.max() - stored.bounds.max()).cwiseAbs().maxCoeff()) /
+                                         diagonal
+                                   : 0;
+    report.against = RebuildReport::Against::Digest;
+    report.areaRatio = stored.area > 0 ? rebuilt.area / stored.area : 0;
+    report.maxDeviation = boundsError;
+    report.trianglesOriginal = stored.triangles;
+    report.verified =
+        boundsError <= report.allowedDeviation && std::abs(report.areaRatio - 1) <= 10 * report.allowedDeviation;
+}
+
+}  // namespace
+
+RebuildReport decompressFile(const std::filesystem::path& input, const std::filesystem::path& output,
+                             const std::filesystem::path& original) {
+    const Scene scene = readScene(input);
+    const Scene reference = original.empty() ? Scene() : readScene(original);
+    RebuildReport report;
+    report.input = input;
+    report.output = output;
+    report.original = original;
+    Scene flat = expandInstances(scene);
+    for (std::string& loss : formatLosses(flat, output)) flat.warnings.push_back(std::move(loss));
+    report.warnings.assign(flat.warnings.begin() + std::ptrdiff_t(scene.warnings.size()), flat.warnings.end());
+    WriteOptions exact;
+    exact.draco = false;  // the expanded scene is the reference geometry: keep it exact
+    writeScene(flat, output, exact, {input});
+    const TriangleMesh rebuilt = worldMesh(flat);
+    const SurfaceDigest rebuiltDigest = digestOf(rebuilt, 0);
+    report.triangles = rebuiltDigest.triangles;
+    SurfaceDigest stored;
+    const bool haveDigest = SurfaceDigest::fromJson(scene.extrasJson, stored);
+    report.allowedDeviation = kQuantizationAllowance + (haveDigest ? stored.tolerance : 0);
+    if (!original.empty())
+        verifyAgainstOriginal(rebuilt, reference, report);
+    else if (haveDigest)
+        verifyAgainstDigest(rebuiltDigest, stored, report);
+    return report;
+}
+
+std::string RebuildReport::json() const {
+    nlohmann::json out{{"input", input.string()}, {"output", output.string()}, {"triangles", triangles}};
+    switch (against) {
+    case Against::Original:
+        out["against"] = original.string();
+        out["max_deviation"] = maxDeviation;
+        out["area_ratio"] = areaRatio;
+        out["same_bounds"] = sameBounds;
+        out["flipped_area"] = flippedArea;
+        out["triangles_original"] = trianglesOriginal;
+        break;
+    case Against::Digest:
+        out["against"] = "digest";
+        out["area_ratio"] = areaRatio;
+        out["bounds_deviation"] = maxDeviation;
+        out["max_deviation"] = maxDeviation;
+        out["triangles_original"] = trianglesOriginal;
+        break;
+    case Against::Nothing: out["against"] = nullptr; break;
+    }
+    out["verified"] = verified;
+    out["allowed_deviation"] = allowedDeviation;
+    return out.dump(2);
+}
+
+}  // namespace symcompress
