@@ -1,0 +1,106 @@
+// Inputs that crashed, hung, allocated without bound or ran into undefined behaviour in the readers, found
+// by the fuzz targets of fuzz/ and by reading the readers with them in mind (issue 19). Each is now a clear
+// FileError naming the file and what is wrong, or read as the format says. The small ones are files in
+// tests/fuzz_regressions/; the deep ones are written here, as they are large.
+#include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+using namespace symcompress;
+using namespace symcompress::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path regressionInput(const std::string& name) {
+    return fs::path(SYMCOMPRESS_SOURCE_DIR) / "tests" / "fuzz_regressions" / name;
+}
+
+// The message of the FileError that reading `file` gives; any other exception fails the test.
+std::string readError(const fs::path& file) {
+    try {
+        readScene(file);
+    } catch (const FileError& error) {
+        return error.what();
+    }
+    FAIL("read without an error: " << file);
+    return "";
+}
+
+bool hasWarning(const Scene& scene, const std::string& text) {
+    for (const std::string& warning : scene.warnings)
+        if (warning.find(text) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("glTF: a buffer view whose byteOffset + byteLength wraps around is refused", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_view_range_wraps.gltf"));
+    CHECK_THAT(error, Catch::Contains("gltf_view_range_wraps.gltf: POSITION (accessor 0): buffer view runs past the end"));
+}
+
+TEST_CASE("glTF: an accessor count whose count * components and (count - 1) * stride wrap is refused", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_accessor_count_wraps.gltf"));
+    CHECK_THAT(error, Catch::Contains("POSITION (accessor 0): 6148914691236517206 elements run past the end of its buffer view"));
+}
+
+TEST_CASE("glTF: a huge count without a buffer view is refused before anything is allocated", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_count_without_view.gltf"));
+    CHECK_THAT(error, Catch::Contains("NORMAL (accessor 1): a count of 2305843009213693952 without a buffer view"));
+}
+
+TEST_CASE("glTF: a COLOR_0 accessor that does not exist is a clear error and not std::out_of_range", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_color_accessor_missing.gltf"));
+    CHECK_THAT(error, Catch::Contains("gltf_color_accessor_missing.gltf: COLOR_0: accessor 7 does not exist"));
+}
+
+TEST_CASE("glTF: sparse indices stored as floats are refused before any is converted", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_sparse_float_indices.gltf"));
+    CHECK_THAT(error, Catch::Contains("POSITION (accessor 0): sparse indices must be unsigned integers"));
+}
+
+TEST_CASE("glTF: an EXT_mesh_gpu_instancing accessor index beyond int is not cast", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_instancing_index_real.gltf"));
+    CHECK_THAT(error, Catch::Contains("TRANSLATION: accessor -1 does not exist"));
+}
+
+TEST_CASE("glTF: an EXT_meshopt_compression byteStride beyond int is refused before it is cast", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_meshopt_stride_huge.gltf"));
+    CHECK_THAT(error, Catch::Contains("buffer view 0 (EXT_meshopt_compression): buffer, byteOffset, byteLength, byteStride or count"));
+}
+
+TEST_CASE("glTF: without scenes the GPU instances and a channel naming an instance's index stay inside the node list",
+          "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("gltf_instances_without_scenes.gltf"));
+    CHECK(scene.roots == std::vector<int>{0});
+    REQUIRE(scene.nodes.size() == 3);
+    CHECK(scene.nodes[0].children == std::vector<int>{1, 2});
+    CHECK(scene.animations.empty());
+    CHECK(hasWarning(scene, "animation 0 channel 0 ignored: it targets no node of the file"));
+}
+
+TEST_CASE("glTF: a node index beyond int is refused and not cut down to another index", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_mesh_index_beyond_int.gltf"));
+    CHECK_THAT(error, Catch::Contains("gltf_mesh_index_beyond_int.gltf: \"mesh\": 4294967296 does not fit a 32-bit integer"));
+}
+
+TEST_CASE("glTF: a chain of 100000 nodes is refused before anything recurses over it", "[io][fuzz]") {
+    TemporaryFolder folder;
+    std::string nodes;
+    for (int n = 0; n < 100000; ++n) nodes += "{\"children\":[" + std::to_string(n + 1) + "]},";
+    nodes += "{}";
+    writeTextFile(folder / "chain.gltf", "{\"asset\":{\"version\":\"2.0\"},\"nodes\":[" + nodes + "],\"scenes\":[{\"nodes\":[0]}]}");
+    CHECK_THAT(readError(folder / "chain.gltf"), Catch::Contains("chain.gltf: nodes nested deeper than 256 levels"));
+}
+
+TEST_CASE("glTF: extras nested 100000 levels deep do not exhaust the stack", "[io][fuzz]") {
+    TemporaryFolder folder;
+    const std::string extras = std::string(100000, '[') + std::string(100000, ']');
+    writeTextFile(folder / "deep.gltf", "{\"asset\":{\"version\":\"2.0\",\"extras\":" + extras + "}}");
+    CHECK_THAT(readError(folder / "deep.gltf"), Catch::Contains("deep.gltf: JSON nested deeper than 512 levels"));
+}
