@@ -104,3 +104,28 @@ TEST_CASE("glTF: extras nested 100000 levels deep do not exhaust the stack", "[i
     writeTextFile(folder / "deep.gltf", "{\"asset\":{\"version\":\"2.0\",\"extras\":" + extras + "}}");
     CHECK_THAT(readError(folder / "deep.gltf"), Catch::Contains("deep.gltf: JSON nested deeper than 512 levels"));
 }
+
+TEST_CASE("X3D: a Background nesting 200000 elements does not exhaust the stack", "[io][fuzz]") {
+    TemporaryFolder folder;
+    std::string nested;
+    for (int level = 0; level < 200000; ++level) nested += "<Group>";
+    for (int level = 0; level < 200000; ++level) nested += "</Group>";
+    writeTextFile(folder / "deep.x3d", "<X3D><Scene><Background>" + nested + "</Background></Scene></X3D>");
+    CHECK_THAT(readError(folder / "deep.x3d"), Catch::Contains("deep.x3d: XML elements nested deeper than 300 levels"));
+}
+
+TEST_CASE("X3D: a coordIndex value beyond 32 bits is refused before it is converted", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("x3d_coord_index_huge.x3d"));
+    CHECK_THAT(error, Catch::Contains("x3d_coord_index_huge.x3d: <IndexedFaceSet>: coordIndex holds 1000000000000000019884624838656"));
+}
+
+TEST_CASE("X3D: a whichChoice beyond 32 bits is refused before it is converted", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("x3d_which_choice_huge.x3d"));
+    CHECK_THAT(error, Catch::Contains("<Switch>: whichChoice holds"));
+}
+
+TEST_CASE("X3D: key times that do not fit a float are left out and not cast", "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("x3d_cycle_interval_huge.x3d"));
+    CHECK(scene.animations.empty());
+    CHECK(hasWarning(scene, "1 animation ROUTEs left out"));
+}
