@@ -129,3 +129,15 @@ TEST_CASE("X3D: key times that do not fit a float are left out and not cast", "[
     CHECK(scene.animations.empty());
     CHECK(hasWarning(scene, "1 animation ROUTEs left out"));
 }
+
+TEST_CASE("PLY: an element count that the rest of the file cannot hold is refused before it is read", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("ply_count_beyond_bytes.ply"));
+    CHECK_THAT(error, Catch::Contains("ply_count_beyond_bytes.ply: element 'vertex' has a count of 100000000000000, more than"));
+}
+
+TEST_CASE("PLY: an element of 10^14 items without properties holds nothing and is passed at once", "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("ply_element_of_nothing.ply"));
+    REQUIRE(scene.meshes.size() == 1);
+    CHECK(scene.meshes[0].primitives[0].triangles.size() == 1);
+    CHECK(hasWarning(scene, "1 elements other than vertex and face ignored"));
+}
