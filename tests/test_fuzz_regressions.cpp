@@ -141,3 +141,12 @@ TEST_CASE("PLY: an element of 10^14 items without properties holds nothing and i
     CHECK(scene.meshes[0].primitives[0].triangles.size() == 1);
     CHECK(hasWarning(scene, "1 elements other than vertex and face ignored"));
 }
+
+TEST_CASE("Writers: names read from X3D that are not UTF-8 are written to glTF and read back", "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("x3d_names_not_utf8.x3d"));
+    TemporaryFolder folder;
+    for (const char* name : {"names.glb", "names.gltf", "names.x3d"}) {
+        writeScene(scene, folder / name);
+        CHECK(readScene(folder / name).meshes.size() == scene.meshes.size());
+    }
+}
