@@ -150,3 +150,8 @@ TEST_CASE("Writers: names read from X3D that are not UTF-8 are written to glTF a
         CHECK(readScene(folder / name).meshes.size() == scene.meshes.size());
     }
 }
+
+TEST_CASE("GLB: an image whose buffer view runs past its buffer is refused before its bytes are copied", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("glb_image_view_past_buffer.glb"));
+    CHECK_THAT(error, Catch::Contains("glb_image_view_past_buffer.glb: invalid glTF: image 0: its buffer view runs past the end"));
+}

@@ -30,9 +30,22 @@ namespace fs = std::filesystem;
 namespace {
 
 // Keeps images as the bytes of their files: we never decode pixels, and a broken image must not stop
-// the geometry from loading.
-bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                    const unsigned char* bytes, int size, void*) {
+// the geometry from loading. `loading` is the model tinygltf fills: tinygltf hands over an image's buffer
+// view without checking that it lies inside its buffer, so that is checked here.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* error, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* loading) {
+    if (image->bufferView >= 0) {
+        // tinygltf has checked the view's and the buffer's indices.
+        const auto& model = *static_cast<const tinygltf::Model*>(loading);
+        const tinygltf::BufferView& view = model.bufferViews[std::size_t(image->bufferView)];
+        const std::vector<unsigned char>& buffer = model.buffers[std::size_t(view.buffer)].data;
+        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset ||
+            view.byteLength > std::size_t(std::numeric_limits<int>::max())) {
+            if (error) *error += "image " + std::to_string(index) + ": its buffer view runs past the end of its buffer\n";
+            return false;
+        }
+    }
+    if (size < 0) return false;
     image->image.assign(bytes, bytes + size);
     image->as_is = true;
     return true;
@@ -887,10 +900,10 @@ Scene readGltf(const fs::path& file) {
     if (formatFromExtension(file) == FileFormat::Glb && (bytes.size() < 12 || std::memcmp(bytes.data(), "glTF", 4) != 0))
         throw FileError(file, "not a GLB file (wrong magic number; expected 'glTF')");
 
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(keepImageBytes, nullptr);
-    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // asset.extras carries symcompress's digest
     tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keepImageBytes, &model);
+    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // asset.extras carries symcompress's digest
     std::string error, warning;
     const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw FileError(file, "larger than 4 GiB");
