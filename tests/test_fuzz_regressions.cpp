@@ -155,3 +155,8 @@ TEST_CASE("GLB: an image whose buffer view runs past its buffer is refused befor
     const std::string error = readError(regressionInput("glb_image_view_past_buffer.glb"));
     CHECK_THAT(error, Catch::Contains("glb_image_view_past_buffer.glb: invalid glTF: image 0: its buffer view runs past the end"));
 }
+
+TEST_CASE("GLB: a BIN chunk that runs past the end of the file is refused before tinygltf copies it", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("glb_bin_chunk_past_end.glb"));
+    CHECK_THAT(error, Catch::Contains("glb_bin_chunk_past_end.glb: the BIN chunk (40 bytes) runs past the end of the file"));
+}

@@ -908,6 +908,18 @@ Scene readGltf(const fs::path& file) {
     const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw FileError(file, "larger than 4 GiB");
     const std::vector<unsigned char> parsed = preparedForTinygltf(bytes, binary, file);
+    // tinygltf checks that a GLB's BIN chunk ends inside the file without its 8-byte header, and then reads
+    // up to 8 bytes past the end: the chunk is checked here first.
+    if (binary && parsed.size() >= 20) {
+        std::uint32_t jsonLength, binLength;
+        std::memcpy(&jsonLength, parsed.data() + 12, 4);
+        const std::uint64_t binHeader = 20 + std::uint64_t(jsonLength);
+        if (binHeader + 8 <= parsed.size()) {
+            std::memcpy(&binLength, parsed.data() + binHeader, 4);
+            if (binHeader + 8 + binLength > parsed.size())
+                throw FileError(file, "the BIN chunk (" + std::to_string(binLength) + " bytes) runs past the end of the file");
+        }
+    }
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, parsed.data(),
                                                          static_cast<unsigned int>(parsed.size()), baseDir)
                            : loader.LoadASCIIFromString(&model, &error, &warning,
