@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs what symcompress needs to build and test, skipping what is already there.
-#   Debian packages: compiler, CMake, and the libraries (apt-get; sudo when not root).
+#   Debian packages: compilers (clang and its libFuzzer for scripts/fuzz.sh), CMake, and the libraries
+#   (apt-get; sudo when not root).
 #   The peer tools in ../shared/bench (Khronos glTF validator, glTF Transform's decoder, X_ITE), used by
 #   the interoperability tests, when Node.js >= 20 and ../shared are present.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-packages=(build-essential cmake pkg-config libtinygltf-dev libdraco-dev libmeshoptimizer-dev libeigen3-dev libpugixml-dev catch2
+packages=(build-essential clang libclang-rt-14-dev cmake pkg-config libtinygltf-dev libdraco-dev libmeshoptimizer-dev libeigen3-dev libpugixml-dev catch2
           libcli11-dev nlohmann-json3-dev libtbb-dev zlib1g-dev)
 missing=()
 for p in "${packages[@]}"; do

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -30,9 +31,22 @@ namespace fs = std::filesystem;
 namespace {
 
 // Keeps images as the bytes of their files: we never decode pixels, and a broken image must not stop
-// the geometry from loading.
-bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                    const unsigned char* bytes, int size, void*) {
+// the geometry from loading. `loading` is the model tinygltf fills: tinygltf hands over an image's buffer
+// view without checking that it lies inside its buffer, so that is checked here.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* error, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* loading) {
+    if (image->bufferView >= 0) {
+        // tinygltf has checked the view's and the buffer's indices.
+        const auto& model = *static_cast<const tinygltf::Model*>(loading);
+        const tinygltf::BufferView& view = model.bufferViews[std::size_t(image->bufferView)];
+        const std::vector<unsigned char>& buffer = model.buffers[std::size_t(view.buffer)].data;
+        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset ||
+            view.byteLength > std::size_t(std::numeric_limits<int>::max())) {
+            if (error) *error += "image " + std::to_string(index) + ": its buffer view runs past the end of its buffer\n";
+            return false;
+        }
+    }
+    if (size < 0) return false;
     image->image.assign(bytes, bytes + size);
     image->as_is = true;
     return true;
@@ -72,6 +86,19 @@ const tinygltf::Value& member(const tinygltf::Value& object, const std::string& 
 }
 
 double numberOr(const tinygltf::Value& value, double fallback) { return value.IsNumber() ? value.GetNumberAsDouble() : fallback; }
+
+// An index held in an extension's value: -1 unless it is a whole number from 0 to INT_MAX (GetNumberAsInt
+// casts a real number unchecked, which is undefined for one that does not fit).
+int indexIn(const tinygltf::Value& value) {
+    if (value.IsInt()) return value.Get<int>();
+    if (!value.IsReal()) return -1;
+    const double number = value.Get<double>();
+    return number >= 0 && number <= std::numeric_limits<int>::max() && number == std::floor(number) ? int(number) : -1;
+}
+
+// How deep the node forest of a glTF file may nest: as deep as X3D's (the X3D reader's limit), so that what
+// is read can be written as X3D, nested, and read back.
+constexpr std::size_t kMaxNodeDepth = 256;
 
 // KHR_texture_transform's matrix: translation(offset) * rotation(rotation) * scale(scale), on (u, v, 1).
 Eigen::Matrix<double, 2, 3> textureTransform(const tinygltf::Value& extension) {
@@ -157,11 +184,16 @@ std::vector<double> GltfReader::readAccessor(int accessorIndex, int expectedComp
     if (expectedComponents > 0 && components != expectedComponents)
         fail(where + ": has " + std::to_string(components) + " components, expected " +
              std::to_string(expectedComponents));
-    std::vector<double> values(accessor.count * components, 0.0);
 
-    // Reads `count` elements from a buffer view into `out`, checking every byte it touches.
-    auto readView = [&](int viewIndex, std::size_t offset, std::size_t count, int componentType, int elementComponents,
-                        std::size_t stride, auto&& store) {
+    // Where `count` elements of `elementComponents` components of `componentType` start in a buffer view
+    // (`offset` bytes in) and how far apart they are, every byte checked to lie in the view and the view in
+    // its buffer, with no sum or product of the file's numbers that could wrap around.
+    struct Elements {
+        const unsigned char* first;
+        std::size_t stride;
+    };
+    auto elementsIn = [&](int viewIndex, std::size_t offset, std::size_t count, int componentType,
+                          int elementComponents) -> Elements {
         if (viewIndex < 0 || viewIndex >= static_cast<int>(model_.bufferViews.size()))
             fail(where + ": buffer view " + std::to_string(viewIndex) + " does not exist");
         const tinygltf::BufferView& view = model_.bufferViews[viewIndex];
@@ -169,33 +201,57 @@ std::vector<double> GltfReader::readAccessor(int accessorIndex, int expectedComp
             fail(where + ": buffer " + std::to_string(view.buffer) + " does not exist");
         const tinygltf::Buffer& buffer = model_.buffers[view.buffer];
         const std::size_t elementSize = static_cast<std::size_t>(componentSize(componentType)) * elementComponents;
-        if (stride == 0) stride = view.byteStride ? view.byteStride : elementSize;
-        if (view.byteOffset + view.byteLength > buffer.data.size())
+        if (elementSize == 0) fail(where + ": unknown component type " + std::to_string(componentType));
+        const std::size_t stride = view.byteStride ? view.byteStride : elementSize;
+        if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset)
             fail(where + ": buffer view runs past the end of its buffer (" + std::to_string(buffer.data.size()) +
                  " bytes; missing or truncated .bin?)");
-        if (count > 0 && offset + (count - 1) * stride + elementSize > view.byteLength)
-            fail(where + ": runs past the end of its buffer view");
-        const unsigned char* base = buffer.data.data() + view.byteOffset + offset;
+        if (count > 0 && (offset > view.byteLength || elementSize > view.byteLength - offset ||
+                          count - 1 > (view.byteLength - offset - elementSize) / stride))
+            fail(where + ": " + std::to_string(count) + " elements run past the end of its buffer view");
+        return {buffer.data.data() + view.byteOffset + offset, stride};
+    };
+    auto read = [&](const Elements& elements, std::size_t count, int componentType, int elementComponents, auto&& store) {
         for (std::size_t i = 0; i < count; ++i)
             for (int c = 0; c < elementComponents; ++c)
-                store(i, c, readComponent(base + i * stride + c * componentSize(componentType), componentType,
-                                          accessor.normalized));
+                store(i, c, readComponent(elements.first + i * elements.stride + c * componentSize(componentType),
+                                          componentType, accessor.normalized));
     };
 
+    // The count is checked against the bytes before anything is allocated for it. Without a buffer view the
+    // elements are zeros (and sparse values): at most as many as the file's buffers could hold.
+    Elements dense{nullptr, 0};
+    if (accessor.bufferView >= 0) {
+        dense = elementsIn(accessor.bufferView, accessor.byteOffset, accessor.count, accessor.componentType, components);
+    } else {
+        std::size_t bufferBytes = 0;
+        for (const tinygltf::Buffer& buffer : model_.buffers) bufferBytes += buffer.data.size();
+        if (accessor.count > bufferBytes / (static_cast<std::size_t>(size) * components))
+            fail(where + ": a count of " + std::to_string(accessor.count) + " without a buffer view, more than the " +
+                 "file's buffers (" + std::to_string(bufferBytes) + " bytes) could hold");
+    }
+    std::vector<double> values(accessor.count * components, 0.0);
     if (accessor.bufferView >= 0)
-        readView(accessor.bufferView, accessor.byteOffset, accessor.count, accessor.componentType, components, 0,
-                 [&](std::size_t i, int c, double v) { values[i * components + c] = v; });
+        read(dense, accessor.count, accessor.componentType, components,
+             [&](std::size_t i, int c, double v) { values[i * components + c] = v; });
     if (accessor.sparse.isSparse) {
-        const auto sparseCount = static_cast<std::size_t>(std::max(accessor.sparse.count, 0));
+        if (accessor.sparse.count < 0 || static_cast<std::size_t>(accessor.sparse.count) > accessor.count)
+            fail(where + ": sparse count " + std::to_string(accessor.sparse.count) + " is not between 0 and the count");
+        const int indexType = accessor.sparse.indices.componentType;
+        if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            fail(where + ": sparse indices must be unsigned integers");
+        const auto sparseCount = static_cast<std::size_t>(accessor.sparse.count);
+        const Elements indices = elementsIn(accessor.sparse.indices.bufferView, accessor.sparse.indices.byteOffset,
+                                            sparseCount, indexType, 1);
+        const Elements sparseValues = elementsIn(accessor.sparse.values.bufferView, accessor.sparse.values.byteOffset,
+                                                 sparseCount, accessor.componentType, components);
         std::vector<std::size_t> targets(sparseCount);
-        readView(accessor.sparse.indices.bufferView, accessor.sparse.indices.byteOffset, sparseCount,
-                 accessor.sparse.indices.componentType, 1, 0,
-                 [&](std::size_t i, int, double v) { targets[i] = static_cast<std::size_t>(v); });
+        read(indices, sparseCount, indexType, 1, [&](std::size_t i, int, double v) { targets[i] = static_cast<std::size_t>(v); });
         for (std::size_t target : targets)
-            if (target >= accessor.count) fail(where + ": sparse index out of range");
-        readView(accessor.sparse.values.bufferView, accessor.sparse.values.byteOffset, sparseCount,
-                 accessor.componentType, components, 0,
-                 [&](std::size_t i, int c, double v) { values[targets[i] * components + c] = v; });
+            if (target >= accessor.count) fail(where + ": sparse index " + std::to_string(target) + " out of range");
+        read(sparseValues, sparseCount, accessor.componentType, components,
+             [&](std::size_t i, int c, double v) { values[targets[i] * components + c] = v; });
     }
     return values;
 }
@@ -251,12 +307,13 @@ std::vector<Eigen::Vector4d> toColors(const std::vector<double>& flat, int compo
 void GltfReader::decodeDracoPrimitive(const tinygltf::Primitive& source, const tinygltf::Value& extension,
                                       Primitive& out, std::vector<std::uint32_t>& indices,
                                       const std::string& where) const {
-    const int viewIndex = extension.Get("bufferView").IsInt() ? extension.Get("bufferView").Get<int>() : -1;
+    const int viewIndex = indexIn(member(extension, "bufferView"));
     if (viewIndex < 0 || viewIndex >= static_cast<int>(model_.bufferViews.size()))
         fail(where + ": KHR_draco_mesh_compression has no valid bufferView");
     const tinygltf::BufferView& view = model_.bufferViews[viewIndex];
     if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size()) ||
-        view.byteOffset + view.byteLength > model_.buffers[view.buffer].data.size())
+        view.byteOffset > model_.buffers[view.buffer].data.size() ||
+        view.byteLength > model_.buffers[view.buffer].data.size() - view.byteOffset)
         fail(where + ": the Draco buffer view runs past the end of its buffer");
     draco::DecoderBuffer buffer;
     buffer.Init(reinterpret_cast<const char*>(model_.buffers[view.buffer].data.data() + view.byteOffset),
@@ -321,8 +378,9 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
             out.normals = toVectors<Eigen::Vector3d>(readAccessor(attribute("NORMAL"), 3, "NORMAL"), 3);
         if (attribute("TEXCOORD_0") >= 0)
             out.texcoords = toVectors<Eigen::Vector2d>(readAccessor(attribute("TEXCOORD_0"), 2, "TEXCOORD_0"), 2);
-        if (attribute("COLOR_0") >= 0) {
-            const int components = componentCount(model_.accessors.at(attribute("COLOR_0")).type);
+        if (const int colors = attribute("COLOR_0"); colors >= 0) {
+            // An index out of range is refused by readAccessor, by its name.
+            const int components = colors < static_cast<int>(model_.accessors.size()) ? componentCount(model_.accessors[colors].type) : 3;
             if (components != 3 && components != 4) fail(where + ": COLOR_0 must be VEC3 or VEC4");
             out.colors = toColors(readAccessor(attribute("COLOR_0"), components, "COLOR_0"), components);
         }
@@ -453,7 +511,8 @@ void GltfReader::readAnimations(Scene& scene) {
             }
             AnimationChannel out;
             out.node = channel.target_node;
-            if (out.node < 0 || out.node >= static_cast<int>(scene.nodes.size())) {
+            // The file's own nodes (the scene has the GPU instances' after them).
+            if (out.node < 0 || out.node >= static_cast<int>(model_.nodes.size())) {
                 warnAbout(where + " ignored: it targets no node of the file");
                 continue;
             }
@@ -554,9 +613,9 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
         else if (source.camera >= 0) warnAbout("node " + std::to_string(n) + ": camera index out of range, ignored");
         const auto extension = source.extensions.find("KHR_lights_punctual");
         if (extension == source.extensions.end()) continue;
-        const tinygltf::Value& light = member(extension->second, "light");
-        if (light.IsNumber() && light.GetNumberAsInt() >= 0 && std::size_t(light.GetNumberAsInt()) < lightIndex.size())
-            scene.nodes[n].light = lightIndex[std::size_t(light.GetNumberAsInt())];
+        const int light = indexIn(member(extension->second, "light"));
+        if (light >= 0 && std::size_t(light) < lightIndex.size())
+            scene.nodes[n].light = lightIndex[std::size_t(light)];
         else
             warnAbout("node " + std::to_string(n) + ": KHR_lights_punctual light index missing or out of range, ignored");
     }
@@ -579,7 +638,7 @@ void GltfReader::expandGpuInstances(Scene& scene) {
                 continue;
             }
             if (!attributes.Get(name).IsNumber()) fail(where + ": " + name + " is not an accessor index");
-            values[name] = readAccessor(attributes.Get(name).GetNumberAsInt(), components, name.c_str());
+            values[name] = readAccessor(indexIn(attributes.Get(name)), components, name.c_str());
         }
         std::size_t count = 0;
         for (const auto& [name, list] : values) count = std::max(count, list.size() / (name == "ROTATION" ? 4 : 3));
@@ -633,17 +692,28 @@ Scene GltfReader::read() {
         if (source.skin >= 0) warnAbout("skins ignored: skinned meshes are drawn in their bind pose");
         scene.nodes.push_back(std::move(node));
     }
+    // Deep chains are refused here, level by level without recursion, before any code that walks the
+    // hierarchy recursively sees them (a node in a cycle is never reached; validateScene refuses cycles).
+    std::vector<int> level;
+    for (int n = 0; n < static_cast<int>(parentCount.size()); ++n)
+        if (parentCount[n] == 0) level.push_back(n);
+    for (std::size_t depth = 1; !level.empty(); ++depth) {
+        if (depth > kMaxNodeDepth) fail("nodes nested deeper than " + std::to_string(kMaxNodeDepth) + " levels");
+        std::vector<int> next;
+        for (int n : level) next.insert(next.end(), scene.nodes[n].children.begin(), scene.nodes[n].children.end());
+        level = std::move(next);
+    }
     readCamerasAndLights(scene);
     expandGpuInstances(scene);
     const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (sceneIndex < static_cast<int>(model_.scenes.size())) {
         for (int root : model_.scenes[sceneIndex].nodes) {
-            if (root < 0 || root >= static_cast<int>(scene.nodes.size())) fail("scene: root node out of range");
+            if (root < 0 || root >= static_cast<int>(model_.nodes.size())) fail("scene: root node out of range");
             scene.roots.push_back(root);
         }
     } else {
-        // No scene: every node without a parent is drawn.
-        for (int n = 0; n < static_cast<int>(scene.nodes.size()); ++n)
+        // No scene: every node of the file without a parent is drawn (the GPU instances' have theirs).
+        for (int n = 0; n < static_cast<int>(parentCount.size()); ++n)
             if (parentCount[n] == 0) scene.roots.push_back(n);
     }
     if (model_.scenes.size() > 1) warnAbout(std::to_string(model_.scenes.size() - 1) + " scenes besides the default one ignored");
@@ -683,7 +753,10 @@ void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
         };
         const double buffer = number("buffer", -1), offset = number("byteOffset", 0), length = number("byteLength", -1),
                      stride = number("byteStride", -1), count = number("count", -1);
-        if (buffer < 0 || buffer >= double(model.buffers.size()) || offset < 0 || length < 0 || stride <= 0 || count < 0 ||
+        // Whole numbers in range before any is converted to an integer (meshopt's largest stride is 256).
+        auto whole = [](double value) { return value == std::floor(value); };
+        if (buffer < 0 || buffer >= double(model.buffers.size()) || offset < 0 || length < 0 || stride <= 0 || stride > 256 ||
+            count < 0 || !whole(buffer) || !whole(offset) || !whole(length) || !whole(stride) || !whole(count) ||
             offset + length > double(model.buffers[std::size_t(buffer)].data.size()))
             throw FileError(file, where + ": buffer, byteOffset, byteLength, byteStride or count missing or out of range");
         // The decoded data fills the view (glTF's byteLength, bounded so that a broken file cannot ask for more).
@@ -714,12 +787,35 @@ void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
     }
 }
 
+// JSON nested deeper than this is refused: tinygltf turns extras and extensions into its Values recursively.
+constexpr int kMaxJsonDepth = 512;
+
+// Refuses the integers that tinygltf would cut down to an int without a word (a node index of 2^32 would
+// become node 0): all outside int's range, except byte offsets, lengths, strides and counts (read as size_t)
+// and what extras hold (never interpreted). Recursive, over JSON already checked to nest at most kMaxJsonDepth.
+void refuseIntegersBeyondInt(const nlohmann::json& value, const std::string& key, const fs::path& file) {
+    if (value.is_object()) {
+        for (const auto& [name, member] : value.items())
+            if (name != "extras") refuseIntegersBeyondInt(member, name, file);
+    } else if (value.is_array()) {
+        for (const auto& element : value) refuseIntegersBeyondInt(element, key, file);
+    } else if (value.is_number_integer() && key != "byteOffset" && key != "byteLength" && key != "byteStride" &&
+               key != "count") {
+        const bool fits = value.is_number_unsigned()
+                              ? value.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<int>::max())
+                              : value.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                                    value.get<std::int64_t>() <= std::numeric_limits<int>::max();
+        if (!fits) throw FileError(file, "\"" + key + "\": " + value.dump() + " does not fit a 32-bit integer");
+    }
+}
+
 // What tinygltf (as packaged) would refuse in a valid file, mended in the JSON before it sees it:
 // - a primitive whose indices accessor has no bufferView, which is how KHR_draco_mesh_compression files
 //   are written: the indices come from the Draco data anyway, so they are removed;
 // - EXT_meshopt_compression's fallback buffer, which has no data (no uri, or more bytes than a GLB's binary
 //   chunk): it gets one byte of its own; decodeMeshopt gives its buffer views their data.
-std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>& bytes, bool binary) {
+// It also refuses (FileError) what tinygltf would take badly: JSON nested too deep, integers beyond an int.
+std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>& bytes, bool binary, const fs::path& file) {
     auto readU32 = [&](std::size_t at) {
         std::uint32_t value;
         std::memcpy(&value, bytes.data() + at, 4);
@@ -732,10 +828,17 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
         jsonLength = readU32(12);
         if (readU32(16) != 0x4E4F534Au || jsonBegin + jsonLength > bytes.size()) return bytes;
     }
+    int depth = 0;
     nlohmann::json json = nlohmann::json::parse(bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin),
                                                 bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin + jsonLength),
-                                                nullptr, false);
+                                                [&depth](int level, nlohmann::json::parse_event_t, nlohmann::json&) {
+                                                    depth = std::max(depth, level);
+                                                    return true;
+                                                },
+                                                false);
+    if (depth > kMaxJsonDepth) throw FileError(file, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
     if (json.is_discarded() || !json.is_object()) return bytes;
+    refuseIntegersBeyondInt(json, "", file);
     bool changed = false;
     if (json.contains("buffers") && json["buffers"].is_array())
         for (auto& buffer : json["buffers"]) {
@@ -788,14 +891,26 @@ Scene readGltf(const fs::path& file) {
     if (formatFromExtension(file) == FileFormat::Glb && (bytes.size() < 12 || std::memcmp(bytes.data(), "glTF", 4) != 0))
         throw FileError(file, "not a GLB file (wrong magic number; expected 'glTF')");
 
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(keepImageBytes, nullptr);
-    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // asset.extras carries symcompress's digest
     tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keepImageBytes, &model);
+    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // asset.extras carries symcompress's digest
     std::string error, warning;
     const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw FileError(file, "larger than 4 GiB");
-    const std::vector<unsigned char> parsed = preparedForTinygltf(bytes, binary);
+    const std::vector<unsigned char> parsed = preparedForTinygltf(bytes, binary, file);
+    // tinygltf checks that a GLB's BIN chunk ends inside the file without its 8-byte header, and then reads
+    // up to 8 bytes past the end: the chunk is checked here first.
+    if (binary && parsed.size() >= 20) {
+        std::uint32_t jsonLength, binLength;
+        std::memcpy(&jsonLength, parsed.data() + 12, 4);
+        const std::uint64_t binHeader = 20 + std::uint64_t(jsonLength);
+        if (binHeader + 8 <= parsed.size()) {
+            std::memcpy(&binLength, parsed.data() + binHeader, 4);
+            if (binHeader + 8 + binLength > parsed.size())
+                throw FileError(file, "the BIN chunk (" + std::to_string(binLength) + " bytes) runs past the end of the file");
+        }
+    }
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, parsed.data(),
                                                          static_cast<unsigned int>(parsed.size()), baseDir)
                            : loader.LoadASCIIFromString(&model, &error, &warning,

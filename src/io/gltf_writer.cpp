@@ -29,6 +29,12 @@ using Json = nlohmann::json;
 
 namespace {
 
+// The JSON's text. Names come from files that need not be UTF-8 (X3D's DEFs, OBJ's groups): bytes that are
+// not UTF-8 are written as U+FFFD instead of making dump() throw.
+std::string jsonText(const Json& json, int indent = -1) {
+    return json.dump(indent, ' ', false, Json::error_handler_t::replace);
+}
+
 constexpr int kFloat = 5126, kUnsignedShort = 5123, kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 
@@ -379,7 +385,7 @@ Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, c
 }
 
 std::string glbFile(const Json& root, std::vector<unsigned char> binary) {
-    std::string json = root.dump();
+    std::string json = jsonText(root);
     while (json.size() % 4) json.push_back(' ');
     while (binary.size() % 4) binary.push_back(0);
     const bool hasBinary = !binary.empty();
@@ -433,7 +439,7 @@ std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& option
     GltfBuilder builder(root);
     writePrimitive(builder, primitive, options, "(a mesh measured for the plan)", primitives);
     const Json mesh = {{"primitives", primitives}};
-    return root.dump().size() + mesh.dump().size() + builder.binary().size();
+    return jsonText(root).size() + jsonText(mesh).size() + builder.binary().size();
 }
 
 // Animation channels as glTF samplers (float keys and values in buffer views of their own) and channels.
@@ -461,8 +467,8 @@ std::size_t gltfNodeBytes(const Node& node) {
     drawing.mesh = 0;
     drawing.children.clear();
     std::vector<Json> extra;
-    std::size_t bytes = writeNode(drawing, {0}, 1, extra).dump().size() + 1;  // and its comma
-    for (const Json& child : extra) bytes += child.dump().size() + 1;
+    std::size_t bytes = jsonText(writeNode(drawing, {0}, 1, extra)).size() + 1;  // and its comma
+    for (const Json& child : extra) bytes += jsonText(child).size() + 1;
     return bytes + 3;  // its index in the scene's list of nodes, typically
 }
 
@@ -524,7 +530,7 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         root["buffers"] = {{{"byteLength", binary.size()}, {"uri", bin.filename().string()}}};
         writeFileAtomically(bin, std::string_view(reinterpret_cast<const char*>(binary.data()), binary.size()));
     }
-    writeFileAtomically(file, root.dump(1));
+    writeFileAtomically(file, jsonText(root, 1));
 }
 
 }  // namespace symcompress

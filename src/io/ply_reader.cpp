@@ -92,6 +92,8 @@ public:
         return 0;
     }
 
+    std::size_t bytesLeft() const { return position_ < bytes_.size() ? bytes_.size() - position_ : 0; }
+
 private:
     double readAscii() {
         while (position_ < bytes_.size() && std::isspace(bytes_[position_])) ++position_;
@@ -183,6 +185,16 @@ Scene readPly(const fs::path& file) {
         if (isVertex && (x < 0 || y < 0 || z < 0)) throw FileError(file, "vertex element without x, y and z");
         if (isFace && (indices < 0 || !element.properties[indices].isList))
             throw FileError(file, "face element without a vertex_indices list");
+        // Every item takes at least a byte per property (a digit, or a binary value or list count of at least
+        // a byte), so a count the body cannot hold is refused before the loop: an element of no properties
+        // holds nothing at all, however many items it claims.
+        std::size_t leastItemBytes = 0;
+        for (const Property& property : element.properties)
+            leastItemBytes += encoding == PlyBody::Encoding::Ascii ? 1 : scalarSize(property.isList ? property.countType : property.type);
+        if (leastItemBytes == 0) continue;
+        if (element.count > body.bytesLeft() / leastItemBytes)
+            throw FileError(file, "element '" + element.name + "' has a count of " + std::to_string(element.count) +
+                                      ", more than the " + std::to_string(body.bytesLeft()) + " bytes left could hold");
         std::vector<double> values(element.properties.size());
         for (std::size_t item = 0; item < element.count; ++item) {
             std::vector<std::uint32_t> face;

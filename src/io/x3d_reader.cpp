@@ -43,6 +43,10 @@ const std::set<std::string> kUnsupportedGeometry = {
     "QuadSet", "IndexedQuadSet", "IndexedTriangleFanSet", "IndexedTriangleStripSet", "TriangleFanSet",
     "TriangleStripSet"};
 
+// How deep XML elements may nest in an X3D file (readNode's limit for the scene graph, 256, and room for
+// the X3D and Scene elements and a node's fields).
+constexpr int kMaxXmlDepth = 300;
+
 class X3dReader {
 public:
     X3dReader(const fs::path& file, Scene& scene, std::set<fs::path>& inlineStack)
@@ -58,6 +62,7 @@ private:
     }
     pugi::xml_node resolve(const pugi::xml_node& node) const;
     std::vector<double> numbers(const pugi::xml_node& node, const char* field) const;
+    std::vector<std::int64_t> integers(const pugi::xml_node& node, const char* field) const;
     Eigen::Vector3d vector3(const pugi::xml_node& node, const char* field, const Eigen::Vector3d& fallback) const;
     double scalar(const pugi::xml_node& node, const char* field, double fallback) const;
     bool boolean(const pugi::xml_node& node, const char* field, bool fallback) const;
@@ -109,6 +114,21 @@ std::vector<double> X3dReader::numbers(const pugi::xml_node& node, const char* f
     for (double v : values)
         if (!std::isfinite(v)) fail(node, std::string(field) + " contains NaN or infinite values");
     return values;
+}
+
+// An SFInt32 or MFInt32 field (indices, whichChoice): whole numbers that fit 32 bits, checked before they
+// are converted.
+std::vector<std::int64_t> X3dReader::integers(const pugi::xml_node& node, const char* field) const {
+    const std::vector<double> values = numbers(node, field);
+    std::vector<std::int64_t> out;
+    out.reserve(values.size());
+    for (double v : values) {
+        if (!(v >= std::numeric_limits<std::int32_t>::min() && v <= std::numeric_limits<std::int32_t>::max()) ||
+            v != std::floor(v))
+            fail(node, std::string(field) + " holds " + std::to_string(v) + ", not a 32-bit integer");
+        out.push_back(static_cast<std::int64_t>(v));
+    }
+    return out;
 }
 
 Eigen::Vector3d X3dReader::vector3(const pugi::xml_node& node, const char* field, const Eigen::Vector3d& fallback) const {
@@ -206,6 +226,15 @@ std::vector<int> X3dReader::read() {
     if (!parsed)
         throw FileError(file_, std::string("malformed XML at byte ") + std::to_string(parsed.offset) + ": " +
                                    parsed.description());
+    // Nesting is bounded once for the whole document, without recursion (pugixml's traverse is a loop), so that
+    // no code after this that recurses over elements (the environment nodes' copy, pugixml's own) can exhaust
+    // the stack; the nodes of the scene graph have their tighter limit in readNode.
+    struct DepthLimit : pugi::xml_tree_walker {
+        bool tooDeep = false;
+        bool for_each(pugi::xml_node&) override { return !(tooDeep = depth() > kMaxXmlDepth); }
+    } limit;
+    document_.traverse(limit);
+    if (limit.tooDeep) throw FileError(file_, "XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels");
     // symcompress's digest of the original, for symdecompress (see the X3D writer).
     for (pugi::xml_node meta : document_.child("X3D").child("head").children("meta"))
         if (std::string(meta.attribute("name").value()) == "symcompress") scene_.extrasJson = meta.attribute("content").value();
@@ -284,6 +313,14 @@ void X3dReader::readAnimations() {
         channel.path = rotation ? AnimationChannel::Path::Rotation
                                 : to == "scale" ? AnimationChannel::Path::Scale : AnimationChannel::Path::Translation;
         const double cycle = scalar(clock, "cycleInterval", 1);
+        // Times are nudged as floats below: each must be one (a cycle of 1e300 makes none).
+        const bool timesFit = std::all_of(keys.begin(), keys.end(), [cycle](double key) {
+            return std::abs(key * cycle) < std::numeric_limits<float>::max();
+        });
+        if (!timesFit) {
+            ++leftOut;
+            continue;
+        }
         for (std::size_t k = 0; k < keys.size(); ++k) {
             double time = keys[k] * cycle;
             if (k > 0 && !(time > channel.times.back()))
@@ -363,7 +400,8 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
     if (type == "Billboard") notes_.insert("Billboard nodes read as groups (they turn towards the viewer in a browser)");
     std::vector<int> children;
     if (type == "Switch") {
-        const int choice = static_cast<int>(scalar(node, "whichChoice", -1));
+        const std::vector<std::int64_t> chosen = integers(node, "whichChoice");
+        const std::int64_t choice = chosen.empty() ? -1 : chosen[0];
         int index = 0;
         for (pugi::xml_node child : node.children()) {
             if (child.type() != pugi::node_element || std::strncmp(child.name(), "Metadata", 8) == 0) continue;
@@ -721,20 +759,18 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
     std::vector<std::vector<std::int64_t>> faces;
     if (indexedFaces) {
         std::vector<std::int64_t> face;
-        for (double value : numbers(geometry, "coordIndex")) {
+        for (std::int64_t value : integers(geometry, "coordIndex")) {
             if (value < 0) {
                 if (!face.empty()) faces.push_back(face);
                 face.clear();
             } else {
-                face.push_back(static_cast<std::int64_t>(value));
+                face.push_back(value);
             }
         }
         if (!face.empty()) faces.push_back(face);  // the last -1 is optional
     } else if (std::strcmp(geometry.name(), "IndexedTriangleSet") == 0) {
-        const std::vector<double> index = numbers(geometry, "index");
-        for (std::size_t i = 0; i + 2 < index.size(); i += 3)
-            faces.push_back({static_cast<std::int64_t>(index[i]), static_cast<std::int64_t>(index[i + 1]),
-                             static_cast<std::int64_t>(index[i + 2])});
+        const std::vector<std::int64_t> index = integers(geometry, "index");
+        for (std::size_t i = 0; i + 2 < index.size(); i += 3) faces.push_back({index[i], index[i + 1], index[i + 2]});
     } else {
         for (std::size_t i = 0; i + 2 < pointCount; i += 3)
             faces.push_back({static_cast<std::int64_t>(i), static_cast<std::int64_t>(i + 1), static_cast<std::int64_t>(i + 2)});
@@ -742,18 +778,17 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
 
     // Which entry of an attribute a corner uses: IndexedFaceSet has optional per-corner or per-face index
     // lists; the triangle sets index attributes like the coordinates.
-    auto indexList = [&](const char* field) { return indexedFaces ? numbers(geometry, field) : std::vector<double>(); };
-    const std::vector<double> normalIndex = indexList("normalIndex"), colorIndex = indexList("colorIndex"),
-                              texcoordIndex = indexList("texCoordIndex"), coordIndex = indexList("coordIndex");
-    auto attributeIndex = [&](const std::vector<double>& ownIndex, bool perVertex, std::size_t face,
+    auto indexList = [&](const char* field) { return indexedFaces ? integers(geometry, field) : std::vector<std::int64_t>(); };
+    const std::vector<std::int64_t> normalIndex = indexList("normalIndex"), colorIndex = indexList("colorIndex"),
+                                    texcoordIndex = indexList("texCoordIndex");
+    auto attributeIndex = [&](const std::vector<std::int64_t>& ownIndex, bool perVertex, std::size_t face,
                               std::size_t cornerInCoordIndex, std::int64_t point) -> std::int64_t {
         if (!indexedFaces) return perVertex ? point : static_cast<std::int64_t>(face);
         if (perVertex) {
-            if (!ownIndex.empty())
-                return cornerInCoordIndex < ownIndex.size() ? static_cast<std::int64_t>(ownIndex[cornerInCoordIndex]) : -1;
+            if (!ownIndex.empty()) return cornerInCoordIndex < ownIndex.size() ? ownIndex[cornerInCoordIndex] : -1;
             return point;
         }
-        if (!ownIndex.empty()) return face < ownIndex.size() ? static_cast<std::int64_t>(ownIndex[face]) : -1;
+        if (!ownIndex.empty()) return face < ownIndex.size() ? ownIndex[face] : -1;
         return static_cast<std::int64_t>(face);
     };
 

@@ -1,0 +1,6 @@
+// libFuzzer target: each input is a .gltf file read through readScene, then written as .glb and .x3d.
+#include "fuzz_scene_file.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    return symcompress::fuzz::readAndWrite({{"scene.gltf", symcompress::fuzz::asText(data, size)}});
+}

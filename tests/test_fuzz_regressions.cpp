@@ -1,0 +1,162 @@
+// Inputs that crashed, hung, allocated without bound or ran into undefined behaviour in the readers, found
+// by the fuzz targets of fuzz/ and by reading the readers with them in mind (issue 19). Each is now a clear
+// FileError naming the file and what is wrong, or read as the format says. The small ones are files in
+// tests/fuzz_regressions/; the deep ones are written here, as they are large.
+#include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+using namespace symcompress;
+using namespace symcompress::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path regressionInput(const std::string& name) {
+    return fs::path(SYMCOMPRESS_SOURCE_DIR) / "tests" / "fuzz_regressions" / name;
+}
+
+// The message of the FileError that reading `file` gives; any other exception fails the test.
+std::string readError(const fs::path& file) {
+    try {
+        readScene(file);
+    } catch (const FileError& error) {
+        return error.what();
+    }
+    FAIL("read without an error: " << file);
+    return "";
+}
+
+bool hasWarning(const Scene& scene, const std::string& text) {
+    for (const std::string& warning : scene.warnings)
+        if (warning.find(text) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("glTF: a buffer view whose byteOffset + byteLength wraps around is refused", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_view_range_wraps.gltf"));
+    CHECK_THAT(error, Catch::Contains("gltf_view_range_wraps.gltf: POSITION (accessor 0): buffer view runs past the end"));
+}
+
+TEST_CASE("glTF: an accessor count whose count * components and (count - 1) * stride wrap is refused", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_accessor_count_wraps.gltf"));
+    CHECK_THAT(error, Catch::Contains("POSITION (accessor 0): 6148914691236517206 elements run past the end of its buffer view"));
+}
+
+TEST_CASE("glTF: a huge count without a buffer view is refused before anything is allocated", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_count_without_view.gltf"));
+    CHECK_THAT(error, Catch::Contains("NORMAL (accessor 1): a count of 2305843009213693952 without a buffer view"));
+}
+
+TEST_CASE("glTF: a COLOR_0 accessor that does not exist is a clear error and not std::out_of_range", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_color_accessor_missing.gltf"));
+    CHECK_THAT(error, Catch::Contains("gltf_color_accessor_missing.gltf: COLOR_0: accessor 7 does not exist"));
+}
+
+TEST_CASE("glTF: sparse indices stored as floats are refused before any is converted", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_sparse_float_indices.gltf"));
+    CHECK_THAT(error, Catch::Contains("POSITION (accessor 0): sparse indices must be unsigned integers"));
+}
+
+TEST_CASE("glTF: an EXT_mesh_gpu_instancing accessor index beyond int is not cast", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_instancing_index_real.gltf"));
+    CHECK_THAT(error, Catch::Contains("TRANSLATION: accessor -1 does not exist"));
+}
+
+TEST_CASE("glTF: an EXT_meshopt_compression byteStride beyond int is refused before it is cast", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_meshopt_stride_huge.gltf"));
+    CHECK_THAT(error, Catch::Contains("buffer view 0 (EXT_meshopt_compression): buffer, byteOffset, byteLength, byteStride or count"));
+}
+
+TEST_CASE("glTF: without scenes the GPU instances and a channel naming an instance's index stay inside the node list",
+          "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("gltf_instances_without_scenes.gltf"));
+    CHECK(scene.roots == std::vector<int>{0});
+    REQUIRE(scene.nodes.size() == 3);
+    CHECK(scene.nodes[0].children == std::vector<int>{1, 2});
+    CHECK(scene.animations.empty());
+    CHECK(hasWarning(scene, "animation 0 channel 0 ignored: it targets no node of the file"));
+}
+
+TEST_CASE("glTF: a node index beyond int is refused and not cut down to another index", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("gltf_mesh_index_beyond_int.gltf"));
+    CHECK_THAT(error, Catch::Contains("gltf_mesh_index_beyond_int.gltf: \"mesh\": 4294967296 does not fit a 32-bit integer"));
+}
+
+TEST_CASE("glTF: a chain of 100000 nodes is refused before anything recurses over it", "[io][fuzz]") {
+    TemporaryFolder folder;
+    std::string nodes;
+    for (int n = 0; n < 100000; ++n) nodes += "{\"children\":[" + std::to_string(n + 1) + "]},";
+    nodes += "{}";
+    writeTextFile(folder / "chain.gltf", "{\"asset\":{\"version\":\"2.0\"},\"nodes\":[" + nodes + "],\"scenes\":[{\"nodes\":[0]}]}");
+    CHECK_THAT(readError(folder / "chain.gltf"), Catch::Contains("chain.gltf: nodes nested deeper than 256 levels"));
+}
+
+TEST_CASE("glTF: extras nested 100000 levels deep do not exhaust the stack", "[io][fuzz]") {
+    TemporaryFolder folder;
+    const std::string extras = std::string(100000, '[') + std::string(100000, ']');
+    writeTextFile(folder / "deep.gltf", "{\"asset\":{\"version\":\"2.0\",\"extras\":" + extras + "}}");
+    CHECK_THAT(readError(folder / "deep.gltf"), Catch::Contains("deep.gltf: JSON nested deeper than 512 levels"));
+}
+
+TEST_CASE("X3D: a Background nesting 200000 elements does not exhaust the stack", "[io][fuzz]") {
+    TemporaryFolder folder;
+    std::string nested;
+    for (int level = 0; level < 200000; ++level) nested += "<Group>";
+    for (int level = 0; level < 200000; ++level) nested += "</Group>";
+    writeTextFile(folder / "deep.x3d", "<X3D><Scene><Background>" + nested + "</Background></Scene></X3D>");
+    CHECK_THAT(readError(folder / "deep.x3d"), Catch::Contains("deep.x3d: XML elements nested deeper than 300 levels"));
+}
+
+TEST_CASE("X3D: a coordIndex value beyond 32 bits is refused before it is converted", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("x3d_coord_index_huge.x3d"));
+    CHECK_THAT(error, Catch::Contains("x3d_coord_index_huge.x3d: <IndexedFaceSet>: coordIndex holds 1000000000000000019884624838656"));
+}
+
+TEST_CASE("X3D: a whichChoice beyond 32 bits is refused before it is converted", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("x3d_which_choice_huge.x3d"));
+    CHECK_THAT(error, Catch::Contains("<Switch>: whichChoice holds"));
+}
+
+TEST_CASE("X3D: key times that do not fit a float are left out and not cast", "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("x3d_cycle_interval_huge.x3d"));
+    CHECK(scene.animations.empty());
+    CHECK(hasWarning(scene, "1 animation ROUTEs left out"));
+}
+
+TEST_CASE("PLY: an element count that the rest of the file cannot hold is refused before it is read", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("ply_count_beyond_bytes.ply"));
+    CHECK_THAT(error, Catch::Contains("ply_count_beyond_bytes.ply: element 'vertex' has a count of 100000000000000, more than"));
+}
+
+TEST_CASE("PLY: an element of 10^14 items without properties holds nothing and is passed at once", "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("ply_element_of_nothing.ply"));
+    REQUIRE(scene.meshes.size() == 1);
+    CHECK(scene.meshes[0].primitives[0].triangles.size() == 1);
+    CHECK(hasWarning(scene, "1 elements other than vertex and face ignored"));
+}
+
+TEST_CASE("Writers: names read from X3D that are not UTF-8 are written to glTF and read back", "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("x3d_names_not_utf8.x3d"));
+    TemporaryFolder folder;
+    for (const char* name : {"names.glb", "names.gltf", "names.x3d"}) {
+        writeScene(scene, folder / name);
+        CHECK(readScene(folder / name).meshes.size() == scene.meshes.size());
+    }
+}
+
+TEST_CASE("GLB: an image whose buffer view runs past its buffer is refused before its bytes are copied", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("glb_image_view_past_buffer.glb"));
+    CHECK_THAT(error, Catch::Contains("glb_image_view_past_buffer.glb: invalid glTF: image 0: its buffer view runs past the end"));
+}
+
+TEST_CASE("GLB: a BIN chunk that runs past the end of the file is refused before tinygltf copies it", "[io][fuzz]") {
+    const std::string error = readError(regressionInput("glb_bin_chunk_past_end.glb"));
+    CHECK_THAT(error, Catch::Contains("glb_bin_chunk_past_end.glb: the BIN chunk (40 bytes) runs past the end of the file"));
+}
