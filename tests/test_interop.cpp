@@ -2,8 +2,10 @@
 // Draco decoder (../shared/bench/decode_check.mjs) and the X_ITE X3D browser (x3d_count.js).
 // Skipped (with a note) when Node.js or the peers are not installed, or SYMCOMPRESS_SKIP_INTEROP is set.
 #include "sample_scenes.hpp"
+#include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "symcompress/verify.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -16,13 +18,11 @@ using namespace symcompress::testing;
 
 namespace {
 
-const std::string kSymcompress = SYMCOMPRESS_CLI;
-
-void convert(const std::filesystem::path& input, const std::filesystem::path& output, const std::string& options = "") {
-    const CommandResult result =
-        runCommand(kSymcompress + " convert -q " + options + " " + quoted(input) + " -o " + quoted(output));
-    INFO(result.output);
-    REQUIRE(result.status == 0);
+// symcompress convert: the scene as read, written (with Draco or plain accessors).
+void convert(const std::filesystem::path& input, const std::filesystem::path& output, bool draco = true) {
+    WriteOptions options;
+    options.draco = draco;
+    writeScene(readScene(input), output, options, {input});
 }
 
 // decode_check exits with 1 when the triangle counts differ: allowed where symcompress leaves out
@@ -58,19 +58,17 @@ void checkDrawnByOthers(const std::vector<std::filesystem::path>& inputs) {
     for (const auto& input : inputs) {
         INFO(input);
         const auto reference = folder / "reference.glb";
-        convert(input, reference, "--no-draco");
+        convert(input, reference, false);
         double referenceVolume = 0;  // as glTF Transform reads the reference (the .glb comes first)
         for (const char* extension : {".glb", ".x3d"}) {
             const auto output = folder / (std::string("small") + extension);
-            const CommandResult compressed = runCommand(kSymcompress + " -q " + quoted(input) + " -o " + quoted(output));
-            REQUIRE(compressed.status == 0);
-            const auto expanded = runJson(std::string(SYMDECOMPRESS_CLI) + " " + quoted(output) + " -o " +
-                                          quoted(folder / "flat.glb") + " --json --verify " + quoted(input));
-            CHECK(expanded["verified"] == true);
+            compressFile(input, output);
+            const RebuildReport expanded = decompressFile(output, folder / "flat.glb", input);
+            CHECK(expanded.verified);
             if (std::string(extension) == ".glb") {
                 CHECK(validatorErrors(output).empty());
                 const auto decoded = decodeCheck(output, reference, true);
-                CHECK(decoded["tris"] == expanded["triangles"]);
+                CHECK(decoded["tris"] == expanded.triangles);
                 CHECK(decoded["dev_rel"].get<double>() < 2e-4);
                 // Tiles stored as they are share one mesh per material, quantized over the whole scene: the
                 // sterile room's walls move by up to a 14-bit step of its 62 m, 1.1e-3 of its volume.
@@ -78,7 +76,7 @@ void checkDrawnByOthers(const std::vector<std::filesystem::path>& inputs) {
                 CHECK(decoded["volume"].get<double>() == Approx(referenceVolume).epsilon(2e-3));
             } else {
                 const auto drawn = x3dCount(output);
-                CHECK(drawn["tris"] == expanded["triangles"]);
+                CHECK(drawn["tris"] == expanded.triangles);
                 CHECK(drawn["volume"].get<double>() == Approx(referenceVolume).epsilon(1e-4));
             }
         }
@@ -108,14 +106,14 @@ TEST_CASE("GLB output passes the Khronos validator and decodes to the same trian
         "khronos_lantern/Lantern.gltf", "vulkan_torusknot/torusknot.gltf", "assimp_spider/spider.obj",
         "savage_chevy_tahoe/ChevyTahoe.x3d", "menger_sponge/Menger_sponge-Binary.stl"};
     for (const std::string& model : models) {
-        for (const std::string& options : {std::string(), std::string("--no-draco")}) {
-            INFO(model << " " << options);
+        for (const bool draco : {true, false}) {
+            INFO(model << (draco ? "" : " --no-draco"));
             const auto output = folder / "out.glb";
-            convert(modelPath(model), output, options);
+            convert(modelPath(model), output, draco);
             CHECK(validatorErrors(output).empty());
             // Compare with our own uncompressed reading of the input (decode_check reads only glTF).
             const auto reference = folder / "reference.glb";
-            convert(modelPath(model), reference, "--no-draco");
+            convert(modelPath(model), reference, false);
             const auto decoded = decodeCheck(output, reference);
             CHECK(decoded["tris"] == decoded["ref_tris"]);
             CHECK(decoded["dev_rel"].get<double>() < 2e-4);  // 14-bit quantization: about 1e-4 of the extent at most
@@ -136,7 +134,7 @@ TEST_CASE("glTF input read by us equals the independent decoder's reading", "[in
           "vianney_house_2/scene.gltf", "cge_sterile_room/sterile_room.gltf"}) {
         INFO(model);
         const auto output = folder / "plain.glb";
-        convert(modelPath(model), output, "--no-draco");
+        convert(modelPath(model), output, false);
         const auto decoded = decodeCheck(output, modelPath(model));
         CHECK(decoded["tris"] == decoded["ref_tris"]);
         CHECK(decoded["dev_rel"].get<double>() < 1e-6);
@@ -211,7 +209,7 @@ TEST_CASE("Files packed by glTF-Transform (meshopt) and gltfpack (quantized, mes
     for (const char* model : {"cge_grass_flowers/grass_flowers.x3d", "kenney_racing_forest/decoration-forest.glb"}) {
         INFO(model);
         const auto reference = folder / "reference.glb";
-        convert(modelPath(model), reference, "--no-draco");
+        convert(modelPath(model), reference, false);
         std::vector<std::pair<std::string, std::string>> packers = {
             {"meshopt.glb", transform + " meshopt " + quoted(reference) + " " + quoted(folder / "meshopt.glb")}};
         for (const char* flags : {"", "-cc", "-cc -mi"}) {
@@ -222,9 +220,7 @@ TEST_CASE("Files packed by glTF-Transform (meshopt) and gltfpack (quantized, mes
         for (const auto& [name, command] : packers) {
             INFO(name);
             REQUIRE(runCommand(command).status == 0);
-            const auto verified = runJson(std::string(SYMDECOMPRESS_CLI) + " " + quoted(folder / name) + " -o " +
-                                          quoted(folder / "flat.glb") + " --json --verify " + quoted(reference));
-            CHECK(verified["verified"] == true);
+            CHECK(decompressFile(folder / name, folder / "flat.glb", reference).verified);
             // The texture coordinates span what they did (gltfpack quantizes them and brings them back
             // with KHR_texture_transform).
             Eigen::AlignedBox2d before, after;

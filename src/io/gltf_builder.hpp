@@ -1,0 +1,100 @@
+// What the glTF writer's parts share: the JSON and the growing binary buffer (GltfBuilder), and the
+// primitives' encoding (gltf_primitives.cpp: Draco or plain accessors).
+#pragma once
+
+#include "common/number_text.hpp"
+#include "symcompress/io.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace symcompress {
+
+using Json = nlohmann::json;
+
+// The JSON's text. Names come from files that need not be UTF-8 (X3D's DEFs, OBJ's groups): bytes that are
+// not UTF-8 are written as U+FFFD instead of making dump() throw.
+inline std::string jsonText(const Json& json, int indent = -1) {
+    return json.dump(indent, ' ', false, Json::error_handler_t::replace);
+}
+
+constexpr int kFloat = 5126, kUnsignedShort = 5123, kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+
+// The growing binary buffer and the JSON arrays that describe it.
+class GltfBuilder {
+public:
+    explicit GltfBuilder(Json& root) : root_(root) {}
+
+    // Appends bytes (4-byte aligned) as a new buffer view; returns its index.
+    int addBufferView(const void* data, std::size_t size, int target = 0) {
+        while (binary_.size() % 4) binary_.push_back(0);
+        Json view = {{"buffer", 0}, {"byteLength", size}};
+        if (!binary_.empty()) view["byteOffset"] = binary_.size();
+        if (target) view["target"] = target;
+        const auto* bytes = static_cast<const unsigned char*>(data);
+        binary_.insert(binary_.end(), bytes, bytes + size);
+        root_["bufferViews"].push_back(view);
+        return static_cast<int>(root_["bufferViews"].size()) - 1;
+    }
+
+    int addAccessor(Json accessor) {
+        root_["accessors"].push_back(std::move(accessor));
+        return static_cast<int>(root_["accessors"].size()) - 1;
+    }
+
+    // A float accessor over `components`-vectors, stored in its own buffer view.
+    template <typename Vector>
+    int addFloatAccessor(const std::vector<Vector>& values, int components, const char* type, bool withBounds) {
+        std::vector<float> flat;
+        flat.reserve(values.size() * components);
+        for (const Vector& value : values)
+            for (int c = 0; c < components; ++c) flat.push_back(static_cast<float>(value[c]));
+        return addFloatAccessor(flat, components, type, withBounds, kArrayBuffer);
+    }
+    // The same over values already flat; `target` 0 for data that is not a vertex attribute (animations).
+    int addFloatAccessor(const std::vector<float>& flat, int components, const char* type, bool withBounds,
+                         int target) {
+        Json accessor = {{"bufferView", addBufferView(flat.data(), flat.size() * sizeof(float), target)},
+                         {"componentType", kFloat},
+                         {"count", flat.size() / std::size_t(components)},
+                         {"type", type}};
+        if (withBounds) addBounds(accessor, flat, components);
+        return addAccessor(std::move(accessor));
+    }
+
+    static void addBounds(Json& accessor, const std::vector<float>& flat, int components) {
+        std::vector<float> lo(components, std::numeric_limits<float>::max()),
+            hi(components, std::numeric_limits<float>::lowest());
+        for (std::size_t i = 0; i < flat.size(); ++i) {
+            lo[i % components] = std::min(lo[i % components], flat[i]);
+            hi[i % components] = std::max(hi[i % components], flat[i]);
+        }
+        auto shortest = [](const std::vector<float>& values) {
+            Json out = Json::array();
+            for (float value : values) out.push_back(asFloat32(value));
+            return out;
+        };
+        accessor["min"] = shortest(lo);
+        accessor["max"] = shortest(hi);
+    }
+
+    std::vector<unsigned char>& binary() { return binary_; }
+
+private:
+    Json& root_;
+    std::vector<unsigned char> binary_;
+};
+
+// Appends the glTF primitives that store `primitive` (one, or with Draco two when edgebreaker would drop
+// some triangles) to `primitives`.
+void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
+                    const std::filesystem::path& file, Json& primitives);
+
+}  // namespace symcompress

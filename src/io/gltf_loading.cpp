@@ -1,0 +1,260 @@
+// A glTF file to a tinygltf model: the bytes checked and mended before tinygltf parses them (JSON depth,
+// integers beyond an int, a GLB's BIN chunk, Draco's index accessors, meshopt's fallback buffer), the images
+// kept as bytes, EXT_meshopt_compression decoded.
+#include "gltf_reader.hpp"
+
+#include "symcompress/detail/atomic_file.hpp"
+
+#include <meshoptimizer.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstring>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+namespace {
+
+// Keeps images as the bytes of their files: we never decode pixels, and a broken image must not stop
+// the geometry from loading. `loading` is the model tinygltf fills: tinygltf hands over an image's buffer
+// view without checking that it lies inside its buffer, so that is checked here.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* error, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* loading) {
+    if (image->bufferView >= 0) {
+        // tinygltf has checked the view's and the buffer's indices.
+        const auto& model = *static_cast<const tinygltf::Model*>(loading);
+        const tinygltf::BufferView& view = model.bufferViews[std::size_t(image->bufferView)];
+        const std::vector<unsigned char>& buffer = model.buffers[std::size_t(view.buffer)].data;
+        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset ||
+            view.byteLength > std::size_t(std::numeric_limits<int>::max())) {
+            if (error)
+                *error += "image " + std::to_string(index) + ": its buffer view runs past the end of its buffer\n";
+            return false;
+        }
+    }
+    if (size < 0) return false;
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+// Extensions that change how a surface looks, never where it is: a file that requires one is still read,
+// its geometry right, with a warning that the extension is left out.
+bool appearanceOnly(const std::string& name) { return name.rfind("KHR_materials_", 0) == 0; }
+
+// EXT_meshopt_compression: each compressed buffer view decoded (meshoptimizer) into a buffer of its own,
+// which the view then points at, so that accessors read it as any other.
+void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
+    for (std::size_t v = 0; v < model.bufferViews.size(); ++v) {
+        tinygltf::BufferView& view = model.bufferViews[v];
+        const auto found = view.extensions.find("EXT_meshopt_compression");
+        if (found == view.extensions.end()) continue;
+        const tinygltf::Value& extension = found->second;
+        const std::string where = "buffer view " + std::to_string(v) + " (EXT_meshopt_compression)";
+        auto number = [&](const char* key, double fallback) { return numberOr(member(extension, key), fallback); };
+        auto text = [&](const char* key, const char* fallback) {
+            const tinygltf::Value& value = member(extension, key);
+            return value.IsString() ? value.Get<std::string>() : std::string(fallback);
+        };
+        const double buffer = number("buffer", -1), offset = number("byteOffset", 0), length = number("byteLength", -1),
+                     stride = number("byteStride", -1), count = number("count", -1);
+        // Whole numbers in range before any is converted to an integer (meshopt's largest stride is 256).
+        auto whole = [](double value) { return value == std::floor(value); };
+        if (buffer < 0 || buffer >= double(model.buffers.size()) || offset < 0 || length < 0 || stride <= 0 ||
+            stride > 256 || count < 0 || !whole(buffer) || !whole(offset) || !whole(length) || !whole(stride) ||
+            !whole(count) || offset + length > double(model.buffers[std::size_t(buffer)].data.size()))
+            throw FileError(file,
+                            where + ": buffer, byteOffset, byteLength, byteStride or count missing or out of range");
+        // The decoded data fills the view (glTF's byteLength, bounded so that a broken file cannot ask for more).
+        if (stride * count > double(view.byteLength) || stride * count > double(1u << 31))
+            throw FileError(file, where + ": count times byteStride (" + std::to_string(std::size_t(stride * count)) +
+                                      ") exceeds the buffer view's byteLength (" + std::to_string(view.byteLength) +
+                                      ")");
+        const unsigned char* source = model.buffers[std::size_t(buffer)].data.data() + std::size_t(offset);
+        const std::string mode = text("mode", ""), filter = text("filter", "NONE");
+        tinygltf::Buffer decoded;
+        decoded.data.resize(std::size_t(stride) * std::size_t(count));
+        int status = -1;
+        if (mode == "ATTRIBUTES" && int(stride) % 4 == 0 && stride <= 256)
+            status = meshopt_decodeVertexBuffer(decoded.data.data(), std::size_t(count), std::size_t(stride), source,
+                                                std::size_t(length));
+        else if (mode == "TRIANGLES" && (stride == 2 || stride == 4))
+            status = meshopt_decodeIndexBuffer(decoded.data.data(), std::size_t(count), std::size_t(stride), source,
+                                               std::size_t(length));
+        else if (mode == "INDICES" && (stride == 2 || stride == 4))
+            status = meshopt_decodeIndexSequence(decoded.data.data(), std::size_t(count), std::size_t(stride), source,
+                                                 std::size_t(length));
+        if (status != 0) throw FileError(file, where + ": cannot be decoded (mode '" + mode + "')");
+        if (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8))
+            meshopt_decodeFilterOct(decoded.data.data(), std::size_t(count), std::size_t(stride));
+        else if (filter == "QUATERNION" && stride == 8)
+            meshopt_decodeFilterQuat(decoded.data.data(), std::size_t(count), std::size_t(stride));
+        else if (filter == "EXPONENTIAL" && int(stride) % 4 == 0)
+            meshopt_decodeFilterExp(decoded.data.data(), std::size_t(count), std::size_t(stride));
+        else if (filter != "NONE")
+            throw FileError(file, where + ": unknown filter '" + filter + "'");
+        model.buffers.push_back(std::move(decoded));
+        view.buffer = int(model.buffers.size()) - 1;
+        view.byteOffset = 0;
+        view.byteLength = std::size_t(stride) * std::size_t(count);
+        if (mode == "ATTRIBUTES") view.byteStride = std::size_t(stride);
+    }
+}
+
+// JSON nested deeper than this is refused: tinygltf turns extras and extensions into its Values recursively.
+constexpr int kMaxJsonDepth = 512;
+
+// Refuses the integers that tinygltf would cut down to an int without a word (a node index of 2^32 would
+// become node 0): all outside int's range, except byte offsets, lengths, strides and counts (read as size_t)
+// and what extras hold (never interpreted). Recursive, over JSON already checked to nest at most kMaxJsonDepth.
+void refuseIntegersBeyondInt(const nlohmann::json& value, const std::string& key, const fs::path& file) {
+    if (value.is_object()) {
+        for (const auto& [name, member] : value.items())
+            if (name != "extras") refuseIntegersBeyondInt(member, name, file);
+    } else if (value.is_array()) {
+        for (const auto& element : value) refuseIntegersBeyondInt(element, key, file);
+    } else if (value.is_number_integer() && key != "byteOffset" && key != "byteLength" && key != "byteStride" &&
+               key != "count") {
+        const bool fits = value.is_number_unsigned()
+                              ? value.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<int>::max())
+                              : value.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                                    value.get<std::int64_t>() <= std::numeric_limits<int>::max();
+        if (!fits) throw FileError(file, "\"" + key + "\": " + value.dump() + " does not fit a 32-bit integer");
+    }
+}
+
+// What tinygltf (as packaged) would refuse in a valid file, mended in the JSON before it sees it:
+// - a primitive whose indices accessor has no bufferView, which is how KHR_draco_mesh_compression files
+//   are written: the indices come from the Draco data anyway, so they are removed;
+// - EXT_meshopt_compression's fallback buffer, which has no data (no uri, or more bytes than a GLB's binary
+//   chunk): it gets one byte of its own; decodeMeshopt gives its buffer views their data.
+// It also refuses (FileError) what tinygltf would take badly: JSON nested too deep, integers beyond an int.
+std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>& bytes, bool binary,
+                                               const fs::path& file) {
+    auto readU32 = [&](std::size_t at) {
+        std::uint32_t value;
+        std::memcpy(&value, bytes.data() + at, 4);
+        return value;
+    };
+    std::size_t jsonBegin = 0, jsonLength = bytes.size();
+    if (binary) {
+        if (bytes.size() < 20) return bytes;  // tinygltf reports the broken header
+        jsonBegin = 20;
+        jsonLength = readU32(12);
+        if (readU32(16) != 0x4E4F534Au || jsonBegin + jsonLength > bytes.size()) return bytes;
+    }
+    int depth = 0;
+    nlohmann::json json = nlohmann::json::parse(
+        bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin),
+        bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin + jsonLength),
+        [&depth](int level, nlohmann::json::parse_event_t, nlohmann::json&) {
+            depth = std::max(depth, level);
+            return true;
+        },
+        false);
+    if (depth > kMaxJsonDepth)
+        throw FileError(file, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    if (json.is_discarded() || !json.is_object()) return bytes;
+    refuseIntegersBeyondInt(json, "", file);
+    bool changed = false;
+    if (json.contains("buffers") && json["buffers"].is_array())
+        for (auto& buffer : json["buffers"]) {
+            if (!buffer.is_object() || !buffer.contains("extensions") || !buffer["extensions"].is_object()) continue;
+            const auto meshopt = buffer["extensions"].find("EXT_meshopt_compression");
+            if (meshopt == buffer["extensions"].end() || !meshopt->is_object() || !meshopt->value("fallback", false))
+                continue;
+            buffer["uri"] = "data:application/octet-stream;base64,AA==";
+            buffer["byteLength"] = 1;
+            changed = true;
+        }
+    nlohmann::json noMeshes = nlohmann::json::array();
+    for (auto& mesh : json.contains("meshes") && json["meshes"].is_array() ? json["meshes"] : noMeshes) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (auto& primitive : mesh["primitives"]) {
+            if (!primitive.is_object() || !primitive.contains("extensions") || !primitive.contains("indices")) continue;
+            const auto& extensions = primitive["extensions"];
+            if (extensions.is_object() && extensions.contains("KHR_draco_mesh_compression")) {
+                primitive.erase("indices");
+                changed = true;
+            }
+        }
+    }
+    if (!changed) return bytes;
+    std::string text = json.dump();
+    if (!binary) return std::vector<unsigned char>(text.begin(), text.end());
+    while (text.size() % 4) text.push_back(' ');
+    std::vector<unsigned char> rebuilt(bytes.begin(), bytes.begin() + 12);
+    auto appendU32 = [&](std::uint32_t value) {
+        const auto* raw = reinterpret_cast<const unsigned char*>(&value);
+        rebuilt.insert(rebuilt.end(), raw, raw + 4);
+    };
+    appendU32(static_cast<std::uint32_t>(text.size()));
+    appendU32(0x4E4F534Au);
+    rebuilt.insert(rebuilt.end(), text.begin(), text.end());
+    std::size_t rest = jsonBegin + jsonLength;
+    rest += (4 - rest % 4) % 4;
+    if (rest < bytes.size())
+        rebuilt.insert(rebuilt.end(), bytes.begin() + static_cast<std::ptrdiff_t>(rest), bytes.end());
+    const auto total = static_cast<std::uint32_t>(rebuilt.size());
+    std::memcpy(rebuilt.data() + 8, &total, 4);
+    return rebuilt;
+}
+
+}  // namespace
+
+// The extensions we read.
+bool readExtension(const std::string& name) {
+    static const std::set<std::string> read = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
+                                               "KHR_mesh_quantization",      "EXT_mesh_gpu_instancing",
+                                               "KHR_lights_punctual",        "KHR_texture_transform"};
+    return read.count(name) > 0;
+}
+
+tinygltf::Model loadGltfModel(const fs::path& file) {
+    const std::vector<unsigned char> bytes = readFileBytes(file);
+    if (bytes.empty()) throw FileError(file, "the file is empty");
+    const bool binary = formatFromExtension(file) == FileFormat::Glb ||
+                        (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0);
+    if (formatFromExtension(file) == FileFormat::Glb &&
+        (bytes.size() < 12 || std::memcmp(bytes.data(), "glTF", 4) != 0))
+        throw FileError(file, "not a GLB file (wrong magic number; expected 'glTF')");
+
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keepImageBytes, &model);
+    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // asset.extras carries symcompress's digest
+    std::string error, warning;
+    const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw FileError(file, "larger than 4 GiB");
+    const std::vector<unsigned char> parsed = preparedForTinygltf(bytes, binary, file);
+    // tinygltf checks that a GLB's BIN chunk ends inside the file without its 8-byte header, and then reads
+    // up to 8 bytes past the end: the chunk is checked here first.
+    if (binary && parsed.size() >= 20) {
+        std::uint32_t jsonLength, binLength;
+        std::memcpy(&jsonLength, parsed.data() + 12, 4);
+        const std::uint64_t binHeader = 20 + std::uint64_t(jsonLength);
+        if (binHeader + 8 <= parsed.size()) {
+            std::memcpy(&binLength, parsed.data() + binHeader, 4);
+            if (binHeader + 8 + binLength > parsed.size())
+                throw FileError(
+                    file, "the BIN chunk (" + std::to_string(binLength) + " bytes) runs past the end of the file");
+        }
+    }
+    const bool ok =
+        binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, parsed.data(),
+                                             static_cast<unsigned int>(parsed.size()), baseDir)
+               : loader.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(parsed.data()),
+                                            static_cast<unsigned int>(parsed.size()), baseDir);
+    if (!ok) {
+        while (!error.empty() && error.back() == '\n') error.pop_back();
+        throw FileError(file, "invalid glTF: " + (error.empty() ? std::string("cannot be parsed") : error));
+    }
+    for (const std::string& required : model.extensionsRequired)
+        if (!readExtension(required) && !appearanceOnly(required))
+            throw FileError(file, "requires the extension " + required + ", which symcompress cannot read");
+    decodeMeshopt(model, file);
+    return model;
+}
+
+}  // namespace symcompress

@@ -1,0 +1,212 @@
+// glTF primitives: Draco-compressed (KHR_draco_mesh_compression; the triangles edgebreaker would drop in a
+// sequential primitive of their own) or plain accessors.
+#include "gltf_builder.hpp"
+
+#include "geometry/bounds.hpp"
+
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
+
+#include <optional>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+namespace {
+
+// A float32 attribute in a Draco soup builder, one value per triangle corner.
+template <typename Vector>
+void addDracoAttribute(draco::TriangleSoupMeshBuilder& builder, const Primitive& primitive,
+                       const std::vector<Vector>& values, draco::GeometryAttribute::Type type, int components,
+                       int& attributeId) {
+    if (values.empty()) return;
+    attributeId = builder.AddAttribute(type, static_cast<std::int8_t>(components), draco::DT_FLOAT32);
+    std::vector<float> corner(3 * components);
+    for (std::size_t f = 0; f < primitive.triangles.size(); ++f) {
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < components; ++c)
+                corner[k * components + c] = static_cast<float>(values[primitive.triangles[f][k]][c]);
+        builder.SetAttributeValuesForFace(attributeId, draco::FaceIndex(static_cast<std::uint32_t>(f)), corner.data(),
+                                          corner.data() + components, corner.data() + 2 * components);
+    }
+}
+
+struct DracoAttributeIds {
+    int position = -1, normal = -1, texcoord = -1, color = -1;
+};
+
+// The primitive's triangles split in two: those Draco's edgebreaker keeps, and those whose corners its
+// quantization of positions (`bits` over the box's largest side, or the primitive's own grid) puts on one
+// point, which it would drop. The second part goes to the sequential method, so that a few slivers do not
+// cost a whole mesh its edgebreaker compression (vertex arrays are shared; Draco takes only the corners
+// its triangles use).
+std::pair<Primitive, Primitive> splitCollapsingTriangles(const Primitive& primitive, int bits) {
+    QuantizationGrid grid;
+    if (primitive.positionGrid) {
+        grid = *primitive.positionGrid;
+    } else {
+        const Eigen::AlignedBox3d box = boundsOfCorners(primitive.positions, primitive.triangles);
+        grid = {box.min(), box.sizes().maxCoeff(), bits};
+    }
+    const double scale = grid.range > 0 ? double((1u << grid.bits) - 1) / grid.range : 0;
+    std::pair<Primitive, Primitive> parts{primitive, primitive};
+    parts.first.triangles.clear();
+    parts.second.triangles.clear();
+    for (const Triangle& t : primitive.triangles) {
+        auto onGrid = [&](std::uint32_t v) -> Eigen::Array3d {
+            return (((primitive.positions[v] - grid.origin) * scale).array() + 0.5).floor();
+        };
+        const Eigen::Array3d qa = onGrid(t[0]), qb = onGrid(t[1]), qc = onGrid(t[2]);
+        const bool collapses = (qa == qb).all() || (qb == qc).all() || (qa == qc).all();
+        (collapses ? parts.second : parts.first).triangles.push_back(t);
+    }
+    return parts;
+}
+
+// How to encode: edgebreaker compresses best but drops triangles whose corners its quantization merges;
+// the sequential method keeps every triangle.
+enum class DracoMethod {
+    EdgebreakerOrNothing,       // nothing (no primitive written) when a triangle would be lost
+    EdgebreakerElseSequential,  // the sequential method when a triangle would be lost
+    Sequential,
+};
+
+// Encodes one primitive with Draco and describes it in glTF: the accessors carry counts and bounds
+// (decoded from our own output, since Draco merges equal corners) but no buffer view.
+std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
+                                        const fs::path& file, DracoMethod method) {
+    draco::TriangleSoupMeshBuilder soup;
+    soup.Start(static_cast<int>(primitive.triangles.size()));
+    DracoAttributeIds ids;
+    addDracoAttribute(soup, primitive, primitive.positions, draco::GeometryAttribute::POSITION, 3, ids.position);
+    addDracoAttribute(soup, primitive, primitive.normals, draco::GeometryAttribute::NORMAL, 3, ids.normal);
+    addDracoAttribute(soup, primitive, primitive.texcoords, draco::GeometryAttribute::TEX_COORD, 2, ids.texcoord);
+    addDracoAttribute(soup, primitive, primitive.colors, draco::GeometryAttribute::COLOR, 4, ids.color);
+    std::unique_ptr<draco::Mesh> mesh = soup.Finalize();
+    if (!mesh) throw FileError(file, "Draco could not build a mesh from a primitive");
+
+    // The decoded mesh, or nothing when the encoder refuses (edgebreaker: "all triangles are degenerate").
+    auto encode = [&](int encoding, draco::EncoderBuffer& encoded) -> std::unique_ptr<draco::Mesh> {
+        draco::Encoder encoder;
+        const int speed = std::clamp(10 - options.compressionLevel, 0, 10);
+        encoder.SetSpeedOptions(speed, speed);
+        encoder.SetEncodingMethod(encoding);
+        if (const auto& grid = primitive.positionGrid) {
+            const float origin[3] = {float(grid->origin.x()), float(grid->origin.y()), float(grid->origin.z())};
+            encoder.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, grid->bits, 3, origin,
+                                                     float(grid->range));
+        } else {
+            encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.positionBits);
+        }
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options.normalBits);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, options.texcoordBits);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, options.colorBits);
+        const draco::Status status = encoder.EncodeMeshToBuffer(*mesh, &encoded);
+        if (!status.ok()) {
+            if (encoding == draco::MESH_EDGEBREAKER_ENCODING) return nullptr;
+            throw FileError(file, "Draco encoding failed: " + status.error_msg_string());
+        }
+        draco::DecoderBuffer decoderBuffer;
+        decoderBuffer.Init(encoded.data(), encoded.size());
+        auto decoded = draco::Decoder().DecodeMeshFromBuffer(&decoderBuffer);
+        if (!decoded.ok())
+            throw FileError(file, "Draco cannot decode what it encoded: " + decoded.status().error_msg_string());
+        return std::move(decoded).value();
+    };
+    auto complete = [&](const std::unique_ptr<draco::Mesh>& decoded) {
+        return decoded && decoded->num_faces() == primitive.triangles.size();
+    };
+    draco::EncoderBuffer encoded;
+    std::unique_ptr<draco::Mesh> result;
+    if (method != DracoMethod::Sequential) {
+        result = encode(draco::MESH_EDGEBREAKER_ENCODING, encoded);
+        if (!complete(result) && method == DracoMethod::EdgebreakerOrNothing) return std::nullopt;
+    }
+    if (!complete(result)) {
+        encoded.Clear();
+        result = encode(draco::MESH_SEQUENTIAL_ENCODING, encoded);
+    }
+    if (result->num_faces() != primitive.triangles.size())
+        throw FileError(file, "Draco lost " + std::to_string(primitive.triangles.size() - result->num_faces()) +
+                                  " triangles of a primitive; write with --no-draco");
+
+    const int view = builder.addBufferView(encoded.data(), encoded.size());
+    Json attributes = Json::object(), dracoAttributes = Json::object();
+    auto describe = [&](const char* name, int sourceId, draco::GeometryAttribute::Type type, int components,
+                        const char* accessorType) {
+        if (sourceId < 0) return;
+        const draco::PointAttribute* attribute = result->GetNamedAttribute(type);
+        Json accessor = {{"componentType", kFloat}, {"count", result->num_points()}, {"type", accessorType}};
+        if (type == draco::GeometryAttribute::POSITION) {
+            std::vector<float> flat(result->num_points() * 3);
+            for (draco::PointIndex p(0); p < result->num_points(); ++p)
+                attribute->ConvertValue<float>(attribute->mapped_index(p), 3, &flat[p.value() * 3]);
+            GltfBuilder::addBounds(accessor, flat, 3);
+        }
+        (void)components;
+        attributes[name] = builder.addAccessor(std::move(accessor));
+        dracoAttributes[name] = attribute->unique_id();
+    };
+    describe("POSITION", ids.position, draco::GeometryAttribute::POSITION, 3, "VEC3");
+    describe("NORMAL", ids.normal, draco::GeometryAttribute::NORMAL, 3, "VEC3");
+    describe("TEXCOORD_0", ids.texcoord, draco::GeometryAttribute::TEX_COORD, 2, "VEC2");
+    describe("COLOR_0", ids.color, draco::GeometryAttribute::COLOR, 4, "VEC4");
+    const int indexType = result->num_points() <= 65535 ? kUnsignedShort : kUnsignedInt;
+    Json out = {
+        {"attributes", attributes},
+        {"indices",
+         builder.addAccessor({{"componentType", indexType}, {"count", result->num_faces() * 3}, {"type", "SCALAR"}})},
+        {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", dracoAttributes}}}}}};
+    return out;
+}
+
+Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
+    Json attributes = Json::object();
+    attributes["POSITION"] = builder.addFloatAccessor(primitive.positions, 3, "VEC3", true);
+    if (!primitive.normals.empty())
+        attributes["NORMAL"] = builder.addFloatAccessor(primitive.normals, 3, "VEC3", false);
+    if (!primitive.texcoords.empty())
+        attributes["TEXCOORD_0"] = builder.addFloatAccessor(primitive.texcoords, 2, "VEC2", false);
+    if (!primitive.colors.empty()) attributes["COLOR_0"] = builder.addFloatAccessor(primitive.colors, 4, "VEC4", false);
+    Json indices;
+    if (primitive.positions.size() <= 65535) {
+        std::vector<std::uint16_t> flat;
+        for (const Triangle& t : primitive.triangles)
+            for (std::uint32_t i : t) flat.push_back(static_cast<std::uint16_t>(i));
+        indices = {{"bufferView", builder.addBufferView(flat.data(), flat.size() * 2, kElementArrayBuffer)},
+                   {"componentType", kUnsignedShort}};
+    } else {
+        std::vector<std::uint32_t> flat;
+        for (const Triangle& t : primitive.triangles) flat.insert(flat.end(), t.begin(), t.end());
+        indices = {{"bufferView", builder.addBufferView(flat.data(), flat.size() * 4, kElementArrayBuffer)},
+                   {"componentType", kUnsignedInt}};
+    }
+    indices["count"] = primitive.triangles.size() * 3;
+    indices["type"] = "SCALAR";
+    return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
+}
+
+}  // namespace
+
+void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options, const fs::path& file,
+                    Json& primitives) {
+    auto add = [&](Json out, int material) {
+        if (material >= 0) out["material"] = material;
+        primitives.push_back(std::move(out));
+    };
+    if (!options.draco) {
+        add(writePlainPrimitive(builder, primitive), primitive.material);
+        return;
+    }
+    if (auto whole = writeDracoPrimitive(builder, primitive, options, file, DracoMethod::EdgebreakerOrNothing)) {
+        add(std::move(*whole), primitive.material);
+        return;
+    }
+    // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
+    const auto [kept, collapsing] = splitCollapsingTriangles(primitive, options.positionBits);
+    for (const auto& [part, method] :
+         {std::pair{&kept, DracoMethod::EdgebreakerElseSequential}, std::pair{&collapsing, DracoMethod::Sequential}})
+        if (!part->triangles.empty()) add(*writeDracoPrimitive(builder, *part, options, file, method), part->material);
+}
+
+}  // namespace symcompress

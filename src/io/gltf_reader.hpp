@@ -1,0 +1,93 @@
+// The glTF reader's parts (gltf_loading.cpp: the file to a tinygltf model; gltf_accessors.cpp: vertex data
+// from accessors and Draco; gltf_reader.cpp: the model to a Scene), and the helpers they share.
+#pragma once
+
+#include "symcompress/io.hpp"
+
+#include <tiny_gltf.h>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace symcompress {
+
+// The file's bytes, checked and mended where tinygltf would fail on a valid file or crash on a broken one,
+// parsed by tinygltf, EXT_meshopt_compression views decoded. Throws FileError.
+tinygltf::Model loadGltfModel(const std::filesystem::path& file);
+
+// Whether symcompress reads the extension (the others are warned about, or refused where required).
+bool readExtension(const std::string& name);
+
+// object[key], or a null value where `object` is not an object or has no such key (tinygltf's Get asserts).
+inline const tinygltf::Value& member(const tinygltf::Value& object, const std::string& key) {
+    static const tinygltf::Value none;
+    return object.Has(key) ? object.Get(key) : none;
+}
+
+inline double numberOr(const tinygltf::Value& value, double fallback) {
+    return value.IsNumber() ? value.GetNumberAsDouble() : fallback;
+}
+
+// An index held in an extension's value: -1 unless it is a whole number from 0 to INT_MAX (GetNumberAsInt
+// casts a real number unchecked, which is undefined for one that does not fit).
+inline int indexIn(const tinygltf::Value& value) {
+    if (value.IsInt()) return value.Get<int>();
+    if (!value.IsReal()) return -1;
+    const double number = value.Get<double>();
+    return number >= 0 && number <= std::numeric_limits<int>::max() && number == std::floor(number) ? int(number) : -1;
+}
+
+// The components of an accessor type (TINYGLTF_TYPE_SCALAR: 1, ..., MAT4: 16; 0 for an unknown one).
+int componentCount(int type);
+
+// glTF's triangle topologies (list, strip, fan) as a triangle list.
+std::vector<Triangle> trianglesFromIndices(const std::vector<std::uint32_t>& indices, int mode);
+
+// Flat components as vectors (components beyond the vector's size dropped, missing ones 0).
+template <typename Vector>
+std::vector<Vector> toVectors(const std::vector<double>& flat, int components) {
+    std::vector<Vector> out(flat.size() / components, Vector::Zero());
+    for (std::size_t i = 0; i < out.size(); ++i)
+        for (int c = 0; c < std::min<int>(components, Vector::RowsAtCompileTime); ++c)
+            out[i][c] = flat[i * components + c];
+    return out;
+}
+
+// RGB or RGBA components as RGBA colours (alpha 1 where there is none).
+std::vector<Eigen::Vector4d> toColors(const std::vector<double>& flat, int components);
+
+class GltfReader {
+public:
+    GltfReader(const std::filesystem::path& file, const tinygltf::Model& model) : file_(file), model_(model) {}
+
+    Scene read();
+
+private:
+    [[noreturn]] void fail(const std::string& problem) const { throw FileError(file_, problem); }
+    std::vector<double> readAccessor(int accessorIndex, int expectedComponents, const char* what) const;
+    std::vector<std::uint32_t> readIndices(int accessorIndex) const;
+    void readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, const std::string& where);
+    void decodeDracoPrimitive(const tinygltf::Primitive& source, const tinygltf::Value& extension, Primitive& out,
+                              std::vector<std::uint32_t>& indices, const std::string& where) const;
+    Eigen::Matrix4d nodeTransform(const tinygltf::Node& node) const;
+    void readMaterials(Scene& scene);
+    void readAnimations(Scene& scene);
+    void readCamerasAndLights(Scene& scene);
+    void expandGpuInstances(Scene& scene);
+    void warnAbout(const std::string& warning) { warnings_.insert(warning); }
+
+    std::filesystem::path file_;
+    const tinygltf::Model& model_;
+    std::set<std::string> warnings_;
+    std::map<std::string, int> skippedModes_;
+    std::map<int, Eigen::Matrix<double, 2, 3>> texcoordTransforms_;  // material -> its KHR_texture_transform
+};
+
+}  // namespace symcompress

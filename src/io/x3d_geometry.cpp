@@ -1,0 +1,159 @@
+// X3D geometry nodes: the face and triangle sets, and the primitives (x3d_primitives.cpp).
+#include "x3d_reader.hpp"
+
+#include "symcompress/detail/triangulate_polygon.hpp"
+#include "x3d_primitives.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace symcompress {
+namespace fs = std::filesystem;
+
+bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out) {
+    const std::string type = geometry.name();
+    if (type == "IndexedFaceSet") {
+        readFaceSet(geometry, out, true);
+    } else if (type == "IndexedTriangleSet" || type == "TriangleSet") {
+        readFaceSet(geometry, out, false);
+    } else if (type == "Box") {
+        out = x3d::tessellateBox(vector3(geometry, "size", Eigen::Vector3d(2, 2, 2)));
+    } else if (type == "Sphere") {
+        out = x3d::tessellateSphere(scalar(geometry, "radius", 1));
+    } else if (type == "Cylinder") {
+        const double radius = scalar(geometry, "radius", 1);
+        out = x3d::tessellateCylinder(radius, radius, scalar(geometry, "height", 2), boolean(geometry, "side", true),
+                                      boolean(geometry, "bottom", true), boolean(geometry, "top", true));
+    } else if (type == "Cone") {
+        out = x3d::tessellateCylinder(scalar(geometry, "bottomRadius", 1), 0, scalar(geometry, "height", 2),
+                                      boolean(geometry, "side", true), boolean(geometry, "bottom", true), false);
+    } else {
+        ++skippedGeometry_[type];
+        return false;
+    }
+    return true;
+}
+
+void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces) {
+    auto child = [&](std::initializer_list<const char*> types) -> pugi::xml_node {
+        for (const char* type : types)
+            if (pugi::xml_node node = geometry.child(type)) {
+                if (const pugi::xml_attribute def = node.attribute("DEF")) definitions_[def.value()] = node;
+                return resolve(node);
+            }
+        return {};
+    };
+    const pugi::xml_node coordinate = child({"Coordinate", "CoordinateDouble"});
+    if (!coordinate) fail(geometry, "no Coordinate");
+    const std::vector<double> points = numbers(coordinate, "point");
+    if (points.size() % 3) fail(coordinate, "the number of point values is not a multiple of 3");
+    const std::size_t pointCount = points.size() / 3;
+    const pugi::xml_node normalNode = child({"Normal"});
+    const pugi::xml_node colorNode = child({"Color", "ColorRGBA"});
+    const pugi::xml_node texcoordNode = child({"TextureCoordinate"});
+    const std::vector<double> normalValues = normalNode ? numbers(normalNode, "vector") : std::vector<double>();
+    const std::vector<double> colorValues = colorNode ? numbers(colorNode, "color") : std::vector<double>();
+    const int colorComponents = colorNode && std::strcmp(colorNode.name(), "ColorRGBA") == 0 ? 4 : 3;
+    const std::vector<double> texcoordValues = texcoordNode ? numbers(texcoordNode, "point") : std::vector<double>();
+    const bool ccw = boolean(geometry, "ccw", true);
+    const bool normalPerVertex = boolean(geometry, "normalPerVertex", true);
+    const bool colorPerVertex = boolean(geometry, "colorPerVertex", true);
+
+    // Faces as lists of corner positions in the Coordinate node.
+    std::vector<std::vector<std::int64_t>> faces;
+    if (indexedFaces) {
+        std::vector<std::int64_t> face;
+        for (std::int64_t value : integers(geometry, "coordIndex")) {
+            if (value < 0) {
+                if (!face.empty()) faces.push_back(face);
+                face.clear();
+            } else {
+                face.push_back(value);
+            }
+        }
+        if (!face.empty()) faces.push_back(face);  // the last -1 is optional
+    } else if (std::strcmp(geometry.name(), "IndexedTriangleSet") == 0) {
+        const std::vector<std::int64_t> index = integers(geometry, "index");
+        for (std::size_t i = 0; i + 2 < index.size(); i += 3) faces.push_back({index[i], index[i + 1], index[i + 2]});
+    } else {
+        for (std::size_t i = 0; i + 2 < pointCount; i += 3)
+            faces.push_back(
+                {static_cast<std::int64_t>(i), static_cast<std::int64_t>(i + 1), static_cast<std::int64_t>(i + 2)});
+    }
+
+    // Which entry of an attribute a corner uses: IndexedFaceSet has optional per-corner or per-face index
+    // lists; the triangle sets index attributes like the coordinates.
+    auto indexList = [&](const char* field) {
+        return indexedFaces ? integers(geometry, field) : std::vector<std::int64_t>();
+    };
+    const std::vector<std::int64_t> normalIndex = indexList("normalIndex"), colorIndex = indexList("colorIndex"),
+                                    texcoordIndex = indexList("texCoordIndex");
+    auto attributeIndex = [&](const std::vector<std::int64_t>& ownIndex, bool perVertex, std::size_t face,
+                              std::size_t cornerInCoordIndex, std::int64_t point) -> std::int64_t {
+        if (!indexedFaces) return perVertex ? point : static_cast<std::int64_t>(face);
+        if (perVertex) {
+            if (!ownIndex.empty()) return cornerInCoordIndex < ownIndex.size() ? ownIndex[cornerInCoordIndex] : -1;
+            return point;
+        }
+        if (!ownIndex.empty()) return face < ownIndex.size() ? ownIndex[face] : -1;
+        return static_cast<std::int64_t>(face);
+    };
+
+    struct CornerKey {
+        std::int64_t point, normal, color, texcoord;
+        bool operator<(const CornerKey& o) const {
+            return std::tie(point, normal, color, texcoord) < std::tie(o.point, o.normal, o.color, o.texcoord);
+        }
+    };
+    std::map<CornerKey, std::uint32_t> vertexOf;
+    const bool hasNormals = !normalValues.empty(), hasColors = !colorValues.empty(),
+               hasTexcoords = !texcoordValues.empty();
+    std::size_t cornerInCoordIndex = 0;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& face = faces[f];
+        std::vector<std::uint32_t> local;
+        std::vector<Eigen::Vector3d> polygon;
+        for (std::size_t k = 0; k < face.size(); ++k, ++cornerInCoordIndex) {
+            const std::int64_t point = face[k];
+            if (point < 0 || static_cast<std::size_t>(point) >= pointCount)
+                fail(geometry, "coordinate index " + std::to_string(point) + " out of range (" +
+                                   std::to_string(pointCount) + " points)");
+            CornerKey key{point, -1, -1, -1};
+            if (hasNormals) key.normal = attributeIndex(normalIndex, normalPerVertex, f, cornerInCoordIndex, point);
+            if (hasColors) key.color = attributeIndex(colorIndex, colorPerVertex, f, cornerInCoordIndex, point);
+            if (hasTexcoords) key.texcoord = attributeIndex(texcoordIndex, true, f, cornerInCoordIndex, point);
+            auto check = [&](std::int64_t index, std::size_t available, const char* what) {
+                if (index < 0 || static_cast<std::size_t>(index) >= available)
+                    fail(geometry, std::string(what) + " index " + std::to_string(index) + " out of range");
+            };
+            if (hasNormals) check(key.normal, normalValues.size() / 3, "normal");
+            if (hasColors) check(key.color, colorValues.size() / colorComponents, "colour");
+            if (hasTexcoords) check(key.texcoord, texcoordValues.size() / 2, "texture coordinate");
+            auto [entry, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(out.positions.size()));
+            if (inserted) {
+                out.positions.emplace_back(points[3 * point], points[3 * point + 1], points[3 * point + 2]);
+                if (hasNormals)
+                    out.normals.emplace_back(normalValues[3 * key.normal], normalValues[3 * key.normal + 1],
+                                             normalValues[3 * key.normal + 2]);
+                if (hasColors) {
+                    Eigen::Vector4d color(1, 1, 1, 1);
+                    for (int c = 0; c < colorComponents; ++c) color[c] = colorValues[colorComponents * key.color + c];
+                    out.colors.push_back(color);
+                }
+                if (hasTexcoords)  // X3D's v points up, glTF's down
+                    out.texcoords.emplace_back(texcoordValues[2 * key.texcoord],
+                                               1 - texcoordValues[2 * key.texcoord + 1]);
+            }
+            local.push_back(entry->second);
+            polygon.push_back(out.positions[entry->second]);
+        }
+        ++cornerInCoordIndex;  // the -1 that ended the face
+        const auto triangles = triangulatePolygon(polygon);
+        if (triangles.empty()) ++degenerateFaces_;
+        for (const Triangle& t : triangles)
+            out.triangles.push_back(ccw ? Triangle{local[t[0]], local[t[1]], local[t[2]]}
+                                        : Triangle{local[t[0]], local[t[2]], local[t[1]]});
+    }
+}
+
+}  // namespace symcompress

@@ -1,0 +1,74 @@
+// The X3D reader's parts (x3d_reader.cpp: the document, the scene graph and its fields; x3d_scene_nodes.cpp:
+// animations, viewpoints, lights, the environment; x3d_appearance.cpp: materials and textures;
+// x3d_geometry.cpp: geometry nodes) and what they share.
+#pragma once
+
+#include "symcompress/io.hpp"
+#include "x3d_fields.hpp"
+
+#include <Eigen/Geometry>
+
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace symcompress {
+
+// An SFRotation (axis x y z, angle) as an angle-axis; the identity where it has fewer than 4 numbers.
+Eigen::AngleAxisd rotationField(const std::vector<double>& values);
+
+class X3dReader {
+public:
+    X3dReader(const std::filesystem::path& file, Scene& scene, std::set<std::filesystem::path>& inlineStack)
+        : file_(file), scene_(scene), inlineStack_(inlineStack) {}
+
+    // Reads the file's Scene element into new nodes; returns the root nodes.
+    std::vector<int> read();
+
+private:
+    [[noreturn]] void fail(const pugi::xml_node& node, const std::string& problem) const {
+        throw FileError(file_,
+                        "<" + std::string(node.name()) +
+                            (node.attribute("DEF") ? " DEF='" + std::string(node.attribute("DEF").value()) + "'" : "") +
+                            ">: " + problem);
+    }
+    pugi::xml_node resolve(const pugi::xml_node& node) const;
+    std::vector<double> numbers(const pugi::xml_node& node, const char* field) const;
+    std::vector<std::int64_t> integers(const pugi::xml_node& node, const char* field) const;
+    Eigen::Vector3d vector3(const pugi::xml_node& node, const char* field, const Eigen::Vector3d& fallback) const;
+    double scalar(const pugi::xml_node& node, const char* field, double fallback) const;
+    bool boolean(const pugi::xml_node& node, const char* field, bool fallback) const;
+    Eigen::Matrix4d transformOf(const pugi::xml_node& node) const;
+
+    void readChildren(const pugi::xml_node& parent, std::vector<int>& into, int depth);
+    int readNode(const pugi::xml_node& node, int depth);
+    int readShape(const pugi::xml_node& shape);
+    int readMaterial(const pugi::xml_node& appearance);
+    int readTexture(const pugi::xml_node& appearance);
+    int addTexture(int& index, Texture texture);  // sets `index` (the ImageTexture's) and returns it
+    bool readGeometry(const pugi::xml_node& geometry, Primitive& out);
+    void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces);
+    void readInline(const pugi::xml_node& node, std::vector<int>& into);
+    void readAnimations();
+    int readViewpoint(const pugi::xml_node& viewpoint);
+    int readLight(const pugi::xml_node& light, int depth);
+    void keepEnvironment(const pugi::xml_node& node);
+    int addPlacedNode(const pugi::xml_node& source, const Eigen::Affine3d& placement, int camera, int light);
+
+    std::filesystem::path file_;
+    Scene& scene_;
+    std::set<std::filesystem::path>& inlineStack_;
+    pugi::xml_document document_;
+    std::map<std::string, pugi::xml_node> definitions_;
+    std::map<std::string, std::vector<int>> nodesOfTransform_;  // a DEF'd Transform's scene nodes (one per USE)
+    std::map<const void*, int> meshOfShape_, materialOfAppearance_, textureOfNode_;
+    std::map<std::string, int> skippedGeometry_;
+    std::map<std::string, int> notKept_;  // other nodes with nothing to carry them in the scene model
+    std::set<std::string> useStack_;
+    std::set<std::string> notes_;
+    std::size_t degenerateFaces_ = 0;  // faces with fewer than 3 distinct corners or no area
+};
+
+}  // namespace symcompress
