@@ -394,17 +394,18 @@ TEST_CASE("symcompress refuses to overwrite its input and reports bad input with
     CHECK(wrong.status == 1);
 }
 
-TEST_CASE("Texture coordinates no texture reads are dropped on request, and said so: the torus knot", "[compress]") {
+TEST_CASE("Texture coordinates no texture reads are dropped by default, and said so: the torus knot", "[compress]") {
     // Its material has no texture. Without texture coordinates it is symmetric in all it stores (C3).
     TemporaryFolder folder;
     const auto input = modelPath("vulkan_torusknot/torusknot.gltf");
-    const nlohmann::json kept = compressAndVerify(input, folder, "kept");
+    CompressOptions keepAttributes;
+    keepAttributes.optimize.pruneAttributes = false;
+    const nlohmann::json kept = compressAndVerify(input, folder, "kept", keepAttributes);
     CHECK(kept["region_classes"] == 0);
-    CompressOptions dropUnused;
-    dropUnused.dropUnusedTexcoords = true;
+    CHECK(kept["optimizations"]["texcoords_dropped"] == 0);
     CHECK_FALSE(readScene(folder / "kept.glb").meshes.at(0).primitives.at(0).texcoords.empty());
-    const nlohmann::json dropped = compressAndVerify(input, folder, "dropped", dropUnused);
-    CHECK(dropped["warnings"].dump().find("texture coordinates of 1 primitives dropped") != std::string::npos);
+    const nlohmann::json dropped = compressAndVerify(input, folder, "dropped");
+    CHECK(dropped["optimizations"]["texcoords_dropped"] == 1);
     for (const Mesh& mesh : readScene(folder / "dropped.glb").meshes)
         for (const Primitive& primitive : mesh.primitives) CHECK(primitive.texcoords.empty());
     CHECK(dropped["region_classes"] == 1);

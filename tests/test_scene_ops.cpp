@@ -1,3 +1,4 @@
+#include "symcompress/optimize.hpp"
 #include "symcompress/scene_ops.hpp"
 
 #include <catch2/catch.hpp>
@@ -140,8 +141,8 @@ TEST_CASE("dropUnreadTexcoords keeps texture coordinates only where a texture re
     scene.materials.resize(3);
     scene.materials[0].baseColorTexture = 0;
     scene.materials[1].baseColorTexture = 1;
-    // Materials: reads an image, names a missing image, has no texture, none at all (-1); the last
-    // primitive has no texture coordinates to drop.
+    // Materials: reads an image, names a missing image (its reference is kept: it still reads them), has
+    // no texture, none at all (-1); the last primitive has no texture coordinates to drop.
     Mesh mesh;
     for (int material : {0, 1, 2, -1}) {
         mesh.primitives.push_back(textured);
@@ -149,10 +150,11 @@ TEST_CASE("dropUnreadTexcoords keeps texture coordinates only where a texture re
     }
     mesh.primitives.push_back(unitTriangle());
     scene.meshes.push_back(mesh);
-    CHECK(dropUnreadTexcoords(scene) == 3);
+    CHECK(dropUnreadTexcoords(scene) == 2);
     const auto& kept = scene.meshes[0].primitives;
     CHECK(kept[0].texcoords == textured.texcoords);
-    for (std::size_t p = 1; p < kept.size(); ++p) CHECK(kept[p].texcoords.empty());
+    CHECK(kept[1].texcoords == textured.texcoords);
+    for (std::size_t p = 2; p < kept.size(); ++p) CHECK(kept[p].texcoords.empty());
     CHECK(kept[0].normals == textured.normals);  // nothing else is touched
     CHECK(dropUnreadTexcoords(scene) == 0);
     validateScene(scene);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "symcompress/io.hpp"
+#include "symcompress/optimize.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -24,7 +25,7 @@ struct CompressOptions {
     bool regions = true;               // store symmetric tiles as their fundamental regions where that pays
     bool assemblies = true;            // store tiles that recur together once per group, drawn by one node per copy
     bool keepInputInstances = true;    // meshes the input draws from several nodes, scaled, stay shared
-    bool dropUnusedTexcoords = false;  // texture coordinates that no texture reads are dropped
+    OptimizeOptions optimize;          // pruning and deduplication before the scene is split into tiles
     int threads = 0;                   // 0: all cores
     WriteOptions write;                // the output's writer (Draco, quantization)
     ProgressCallback progress;         // may be empty
@@ -65,6 +66,7 @@ struct CompressionReport {
     // The bytes a node drawing a shared mesh costs in the output, on average over its instance nodes, by
     // the writer's measure (its transform and name); 0 without instances.
     double bytesPerInstance = 0;
+    OptimizeReport optimizations;               // what was pruned and merged before tiling
     double secondsRead = 0, secondsWrite = 0;  // the other stages' are in stats
     // The file of each plan tried (empty where a plan was not tried, as with --no-instancing).
     struct Ablation {

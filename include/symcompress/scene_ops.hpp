@@ -38,10 +38,6 @@ Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& worl
 // area-weighted normal of the vertex's triangles. Returns how many were replaced, for a warning.
 std::size_t repairNormals(Scene& scene);
 
-// Drops the texture coordinates of every primitive whose material reads no texture (no material, no
-// base colour texture, or one whose image could not be read). Returns how many primitives lost them.
-std::size_t dropUnreadTexcoords(Scene& scene);
-
 // Every drawn primitive in world space, in traversal order of Scene::roots.
 std::vector<WorldPrimitive> flattenScene(const Scene& scene);
 

@@ -2,6 +2,7 @@
 // every tile as it is), write and measure each, keep the smallest file, and report.
 #include "symcompress/compress.hpp"
 #include "symcompress/detail/compression_plan.hpp"
+#include "symcompress/optimize.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -37,12 +38,15 @@ std::uintmax_t sceneBytes(const fs::path& file) {
     return total;
 }
 
-// The input's bytes: the scene's files, and the images OBJ, PLY, STL and X3D name by path.
+// The input's bytes: the scene's files, and the images OBJ, PLY, STL and X3D name by path, each image once
+// however many textures show it.
 std::uintmax_t inputBytesOf(const Scene& scene, const fs::path& input) {
     std::uintmax_t bytes = sceneBytes(input);
     const FileFormat format = formatFromExtension(input);
+    const std::vector<int> sameImage = firstTextureOfSameImage(scene.textures);
     if (format != FileFormat::Gltf && format != FileFormat::Glb)
-        for (const Texture& texture : scene.textures) bytes += texture.bytes.size();
+        for (std::size_t t = 0; t < scene.textures.size(); ++t)
+            if (sameImage[t] == int(t)) bytes += scene.textures[t].bytes.size();
     return bytes;
 }
 
@@ -78,11 +82,12 @@ CompressionReport compressToFile(Scene scene, const fs::path& output, const Comp
     report.input = inputs.empty() ? fs::path() : inputs.front();
     report.output = output;
     report.tolerance = options.tolerance;
-    if (options.dropUnusedTexcoords)
-        if (const std::size_t dropped = dropUnreadTexcoords(scene))
-            scene.warnings.push_back(report.input.filename().string() + ": texture coordinates of " +
-                                     std::to_string(dropped) +
-                                     " primitives dropped (--drop-unused-texcoords): no texture reads them");
+    report.inputBytes = inputs.empty() ? 0 : inputBytesOf(scene, inputs.front());
+    OptimizeOptions optimize = options.optimize;
+    // X3D writes indices as text: two materials merged put their parts in one IndexedFaceSet with larger
+    // indices, which costs more than the Material it saves (the cat: +2.2 KB, the house: +11 KB).
+    if (formatFromExtension(output) == FileFormat::X3d) optimize.dedup = false;
+    report.optimizations = optimizeScene(scene, optimize);
     // What the output's format cannot hold, said before the writer leaves it out.
     for (std::string& loss : formatLosses(scene, output)) scene.warnings.push_back(std::move(loss));
     report.readerWarnings = scene.warnings.size();
@@ -147,7 +152,6 @@ CompressionReport compressToFile(Scene scene, const fs::path& output, const Comp
     report.cameras = compressed.scene.cameras.size();
     report.lights = compressed.scene.lights.size();
     report.bytesPerInstance = bytesPerInstance(compressed, planOptions.costs);
-    report.inputBytes = inputs.empty() ? 0 : inputBytesOf(scene, inputs.front());
     report.ratio = report.outputBytes ? double(report.inputBytes) / double(report.outputBytes) : 0;
     return report;
 }

@@ -268,6 +268,7 @@ void printReport(const CompressionReport& report) {
     if (stats.camerasAndLightsKept)
         std::printf("  cameras, lights %zu nodes kept where they were (%zu cameras, %zu lights)\n",
                     stats.camerasAndLightsKept, report.cameras, report.lights);
+    for (const std::string& line : report.optimizations.lines()) std::printf("  optimized       %s\n", line.c_str());
     if (stats.instances) std::printf("  per instance    %.0f bytes\n", report.bytesPerInstance);
     if (stats.attributeMismatches)
         std::printf(
@@ -372,8 +373,14 @@ int main(int argc, char** argv) {
         "instancing only: no fundamental regions");
     compress->add_flag("--geometry-only", compressRequest.options.geometryOnly,
                        "instance congruent tiles even when their normals, texture coordinates or colours differ");
-    compress->add_flag("--drop-unused-texcoords", compressRequest.options.dropUnusedTexcoords,
-                       "drop texture coordinates that no texture reads (as glTF-Transform's optimize and gltfpack do)");
+    compress->add_flag("--keep-unused-attributes", [&](std::int64_t) { compressRequest.options.optimize.pruneAttributes = false; },
+                       "keep texture coordinates that no texture reads (dropped by default)");
+    compress->add_flag("--no-prune", [&](std::int64_t) { compressRequest.options.optimize.prune = false; },
+                       "keep materials no primitive uses and textures no material uses");
+    compress->add_flag("--no-dedup", [&](std::int64_t) { compressRequest.options.optimize.dedup = false; },
+                       "keep materials equal but for their names, and textures of the same image, apart");
+    compress->add_flag("--drop-unused-texcoords", compressRequest.options.optimize.pruneAttributes,
+                       "the default now (texture coordinates no texture reads are dropped); kept for scripts");
     compress->add_option("--report", compressRequest.report, "also write the size report as JSON");
     compress->add_option("--threads", compressRequest.options.threads, "threads (0: all cores)")->capture_default_str();
     compress->add_flag("-q,--quiet", compressRequest.quiet, "print nothing but errors");

@@ -1,0 +1,79 @@
+// Deduplication: materials and textures equal by content stored once (docs/optimizations.md).
+#include "symcompress/optimize.hpp"
+#include "symcompress/scene_ops.hpp"
+
+#include <map>
+#include <tuple>
+
+namespace symcompress {
+namespace {
+
+bool equalButName(Material a, const Material& b) {
+    a.name = b.name;
+    return a == b;
+}
+
+// For each material, the first one equal to it but for its name (itself when none is earlier). Compared only
+// within a texture and base colour, so a scene of thousands of distinct materials costs a sort, not all pairs.
+std::vector<int> firstEqualMaterial(const std::vector<Material>& materials) {
+    using Key = std::tuple<int, double, double, double, double>;
+    std::map<Key, std::vector<int>> byKey;
+    std::vector<int> first(materials.size());
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        const Material& m = materials[i];
+        std::vector<int>& candidates = byKey[{m.baseColorTexture, m.baseColorFactor.x(), m.baseColorFactor.y(),
+                                              m.baseColorFactor.z(), m.baseColorFactor.w()}];
+        first[i] = int(i);
+        for (int c : candidates)
+            if (equalButName(materials[std::size_t(c)], m)) {
+                first[i] = c;
+                break;
+            }
+        if (first[i] == int(i)) candidates.push_back(int(i));
+    }
+    return first;
+}
+
+}  // namespace
+
+std::pair<std::size_t, std::size_t> mergeDuplicateMaterialsAndTextures(Scene& scene) {
+    std::size_t texturesMerged = 0, materialsMerged = 0;
+    // Textures of the same image (bytes and type, or the same URL where the image could not be read).
+    const std::vector<int> sameTexture = firstTextureOfSameImage(scene.textures);
+    for (std::size_t t = 0; t < sameTexture.size(); ++t) texturesMerged += sameTexture[t] != int(t);
+    for (Material& material : scene.materials)
+        if (material.baseColorTexture >= 0)
+            material.baseColorTexture = sameTexture[std::size_t(material.baseColorTexture)];
+    const std::vector<int> sameMaterial = firstEqualMaterial(scene.materials);
+    for (std::size_t m = 0; m < sameMaterial.size(); ++m) materialsMerged += sameMaterial[m] != int(m);
+    for (Mesh& mesh : scene.meshes)
+        for (Primitive& primitive : mesh.primitives)
+            if (primitive.material >= 0) primitive.material = sameMaterial[std::size_t(primitive.material)];
+    return {materialsMerged, texturesMerged};
+}
+
+OptimizeReport optimizeScene(Scene& scene, const OptimizeOptions& options) {
+    OptimizeReport report;
+    if (options.dedup)
+        std::tie(report.materialsMerged, report.texturesMerged) = mergeDuplicateMaterialsAndTextures(scene);
+    if (options.pruneAttributes) report.texcoordsDropped = dropUnreadTexcoords(scene);
+    // Merged materials and textures are left unused, for pruning to remove (with --no-prune they stay).
+    if (options.prune) std::tie(report.materialsRemoved, report.texturesRemoved) = pruneUnused(scene);
+    return report;
+}
+
+std::vector<std::string> OptimizeReport::lines() const {
+    std::vector<std::string> out;
+    auto say = [&](std::size_t count, const std::string& what) {
+        if (count) out.push_back(std::to_string(count) + " " + what);
+    };
+    say(materialsMerged, "materials equal to another but for their names merged into it (--no-dedup keeps them)");
+    say(texturesMerged, "textures showing the same image as another merged into it (--no-dedup keeps them)");
+    say(texcoordsDropped,
+        "primitives' texture coordinates dropped: no texture reads them (--keep-unused-attributes keeps them)");
+    say(materialsRemoved, "materials that no primitive uses (merged ones included) removed (--no-prune keeps them)");
+    say(texturesRemoved, "textures that no material uses (merged ones included) removed (--no-prune keeps them)");
+    return out;
+}
+
+}  // namespace symcompress
