@@ -158,9 +158,9 @@ TEST_CASE("html report: a big shape is embedded as a preview within the triangle
             sphere.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
         }
     PreviewSource source;
-    source.pieces.push_back({&sphere.positions, &sphere.triangles, kNoClass, 1});
+    source.pieces.push_back({&sphere.positions, &sphere.triangles, kNoClass});
     const std::size_t budget = 20000;
-    const double cell = previewCell({source}, budget, 2 * std::sqrt(3.0));
+    const double cell = previewCell({source}, budget);
     REQUIRE(cell > 0);
     const PreviewGeometry preview = previewGeometry(source, cell);
     CHECK(preview.triangles() <= budget);
@@ -173,7 +173,7 @@ TEST_CASE("html report: a big shape is embedded as a preview within the triangle
     HtmlReportOptions options;
     options.maxTriangles = budget;
     const std::string html = detectionReportHtml(sphere, group, "sphere.glb", 1e-5, options);
-    CHECK(html.find("Preview: the 360000 triangles stored are drawn as") != std::string::npos);
+    CHECK(html.find("Preview: the 360000 triangles of the stored meshes are drawn as") != std::string::npos);
     CHECK(html.size() < 2'000'000);
 }
 

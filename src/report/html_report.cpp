@@ -180,11 +180,10 @@ json boundsJson(const Eigen::AlignedBox3d& box) {
 }
 
 // The sources as geometries within the budget; a note when that took a preview.
-json geometriesJson(const std::vector<PreviewSource>& sources, std::size_t budget, double size,
-                    std::vector<std::string>& notes) {
+json geometriesJson(const std::vector<PreviewSource>& sources, std::size_t budget, std::vector<std::string>& notes) {
     std::size_t full = 0;
     for (const PreviewSource& source : sources) full += previewTriangles(source, 0);
-    const double cell = previewCell(sources, budget, size);
+    const double cell = previewCell(sources, budget);
     json geometries = json::array();
     std::size_t kept = 0;
     for (const PreviewSource& source : sources) {
@@ -195,9 +194,10 @@ json geometriesJson(const std::vector<PreviewSource>& sources, std::size_t budge
         geometries.push_back(std::move(entry));
     }
     if (cell > 0)
-        notes.push_back("Preview: the " + std::to_string(full) + " triangles stored are drawn as " +
-                        std::to_string(kept) + " (vertices clustered on a grid of " + std::to_string(cell) +
-                        ", to keep the page under " + std::to_string(budget) + " triangles).");
+        notes.push_back("Preview: the " + std::to_string(full) + " triangles of the stored meshes are drawn as " +
+                        std::to_string(kept) + " (vertices clustered in cells of 1/" +
+                        std::to_string(std::lround(1 / cell)) + " of each part's size, to keep the page under " +
+                        std::to_string(budget) + " triangles).");
     return geometries;
 }
 
@@ -300,7 +300,6 @@ std::string compressionReportHtml(const CompressionPicture& picture, const HtmlR
     const TileClassification& classification = analysis.classification;
     const std::vector<Tile>& tiles = analysis.tiles;
     const Eigen::AlignedBox3d bounds = sceneStatistics(picture.input).bounds;
-    const double size = bounds.isEmpty() ? 1 : bounds.diagonal().norm();
 
     std::vector<std::uint32_t> classOf(tiles.size(), kNoClass);
     for (std::size_t k = 0; k < classification.classes.size(); ++k)
@@ -319,10 +318,8 @@ std::string compressionReportHtml(const CompressionPicture& picture, const HtmlR
         if (part.tiles.empty() || part.nodes.empty()) continue;
         const std::uint32_t k = classOf[part.tiles.front()];
         PreviewSource source;
-        // A region stored in grid steps: its nodes scale it back (a uniform scale, the same for every node).
-        const double scale = part.nodes.front().transform.topLeftCorner<3, 3>().col(0).norm();
         for (const Primitive& primitive : part.mesh.primitives)
-            source.pieces.push_back({&primitive.positions, &primitive.triangles, k, scale > 0 ? 1 / scale : 1});
+            source.pieces.push_back({&primitive.positions, &primitive.triangles, k});
         std::vector<Eigen::Matrix4d> transforms;
         for (const PlacedCopy& node : part.nodes) transforms.push_back(node.transform);
         json draw{{"kind", part.mechanism == SharedPart::Mechanism::Region ? "region" : "class"},
@@ -346,30 +343,40 @@ std::string compressionReportHtml(const CompressionPicture& picture, const HtmlR
             classBytes[k] += bytes;
         }
     }
-    // Tiles drawn by assemblies and the scene's symmetry: their class's prototype, placed on each.
-    std::map<std::uint32_t, std::vector<Eigen::Matrix4d>> placedByClass;
+    // Tiles drawn by assemblies and the scene's symmetry, and the members of a class stored as they are: their
+    // class's prototype placed on each (role 1: stored as it is, drawn grey), never a copy of every triangle.
+    struct Placed {
+        std::vector<Eigen::Matrix4d> transforms;
+        std::vector<std::uint8_t> roles;
+    };
+    std::map<std::uint32_t, Placed> placedByClass;
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         const CongruenceClass& c = classification.classes[k];
         for (std::size_t i = 0; i < c.members.size(); ++i) {
             const Storage s = storage[c.members[i]];
-            if (s == Storage::Assembly || s == Storage::SceneSymmetry)
-                placedByClass[std::uint32_t(k)].push_back(c.placements[i].matrix());
+            const bool asItIs = s == Storage::AsTheyAre && c.members.size() > 1;
+            if (s != Storage::Assembly && s != Storage::SceneSymmetry && !asItIs) continue;
+            placedByClass[std::uint32_t(k)].transforms.push_back(c.placements[i].matrix());
+            placedByClass[std::uint32_t(k)].roles.push_back(asItIs);
         }
     }
-    for (const auto& [k, transforms] : placedByClass) {
+    for (const auto& [k, placed] : placedByClass) {
         const Tile& prototype = tiles[classification.classes[k].prototype];
-        sources.push_back({{{&prototype.mesh.positions, &prototype.mesh.triangles, k, 1}}, false});
+        sources.push_back({{{&prototype.mesh.positions, &prototype.mesh.triangles, k}}, false});
         draws.push_back({{"kind", "tiles"},
                          {"geometry", sources.size() - 1},
                          {"cls", k},
-                         {"matrices", matricesBase64(transforms)}});
+                         {"matrices", matricesBase64(placed.transforms)},
+                         {"roles", base64Of(placed.roles)}});
     }
-    // Tiles stored as they are: one geometry in world coordinates, a class per vertex.
+    // Tiles stored as they are that are alone in their class: one geometry in world coordinates, a class per
+    // vertex.
     PreviewSource merged;
     merged.vertexClasses = true;
     for (std::size_t t = 0; t < tiles.size(); ++t)
-        if (storage[t] == Storage::AsTheyAre)
-            merged.pieces.push_back({&tiles[t].mesh.positions, &tiles[t].mesh.triangles, classOf[t], 1});
+        if (storage[t] == Storage::AsTheyAre &&
+            (classOf[t] == kNoClass || classification.classes[classOf[t]].members.size() == 1))
+            merged.pieces.push_back({&tiles[t].mesh.positions, &tiles[t].mesh.triangles, classOf[t]});
     if (!merged.pieces.empty()) {
         draws.push_back({{"kind", "merged"}, {"geometry", sources.size()}});
         sources.push_back(std::move(merged));
@@ -380,14 +387,14 @@ std::string compressionReportHtml(const CompressionPicture& picture, const HtmlR
     for (const auto& [mesh, transforms] : keptByMesh) {
         PreviewSource source;
         for (const Primitive& primitive : picture.input.meshes[std::size_t(mesh)].primitives)
-            source.pieces.push_back({&primitive.positions, &primitive.triangles, kNoClass, 1});
+            source.pieces.push_back({&primitive.positions, &primitive.triangles, kNoClass});
         draws.push_back(
             {{"kind", "kept"}, {"geometry", sources.size()}, {"cls", -1}, {"matrices", matricesBase64(transforms)}});
         sources.push_back(std::move(source));
     }
 
     std::vector<std::string> notes;
-    const json geometries = geometriesJson(sources, options.maxTriangles, size, notes);
+    const json geometries = geometriesJson(sources, options.maxTriangles, notes);
     if (!analysis.animatedSubtrees.empty())
         notes.push_back(std::to_string(analysis.animatedSubtrees.size()) +
                         " animated subtrees, kept as they are, are not drawn.");
@@ -477,8 +484,8 @@ std::string detectionReportHtml(const TriangleMesh& mesh, const SymmetryGroup& g
     for (const Eigen::Vector3d& p : mesh.positions) bounds.extend(p);
     const double size = bounds.isEmpty() ? 1 : bounds.diagonal().norm();
     std::vector<std::string> notes;
-    const std::vector<PreviewSource> sources{{{{&mesh.positions, &mesh.triangles, kNoClass, 1}}, false}};
-    const json geometries = geometriesJson(sources, options.maxTriangles, size, notes);
+    const std::vector<PreviewSource> sources{{{{&mesh.positions, &mesh.triangles, kNoClass}}, false}};
+    const json geometries = geometriesJson(sources, options.maxTriangles, notes);
     json draws = json::array();
     draws.push_back(
         {{"kind", "shape"}, {"geometry", 0}, {"cls", -1}, {"matrices", matricesBase64({Eigen::Matrix4d::Identity()})}});

@@ -1,6 +1,9 @@
 // Vertex clustering for the report's preview, and the base64 the page embeds it in.
 #include "report/preview_geometry.hpp"
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <unordered_map>
@@ -19,7 +22,10 @@ void clusterPiece(const PreviewPiece& piece, double cell, std::vector<Eigen::Vec
         for (std::uint32_t v = 0; v < positions.size(); ++v) cellOf[v] = v;
         if (means) *means = positions;
     } else {
-        const double step = cell * piece.unitsPerWorld;
+        // Cells relative to the piece's own size: a small part keeps its shape while a big one is simplified.
+        Eigen::AlignedBox3d box;
+        for (const Eigen::Vector3d& p : positions) box.extend(p);
+        const double step = cell * std::max(box.isEmpty() ? 0.0 : box.diagonal().norm(), 1e-300);
         std::unordered_map<std::uint64_t, std::uint32_t> cells;
         cells.reserve(positions.size());
         for (std::size_t v = 0; v < positions.size(); ++v) {
@@ -77,7 +83,7 @@ std::size_t previewTriangles(const PreviewSource& source, double cell) {
     return kept;
 }
 
-double previewCell(const std::vector<PreviewSource>& sources, std::size_t budget, double size) {
+double previewCell(const std::vector<PreviewSource>& sources, std::size_t budget) {
     auto triangles = [&](double cell) {
         std::size_t total = 0;
         for (const PreviewSource& source : sources) total += previewTriangles(source, cell);
@@ -85,7 +91,7 @@ double previewCell(const std::vector<PreviewSource>& sources, std::size_t budget
     };
     if (triangles(0) <= budget) return 0;
     // Bisection on the cell's logarithm: more triangles go as the cells grow (not strictly, but closely).
-    double fine = std::max(size, 1e-12) * 1e-6, coarse = std::max(size, 1e-12) * 0.25;
+    double fine = 1e-6, coarse = 0.25;
     for (int step = 0; step < 14 && coarse / fine > 1.05; ++step) {
         const double middle = std::sqrt(fine * coarse);
         (triangles(middle) <= budget ? coarse : fine) = middle;

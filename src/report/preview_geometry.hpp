@@ -20,7 +20,6 @@ struct PreviewPiece {
     const std::vector<Eigen::Vector3d>* positions = nullptr;
     const std::vector<Triangle>* triangles = nullptr;
     std::uint32_t vertexClass = kNoClass;  // given to each of its vertices when the geometry keeps classes
-    double unitsPerWorld = 1;              // a mesh stored in grid steps (a region) has larger coordinates
 };
 
 struct PreviewSource {
@@ -35,17 +34,18 @@ struct PreviewGeometry {
     std::size_t triangles() const { return indices.size() / 3; }
 };
 
-// Each piece's vertices snapped to cells of `cell` (world units; 0 keeps them all): the vertices of a
-// cell become their mean and triangles left with fewer than three corners are dropped. Pieces are clustered
-// apart, so that a vertex keeps its piece's class.
+// Each piece's vertices snapped to cells of `cell` times the piece's diagonal (0 keeps them all): the
+// vertices of a cell become their mean and triangles left with fewer than three corners are dropped. Pieces
+// are clustered apart, each relative to its own size (a small part keeps its shape while a big one is
+// simplified), and a vertex keeps its piece's class.
 PreviewGeometry previewGeometry(const PreviewSource& source, double cell);
 
 // The triangles previewGeometry(source, cell) keeps, without building it.
 std::size_t previewTriangles(const PreviewSource& source, double cell);
 
 // The smallest cell (to within a few percent) whose previews keep at most `budget` triangles in all; 0 when
-// every triangle fits. `size` is the scene's diagonal.
-double previewCell(const std::vector<PreviewSource>& sources, std::size_t budget, double size);
+// every triangle fits.
+double previewCell(const std::vector<PreviewSource>& sources, std::size_t budget);
 
 std::string base64(const void* bytes, std::size_t count);
 

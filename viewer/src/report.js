@@ -126,6 +126,10 @@ for (const draw of data.draws || []) {
         else if (draw.kind === 'region')
             // The stored fundamental region of each member light, the copies that rebuild the rest dark.
             base = (i) => classColor(draw.cls, roles && roles[i] ? 0.74 : 0.42);
+        else if (draw.kind === 'tiles')
+            // Members drawn by an assembly or the scene's symmetry in their class's colour, those stored as they
+            // are grey (highlighted in the class's colour when it is selected).
+            base = (i) => (roles && roles[i] && selected === null ? GREY : classColor(draw.cls));
         else base = () => classColor(draw.cls);
         for (let i = 0; i < count; ++i) {
             const color = selected === null || selected === draw.cls ? base(i) : DIM;
