@@ -29,6 +29,9 @@ struct CompressOptions {
     int threads = 0;                   // 0: all cores
     WriteOptions write;                // the output's writer (Draco, quantization)
     ProgressCallback progress;         // may be empty
+    // When set, compressToFile also writes the HTML report of the plan it kept there (html_report.hpp), once
+    // the size report is complete.
+    std::filesystem::path htmlReport;
 };
 
 // What the plan did, counted from its decisions.

@@ -7,11 +7,13 @@
 //   assemblySymmetries              the symmetry group of an assembly of tiles        (assembly.hpp)
 //   compressFile, compressToFile    the whole job, with its size report               (compress.hpp)
 //   decompressFile, compareSurfaces rebuild, and verify against the original or digest (verify.hpp)
+//   writeDetectionReport            the HTML page of a shape's symmetries              (html_report.hpp)
 #pragma once
 
 #include "symcompress/assembly.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/congruence.hpp"
+#include "symcompress/html_report.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene.hpp"
 #include "symcompress/scene_ops.hpp"

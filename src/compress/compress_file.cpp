@@ -1,7 +1,9 @@
 // symcompress's whole job: read, analyse once, plan three ways (the full plan, instancing without regions,
 // every tile as it is), write and measure each, keep the smallest file, and report.
 #include "symcompress/compress.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/detail/compression_plan.hpp"
+#include "symcompress/html_report.hpp"
 #include "symcompress/optimize.hpp"
 
 #include <nlohmann/json.hpp>
@@ -74,11 +76,11 @@ double bytesPerInstance(const CompressedScene& compressed, const StorageCostMode
     return total / double(compressed.instanceNodes.size());
 }
 
-}  // namespace
-
-CompressionReport compressToFile(Scene scene, const fs::path& output, const CompressOptions& options,
-                                 const std::vector<fs::path>& inputs) {
+// compressToFile, with the time the input took to read (in the report before the HTML report shows it).
+CompressionReport compressRead(Scene scene, const fs::path& output, const CompressOptions& options,
+                               const std::vector<fs::path>& inputs, double secondsRead) {
     CompressionReport report;
+    report.secondsRead = secondsRead;
     report.input = inputs.empty() ? fs::path() : inputs.front();
     report.output = output;
     report.tolerance = options.tolerance;
@@ -91,11 +93,21 @@ CompressionReport compressToFile(Scene scene, const fs::path& output, const Comp
     // What the output's format cannot hold, said before the writer leaves it out.
     for (std::string& loss : formatLosses(scene, output)) scene.warnings.push_back(std::move(loss));
     report.readerWarnings = scene.warnings.size();
+    if (!options.htmlReport.empty()) {
+        // Before the work: a report path that is the input or the output is refused at once.
+        std::vector<fs::path> notOverwritten = inputs;
+        notOverwritten.push_back(output);
+        refuseToOverwriteInputs(options.htmlReport, notOverwritten);
+        if (!htmlReportAvailable()) throw std::runtime_error("--html: symcompress was built without Node.js and npm");
+    }
 
     PlanOptions planOptions = planOptionsOf(options);
     planOptions.costs = costModelFor(formatFromExtension(output), options.write);
     const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
-    CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions);
+    // The HTML report draws the plan's decisions: kept only when it is asked for.
+    const bool keepPlans = !options.htmlReport.empty();
+    CompressionPlan keptPlan;
+    CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions, keepPlans ? &keptPlan : nullptr);
     WriteOptions write = options.write;
     write.extrasJson = compressed.digest.json();
     const auto writeStart = std::chrono::steady_clock::now();
@@ -110,13 +122,15 @@ CompressionReport compressToFile(Scene scene, const fs::path& output, const Comp
         const char* name;
         CompressedScene plan;
         std::uintmax_t bytes;
+        CompressionPlan decisions;  // only for the HTML report
     };
     std::vector<Variant> variants;
     auto tryVariant = [&](const char* name, PlanOptions variant) {
         variant.progress = nullptr;
-        CompressedScene plan = compressAnalyzed(scene, analysis, variant);
+        CompressionPlan decisions;
+        CompressedScene plan = compressAnalyzed(scene, analysis, variant, keepPlans ? &decisions : nullptr);
         const std::uintmax_t bytes = measuredBytes(plan, output, write, inputs);
-        variants.push_back({name, std::move(plan), bytes});
+        variants.push_back({name, std::move(plan), bytes, std::move(decisions)});
     };
     if (options.progress) options.progress("measuring the ablation", 0, "");
     const std::uintmax_t fullPlanBytes = sceneBytes(output);
@@ -142,6 +156,7 @@ CompressionReport compressToFile(Scene scene, const fs::path& output, const Comp
         if (variant.bytes < report.outputBytes) {
             writeScene(variant.plan.scene, output, write, inputs);
             compressed = std::move(variant.plan);
+            keptPlan = std::move(variant.decisions);
             report.plan = variant.name;
             report.outputBytes = sceneBytes(output);
         }
@@ -153,17 +168,26 @@ CompressionReport compressToFile(Scene scene, const fs::path& output, const Comp
     report.lights = compressed.scene.lights.size();
     report.bytesPerInstance = bytesPerInstance(compressed, planOptions.costs);
     report.ratio = report.outputBytes ? double(report.inputBytes) / double(report.outputBytes) : 0;
+    if (keepPlans) {
+        if (options.progress) options.progress("writing the HTML report", 0, "");
+        writeFileAtomically(options.htmlReport,
+                            compressionReportHtml({scene, analysis, keptPlan, report, &planOptions.costs}));
+    }
     return report;
+}
+
+}  // namespace
+
+CompressionReport compressToFile(Scene scene, const fs::path& output, const CompressOptions& options,
+                                 const std::vector<fs::path>& inputs) {
+    return compressRead(std::move(scene), output, options, inputs, 0);
 }
 
 CompressionReport compressFile(const fs::path& input, const fs::path& output, const CompressOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     if (options.progress) options.progress("reading", 0, "");
     Scene scene = readScene(input);
-    const double readSeconds = since(start);
-    CompressionReport report = compressToFile(std::move(scene), output, options, {input});
-    report.secondsRead = readSeconds;
-    return report;
+    return compressRead(std::move(scene), output, options, {input}, since(start));
 }
 
 }  // namespace symcompress

@@ -57,10 +57,13 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
     return plan;
 }
 
-CompressedScene compressAnalyzed(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options) {
+CompressedScene compressAnalyzed(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options,
+                                 CompressionPlan* decisions) {
     const auto start = std::chrono::steady_clock::now();
-    CompressedScene result = emitScene(input, analysis, planCompression(input, analysis, options));
+    CompressionPlan plan = planCompression(input, analysis, options);
+    CompressedScene result = emitScene(input, analysis, plan);
     result.stats.secondsPlan = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (decisions) *decisions = std::move(plan);
     return result;
 }
 

@@ -170,9 +170,11 @@ int runDetectTiles(const fs::path& file, const SymmetryOptions& options, bool js
     return 0;
 }
 
-int runDetect(const fs::path& file, const SymmetryOptions& options, bool json) {
+int runDetect(const fs::path& file, const SymmetryOptions& options, bool json, const fs::path& html) {
     const Scene scene = readScene(file);
-    const SymmetryGroup group = detectSymmetries(worldMesh(scene), options);
+    const TriangleMesh mesh = worldMesh(scene);
+    const SymmetryGroup group = detectSymmetries(mesh, options);
+    if (!html.empty()) writeDetectionReport(html, mesh, group, file, options.tolerance);
     std::vector<std::string> warnings = scene.warnings;
     warnings.insert(warnings.end(), group.warnings.begin(), group.warnings.end());
     if (json) {
@@ -353,7 +355,13 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     detect->add_option("--threads", symmetryOptions.threads, "threads (0: all cores)")->capture_default_str();
     bool tiles = false;
-    detect->add_flag("--tiles", tiles, "split into tiles: congruence classes, placements, the assembly's group");
+    auto* tilesFlag =
+        detect->add_flag("--tiles", tiles, "split into tiles: congruence classes, placements, the assembly's group");
+    fs::path detectHtml;
+    detect
+        ->add_option("--html", detectHtml,
+                     "also write an HTML page (self-contained, offline) showing the shape with its planes and axes")
+        ->excludes(tilesFlag);
 
     CompressRequest compressRequest;
     CLI::App* compress = app.add_subcommand(
@@ -382,6 +390,8 @@ int main(int argc, char** argv) {
     compress->add_flag("--drop-unused-texcoords", compressRequest.options.optimize.pruneAttributes,
                        "the default now (texture coordinates no texture reads are dropped); kept for scripts");
     compress->add_option("--report", compressRequest.report, "also write the size report as JSON");
+    compress->add_option("--html", compressRequest.options.htmlReport,
+                         "also write an HTML page (self-contained, offline) showing the classes, symmetries and sizes");
     compress->add_option("--threads", compressRequest.options.threads, "threads (0: all cores)")->capture_default_str();
     compress->add_flag("-q,--quiet", compressRequest.quiet, "print nothing but errors");
     addWriteOptions(*compress, compressRequest.options.write);
@@ -409,7 +419,7 @@ int main(int argc, char** argv) {
         if (*compress) return runCompress(compressRequest);
         if (*detect)
             return tiles ? runDetectTiles(detectFile, symmetryOptions, json)
-                         : runDetect(detectFile, symmetryOptions, json);
+                         : runDetect(detectFile, symmetryOptions, json, detectHtml);
     } catch (const FileError& error) {
         std::fprintf(stderr, "symcompress: %s\n", error.what());
         return kExitBadInput;

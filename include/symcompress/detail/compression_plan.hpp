@@ -129,8 +129,10 @@ struct CompressedScene {
 // material, and the names of their nodes are reported as not kept (scene.warnings).
 CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, const CompressionPlan& plan);
 
-// planCompression, then emitScene, timed (stats.secondsPlan).
-CompressedScene compressAnalyzed(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options);
+// planCompression, then emitScene, timed (stats.secondsPlan); the plan is moved into `decisions` when given
+// (the HTML report draws it).
+CompressedScene compressAnalyzed(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options,
+                                 CompressionPlan* decisions = nullptr);
 
 // The stages' options as the job's options ask (PlanOptions::costs left at the constant model).
 AnalysisOptions analysisOptionsOf(const CompressOptions& options);
