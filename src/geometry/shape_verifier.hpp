@@ -17,6 +17,20 @@ namespace symcompress {
 
 constexpr std::size_t kCentroidSamplesUpTo = 100000;
 
+// Sample points that rejected recent maps (indices, most recent first): a near miss tends to fail where
+// the last one did, so a search that is given them asks them first. Only the verdict is the same with and
+// without them: a rejected map's returned distance is then the first hint's beyond the rejection distance,
+// not the first point's in the samples' order. One per thread of work.
+class RejectingPoints {
+public:
+    const std::vector<std::uint32_t>& indices() const { return indices_; }
+    void remember(std::uint32_t index);
+
+private:
+    static constexpr std::size_t kCapacity = 8;
+    std::vector<std::uint32_t> indices_;
+};
+
 class ShapeVerifier {
 public:
     // The mesh must outlive the verifier; maps are taken about `center`.
@@ -25,7 +39,8 @@ public:
     // d_A of x -> center + linear (x - center) (linear orthogonal), over the first `points` sample points
     // (all by default; the order spreads them over the shape). Stops at the first sample point farther
     // than `reject` and returns that point's distance (> reject).
-    double deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points = SIZE_MAX) const;
+    double deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points = SIZE_MAX,
+                     RejectingPoints* hints = nullptr) const;
 
     // The map near `linear` (same determinant) that best fits the data: Gauss-Newton on the point-to-plane
     // distances of the mapped sample points to their closest triangles, which converges in a few steps
@@ -42,7 +57,11 @@ public:
     // x -> target center + linear (x - center), over the first `points` of them; stops at the first point
     // farther than `reject` and returns its distance.
     double farthestOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double reject,
-                        std::size_t points = SIZE_MAX) const;
+                        std::size_t points = SIZE_MAX, RejectingPoints* hints = nullptr) const;
+
+    // Whether deviations up to `distance` come out the same whatever larger rejection distance they are
+    // measured with: sample points answer for the surface only within a distance below it.
+    bool exactUpTo(double distance) const { return snapSquared_ <= distance * distance; }
 
     const Eigen::Vector3d& center() const { return center_; }
 
