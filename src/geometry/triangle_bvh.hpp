@@ -14,8 +14,9 @@ namespace symcompress {
 Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        const Eigen::Vector3d& c);
 
-// Invariant: nodes_[0] is the root; a leaf holds triangles order_[first .. first + count); an inner node's
-// children are nodes_[first] and nodes_[first + 1]. The mesh must outlive the hierarchy.
+// Invariant: nodes_[0] is the root; a leaf holds triangles order_[first .. first + count), whose corners are
+// corners_[3 first .. 3 (first + count)); an inner node's children are nodes_[first] and nodes_[first + 1],
+// its box their union. The mesh must outlive the hierarchy.
 class TriangleBvh {
 public:
     explicit TriangleBvh(const TriangleMesh& mesh);
@@ -39,6 +40,9 @@ private:
     const TriangleMesh& mesh_;
     std::vector<Node> nodes_;
     std::vector<std::uint32_t> order_;
+    // The corners of the triangles in leaf order: a leaf's triangles side by side in memory, where the
+    // mesh would have the search gather them from anywhere.
+    std::vector<Eigen::Vector3d> corners_;
 };
 
 }  // namespace symcompress
