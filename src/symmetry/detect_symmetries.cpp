@@ -138,11 +138,9 @@ public:
         std::vector<double> values(static_cast<std::size_t>(azimuths));
         for (std::size_t i = 0; i < functions_.size(); ++i) {
             for (std::size_t first = 0; first < points.size(); first += std::size_t(azimuths)) {
+                functions_[i].polynomial().evaluate(&points[first], std::size_t(azimuths), values.data());
                 double energy = 0;
-                for (int k = 0; k < azimuths; ++k) {
-                    values[k] = functions_[i].value(points[first + std::size_t(k)]);
-                    energy += values[k] * values[k];
-                }
+                for (int k = 0; k < azimuths; ++k) energy += values[k] * values[k];
                 for (int m = 1; m < azimuths / 2; ++m) {
                     if (present[m]) continue;
                     std::complex<double> mode = 0;
@@ -162,13 +160,19 @@ public:
 
     // Whether w -> linear w changes every function by at most its tolerance at the comparison points.
     bool allows(const Eigen::Matrix3d& linear) const {
+        // A few points at a time (evaluated side by side), in order.
+        constexpr std::size_t kChunk = 8;
+        Eigen::Vector3d mapped[kChunk];
+        double after[kChunk];
         for (std::size_t i = 0; i < functions_.size(); ++i) {
             const std::vector<double>& before = changeValuesOf(i);
-            for (std::size_t j = 0; j < changePoints_.size(); ++j)
-                if (std::abs(functions_[i].value(linear * changePoints_[j]) - before[j]) / changeScales_[i] /
-                        tolerances_[i] >
-                    1)
-                    return false;
+            for (std::size_t first = 0; first < changePoints_.size(); first += kChunk) {
+                const std::size_t count = std::min(kChunk, changePoints_.size() - first);
+                for (std::size_t j = 0; j < count; ++j) mapped[j] = linear * changePoints_[first + j];
+                functions_[i].polynomial().evaluate(mapped, count, after);
+                for (std::size_t j = 0; j < count; ++j)
+                    if (std::abs(after[j] - before[first + j]) / changeScales_[i] / tolerances_[i] > 1) return false;
+            }
         }
         return true;
     }
@@ -178,11 +182,10 @@ private:
     const std::vector<double>& changeValuesOf(std::size_t i) const {
         std::vector<double>& values = changeValues_[i];
         if (values.empty()) {
+            values.resize(changePoints_.size());
+            functions_[i].polynomial().evaluate(changePoints_.data(), changePoints_.size(), values.data());
             double scale = 0;
-            for (const Eigen::Vector3d& w : changePoints_) {
-                values.push_back(functions_[i].value(w));
-                scale = std::max(scale, std::abs(values.back()));
-            }
+            for (const double value : values) scale = std::max(scale, std::abs(value));
             changeScales_[i] = scale;
         }
         return values;
