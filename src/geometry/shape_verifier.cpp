@@ -62,12 +62,14 @@ std::uint64_t ShapeVerifier::cellKey(const Eigen::Vector3d& p) const {
     return key;
 }
 
-double ShapeVerifier::squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound) const {
+double ShapeVerifier::squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound,
+                                               double enough) const {
     const auto found = sampleInCell_.find(cellKey(p));
     if (found != sampleInCell_.end()) {
         const double d = (samples_[found->second] - p).squaredNorm();  // the sample point is on the surface
         if (d <= std::min(accept, snapSquared_)) return d;
     }
+    if (enough >= 0) return bvh_.squaredDistanceAbove(center_ + p, enough, bound);
     return bvh_.squaredDistance(center_ + p, bound);
 }
 
@@ -87,9 +89,12 @@ double ShapeVerifier::farthestOnto(const ShapeVerifier& target, const Eigen::Mat
                 return std::sqrt(d);
             }
         }
+    // Only the largest distance counts: a point's search stops at the first triangle no farther than the
+    // largest so far, which leaves that largest (and the first point beyond the rejection distance) as
+    // they are.
     for (std::size_t i = 0; i < count; ++i) {
         const Eigen::Vector3d& p = samples_[i];
-        const double d = target.squaredDistanceToSurface(linear * p, rejectSquared, bound);
+        const double d = target.squaredDistanceToSurface(linear * p, rejectSquared, bound, worst);
         worst = std::max(worst, d);
         if (d > rejectSquared) {
             if (hints) hints->remember(std::uint32_t(i));

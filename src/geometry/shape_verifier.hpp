@@ -72,7 +72,9 @@ private:
     // Squared distance from p (about center_) to the surface (searched up to `bound`), or an upper bound
     // of it no larger than `accept` when p is that close to a sample point: a map that is a symmetry of
     // the tessellation takes sample points onto sample points, found by one hash lookup, not a search.
-    double squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound) const;
+    // With `enough` >= 0, the distance only when it is above that (else any value up to it, see
+    // TriangleBvh::squaredDistanceAbove).
+    double squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound, double enough = -1) const;
     std::uint64_t cellKey(const Eigen::Vector3d& p) const;
 
     const TriangleMesh& mesh_;

@@ -79,6 +79,16 @@ void TriangleBvh::build(std::uint32_t node, std::uint32_t begin, std::uint32_t e
 
 double TriangleBvh::squaredDistance(const Eigen::Vector3d& p, double bound, Eigen::Vector3d* closest,
                                     std::uint32_t* triangle, const Eigen::Vector3d* facing) const {
+    return search<false>(p, bound, 0, closest, triangle, facing);
+}
+
+double TriangleBvh::squaredDistanceAbove(const Eigen::Vector3d& p, double enough, double bound) const {
+    return search<true>(p, bound, enough, nullptr, nullptr, nullptr);
+}
+
+template <bool kStopWithinEnough>
+double TriangleBvh::search(const Eigen::Vector3d& p, double bound, double enough, Eigen::Vector3d* closest,
+                           std::uint32_t* triangle, const Eigen::Vector3d* facing) const {
     if (nodes_.empty()) return bound;
     double best = bound;
     // Each node with its box's distance to p, computed once: when it is pushed (to order the children).
@@ -105,6 +115,7 @@ double TriangleBvh::squaredDistance(const Eigen::Vector3d& p, double bound, Eige
                     best = d;
                     if (closest) *closest = q;
                     if (triangle) *triangle = order_[i];
+                    if (kStopWithinEnough && best <= enough) return best;
                 }
             }
             continue;

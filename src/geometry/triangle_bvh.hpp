@@ -27,6 +27,10 @@ public:
     // whose normal (by their winding) points to the same side as it.
     double squaredDistance(const Eigen::Vector3d& p, double bound, Eigen::Vector3d* closest = nullptr,
                            std::uint32_t* triangle = nullptr, const Eigen::Vector3d* facing = nullptr) const;
+    // The squared distance from p to the surface when it is above `enough` (searched up to bound, as
+    // above); otherwise some value no larger than `enough`, returned as soon as a triangle that close is
+    // found: all that the largest of many distances needs, which most points do not change.
+    double squaredDistanceAbove(const Eigen::Vector3d& p, double enough, double bound) const;
 
     bool empty() const { return order_.empty(); }
 
@@ -35,6 +39,9 @@ private:
         Eigen::AlignedBox3d box;
         std::uint32_t first = 0, count = 0;  // count > 0: leaf
     };
+    template <bool kStopWithinEnough>
+    double search(const Eigen::Vector3d& p, double bound, double enough, Eigen::Vector3d* closest,
+                  std::uint32_t* triangle, const Eigen::Vector3d* facing) const;
     void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::vector<Eigen::Vector3d>& centers);
 
     const TriangleMesh& mesh_;
