@@ -18,6 +18,13 @@ constexpr double kSnapCell = 1e-4;
 constexpr double kSnapDistance = 1e-6;
 }  // namespace
 
+void RejectingPoints::remember(std::uint32_t index) {
+    const auto known = std::find(indices_.begin(), indices_.end(), index);
+    if (known != indices_.end()) indices_.erase(known);
+    if (indices_.size() == kCapacity) indices_.pop_back();
+    indices_.insert(indices_.begin(), index);
+}
+
 ShapeVerifier::ShapeVerifier(const TriangleMesh& mesh, const Eigen::Vector3d& center)
     : mesh_(mesh), bvh_(mesh), center_(center) {
     std::vector<Eigen::Vector3d> points;
@@ -55,36 +62,54 @@ std::uint64_t ShapeVerifier::cellKey(const Eigen::Vector3d& p) const {
     return key;
 }
 
-double ShapeVerifier::squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound) const {
+double ShapeVerifier::squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound,
+                                               double enough) const {
     const auto found = sampleInCell_.find(cellKey(p));
     if (found != sampleInCell_.end()) {
         const double d = (samples_[found->second] - p).squaredNorm();  // the sample point is on the surface
         if (d <= std::min(accept, snapSquared_)) return d;
     }
+    if (enough >= 0) return bvh_.squaredDistanceAbove(center_ + p, enough, bound);
     return bvh_.squaredDistance(center_ + p, bound);
 }
 
 double ShapeVerifier::farthestOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double reject,
-                                   std::size_t points) const {
+                                   std::size_t points, RejectingPoints* hints) const {
     double worst = 0;
     const double rejectSquared = reject * reject;
     const std::size_t count = std::min(points, samples_.size());
+    // No need to search beyond the rejection distance: anything farther rejects the map.
+    const double bound = 2 * rejectSquared + 1e-300;
+    if (hints)
+        for (const std::uint32_t i : hints->indices()) {
+            if (i >= count) continue;
+            const double d = target.squaredDistanceToSurface(linear * samples_[i], rejectSquared, bound);
+            if (d > rejectSquared) {
+                hints->remember(i);
+                return std::sqrt(d);
+            }
+        }
+    // Only the largest distance counts: a point's search stops at the first triangle no farther than the
+    // largest so far, which leaves that largest (and the first point beyond the rejection distance) as
+    // they are.
     for (std::size_t i = 0; i < count; ++i) {
         const Eigen::Vector3d& p = samples_[i];
-        // No need to search beyond the rejection distance: anything farther rejects the map.
-        const double bound = 2 * rejectSquared + 1e-300;
-        const double d = target.squaredDistanceToSurface(linear * p, rejectSquared, bound);
+        const double d = target.squaredDistanceToSurface(linear * p, rejectSquared, bound, worst);
         worst = std::max(worst, d);
-        if (d > rejectSquared) break;
+        if (d > rejectSquared) {
+            if (hints) hints->remember(std::uint32_t(i));
+            break;
+        }
     }
     return std::sqrt(worst);
 }
 
-double ShapeVerifier::deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points) const {
-    const double forward = farthestOnto(*this, linear, reject, points);
+double ShapeVerifier::deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points,
+                                RejectingPoints* hints) const {
+    const double forward = farthestOnto(*this, linear, reject, points, hints);
     // An involution (mirror, half turn, inversion) is its own inverse: one direction measures both.
     if (forward > reject || (linear - linear.transpose()).norm() < 1e-12) return forward;
-    return std::max(forward, farthestOnto(*this, linear.transpose(), reject, points));
+    return std::max(forward, farthestOnto(*this, linear.transpose(), reject, points, hints));
 }
 
 Eigen::Vector3d ShapeVerifier::farthestFromAxis(const Eigen::Vector3d& axis) const {

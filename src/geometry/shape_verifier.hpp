@@ -17,6 +17,20 @@ namespace symcompress {
 
 constexpr std::size_t kCentroidSamplesUpTo = 100000;
 
+// Sample points that rejected recent maps (indices, most recent first): a near miss tends to fail where
+// the last one did, so a search that is given them asks them first. Only the verdict is the same with and
+// without them: a rejected map's returned distance is then the first hint's beyond the rejection distance,
+// not the first point's in the samples' order. One per thread of work.
+class RejectingPoints {
+public:
+    const std::vector<std::uint32_t>& indices() const { return indices_; }
+    void remember(std::uint32_t index);
+
+private:
+    static constexpr std::size_t kCapacity = 8;
+    std::vector<std::uint32_t> indices_;
+};
+
 class ShapeVerifier {
 public:
     // The mesh must outlive the verifier; maps are taken about `center`.
@@ -25,7 +39,8 @@ public:
     // d_A of x -> center + linear (x - center) (linear orthogonal), over the first `points` sample points
     // (all by default; the order spreads them over the shape). Stops at the first sample point farther
     // than `reject` and returns that point's distance (> reject).
-    double deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points = SIZE_MAX) const;
+    double deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points = SIZE_MAX,
+                     RejectingPoints* hints = nullptr) const;
 
     // The map near `linear` (same determinant) that best fits the data: Gauss-Newton on the point-to-plane
     // distances of the mapped sample points to their closest triangles, which converges in a few steps
@@ -42,7 +57,11 @@ public:
     // x -> target center + linear (x - center), over the first `points` of them; stops at the first point
     // farther than `reject` and returns its distance.
     double farthestOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double reject,
-                        std::size_t points = SIZE_MAX) const;
+                        std::size_t points = SIZE_MAX, RejectingPoints* hints = nullptr) const;
+
+    // Whether deviations up to `distance` come out the same whatever larger rejection distance they are
+    // measured with: sample points answer for the surface only within a distance below it.
+    bool exactUpTo(double distance) const { return snapSquared_ <= distance * distance; }
 
     const Eigen::Vector3d& center() const { return center_; }
 
@@ -53,7 +72,9 @@ private:
     // Squared distance from p (about center_) to the surface (searched up to `bound`), or an upper bound
     // of it no larger than `accept` when p is that close to a sample point: a map that is a symmetry of
     // the tessellation takes sample points onto sample points, found by one hash lookup, not a search.
-    double squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound) const;
+    // With `enough` >= 0, the distance only when it is above that (else any value up to it, see
+    // TriangleBvh::squaredDistanceAbove).
+    double squaredDistanceToSurface(const Eigen::Vector3d& p, double accept, double bound, double enough = -1) const;
     std::uint64_t cellKey(const Eigen::Vector3d& p) const;
 
     const TriangleMesh& mesh_;

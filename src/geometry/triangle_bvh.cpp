@@ -43,22 +43,26 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : mesh_(mesh) {
     nodes_.reserve(2 * (count / kLeafSize + 1));
     nodes_.emplace_back();
     build(0, 0, count, centers);
+    corners_.reserve(3 * std::size_t(count));
+    for (const std::uint32_t t : order_)
+        for (auto v : mesh.triangles[t]) corners_.push_back(mesh.positions[v]);
 }
 
 void TriangleBvh::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end,
                         std::vector<Eigen::Vector3d>& centers) {
-    Eigen::AlignedBox3d box, centerBox;
-    for (std::uint32_t i = begin; i < end; ++i) {
-        const Triangle& tri = mesh_.triangles[order_[i]];
-        for (auto v : tri) box.extend(mesh_.positions[v]);
-        centerBox.extend(centers[order_[i]]);
-    }
-    nodes_[node].box = box;
     if (end - begin <= kLeafSize) {
+        Eigen::AlignedBox3d box;
+        for (std::uint32_t i = begin; i < end; ++i)
+            for (auto v : mesh_.triangles[order_[i]]) box.extend(mesh_.positions[v]);
+        nodes_[node].box = box;
         nodes_[node].first = begin;
         nodes_[node].count = end - begin;
         return;
     }
+    // An inner node's box is the union of its children's (found below, bottom up: each corner is read once,
+    // not once per level); the split needs only the box of the centers.
+    Eigen::AlignedBox3d centerBox;
+    for (std::uint32_t i = begin; i < end; ++i) centerBox.extend(centers[order_[i]]);
     int axis;
     centerBox.sizes().maxCoeff(&axis);
     const std::uint32_t middle = begin + (end - begin) / 2;
@@ -70,41 +74,59 @@ void TriangleBvh::build(std::uint32_t node, std::uint32_t begin, std::uint32_t e
     nodes_.emplace_back();
     build(children, begin, middle, centers);
     build(children + 1, middle, end, centers);
+    nodes_[node].box = nodes_[children].box.merged(nodes_[children + 1].box);
 }
 
 double TriangleBvh::squaredDistance(const Eigen::Vector3d& p, double bound, Eigen::Vector3d* closest,
                                     std::uint32_t* triangle, const Eigen::Vector3d* facing) const {
+    return search<false>(p, bound, 0, closest, triangle, facing);
+}
+
+double TriangleBvh::squaredDistanceAbove(const Eigen::Vector3d& p, double enough, double bound) const {
+    return search<true>(p, bound, enough, nullptr, nullptr, nullptr);
+}
+
+template <bool kStopWithinEnough>
+double TriangleBvh::search(const Eigen::Vector3d& p, double bound, double enough, Eigen::Vector3d* closest,
+                           std::uint32_t* triangle, const Eigen::Vector3d* facing) const {
     if (nodes_.empty()) return bound;
     double best = bound;
-    std::uint32_t stack[128];
+    // Each node with its box's distance to p, computed once: when it is pushed (to order the children).
+    struct Entry {
+        std::uint32_t node;
+        double distance;
+    };
+    Entry stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, nodes_[0].box.squaredExteriorDistance(p)};
     while (top > 0) {
-        const Node& node = nodes_[stack[--top]];
-        if (node.box.squaredExteriorDistance(p) >= best) continue;
+        const Entry entry = stack[--top];
+        if (entry.distance >= best) continue;
+        const Node& node = nodes_[entry.node];
         if (node.count > 0) {
             for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-                const Triangle& tri = mesh_.triangles[order_[i]];
-                if (facing && (mesh_.positions[tri[1]] - mesh_.positions[tri[0]])
-                                      .cross(mesh_.positions[tri[2]] - mesh_.positions[tri[0]])
-                                      .dot(*facing) <= 0)
-                    continue;
-                const Eigen::Vector3d q = closestPointOnTriangle(p, mesh_.positions[tri[0]], mesh_.positions[tri[1]],
-                                                                 mesh_.positions[tri[2]]);
+                const Eigen::Vector3d& a = corners_[3 * std::size_t(i)];
+                const Eigen::Vector3d& b = corners_[3 * std::size_t(i) + 1];
+                const Eigen::Vector3d& c = corners_[3 * std::size_t(i) + 2];
+                if (facing && (b - a).cross(c - a).dot(*facing) <= 0) continue;
+                const Eigen::Vector3d q = closestPointOnTriangle(p, a, b, c);
                 const double d = (q - p).squaredNorm();
                 if (d < best) {
                     best = d;
                     if (closest) *closest = q;
                     if (triangle) *triangle = order_[i];
+                    if (kStopWithinEnough && best <= enough) return best;
                 }
             }
             continue;
         }
         // Nearer child last, so that it is searched first.
         const std::uint32_t a = node.first, b = node.first + 1;
-        const bool aNearer = nodes_[a].box.squaredExteriorDistance(p) < nodes_[b].box.squaredExteriorDistance(p);
-        stack[top++] = aNearer ? b : a;
-        stack[top++] = aNearer ? a : b;
+        const double aDistance = nodes_[a].box.squaredExteriorDistance(p),
+                     bDistance = nodes_[b].box.squaredExteriorDistance(p);
+        const bool aNearer = aDistance < bDistance;
+        stack[top++] = aNearer ? Entry{b, bDistance} : Entry{a, aDistance};
+        stack[top++] = aNearer ? Entry{a, aDistance} : Entry{b, bDistance};
     }
     return best;
 }

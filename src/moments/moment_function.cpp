@@ -26,7 +26,9 @@ MomentFunction::MomentFunction(const MomentCoefficients& coefficients, int order
 }
 
 Eigen::Vector3d MomentFunction::tangentialGradient(const Eigen::Vector3d& w, Eigen::Vector3d* euclidean) const {
-    const Eigen::Vector3d gradient(gradient_[0](w), gradient_[1](w), gradient_[2](w));
+    const HomogeneousPolynomial* parts[3] = {&gradient_[0], &gradient_[1], &gradient_[2]};
+    Eigen::Vector3d gradient;
+    HomogeneousPolynomial::evaluateTogether(parts, 3, w, gradient.data());
     if (euclidean) *euclidean = gradient;
     return gradient - gradient.dot(w) * w;
 }
@@ -37,9 +39,13 @@ Eigen::Matrix3d MomentFunction::tangentialHessian(const Eigen::Vector3d& w) cons
 
 Eigen::Matrix3d MomentFunction::tangentialHessian(const Eigen::Vector3d& w, const Eigen::Vector3d& gradient) const {
     // Riemannian Hessian on the unit sphere: P (D^2 G - (w . grad G) I) P, P = I - w w^T.
+    // The six distinct second derivatives, evaluated side by side.
+    const HomogeneousPolynomial* parts[6] = {&hessian_[0][0], &hessian_[0][1], &hessian_[0][2],
+                                             &hessian_[1][1], &hessian_[1][2], &hessian_[2][2]};
+    double second[6];
+    HomogeneousPolynomial::evaluateTogether(parts, 6, w, second);
     Eigen::Matrix3d hessian;
-    for (int a = 0; a < 3; ++a)
-        for (int b = a; b < 3; ++b) hessian(a, b) = hessian(b, a) = hessian_[a][b](w);
+    hessian << second[0], second[1], second[2], second[1], second[3], second[4], second[2], second[4], second[5];
     const Eigen::Matrix3d projector = Eigen::Matrix3d::Identity() - w * w.transpose();
     return projector * (hessian - gradient.dot(w) * Eigen::Matrix3d::Identity()) * projector;
 }

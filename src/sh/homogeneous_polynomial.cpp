@@ -36,6 +36,75 @@ double HomogeneousPolynomial::operator()(const Eigen::Vector3d& point) const {
     return sum;
 }
 
+namespace {
+
+constexpr int kStackDegree = 64;  // the largest degree whose powers the evaluations below keep on the stack
+
+// Powers 0..degree of each coordinate, as operator() computes them (one product after another).
+void powersOf(const Eigen::Vector3d& point, int degree, double* xs, double* ys, double* zs) {
+    xs[0] = ys[0] = zs[0] = 1;
+    for (int e = 1; e <= degree; ++e) {
+        xs[e] = xs[e - 1] * point.x();
+        ys[e] = ys[e - 1] * point.y();
+        zs[e] = zs[e - 1] * point.z();
+    }
+}
+
+// kLanes independent sums in the order of operator(): lane c takes its coefficients from coefficients[c]
+// and its powers from xs[c], ys[c], zs[c].
+template <int kLanes>
+void sumLanes(int degree, const double* const* coefficients, const double (*xs)[kStackDegree + 1],
+              const double (*ys)[kStackDegree + 1], const double (*zs)[kStackDegree + 1], double* values) {
+    double sum[kLanes] = {};
+    int index = 0;
+    for (int k = 0; k <= degree; ++k) {
+        double row[kLanes] = {};
+        for (int j = 0; j <= degree - k; ++j, ++index)
+            for (int c = 0; c < kLanes; ++c) row[c] += coefficients[c][index] * xs[c][degree - j - k] * ys[c][j];
+        for (int c = 0; c < kLanes; ++c) sum[c] += row[c] * zs[c][k];
+    }
+    for (int c = 0; c < kLanes; ++c) values[c] = sum[c];
+}
+
+}  // namespace
+
+void HomogeneousPolynomial::evaluate(const Eigen::Vector3d* points, std::size_t count, double* values) const {
+    constexpr int kLanes = 4;
+    std::size_t i = 0;
+    if (degree_ <= kStackDegree) {
+        double xs[kLanes][kStackDegree + 1], ys[kLanes][kStackDegree + 1], zs[kLanes][kStackDegree + 1];
+        const double* coefficients[kLanes];
+        for (int c = 0; c < kLanes; ++c) coefficients[c] = coefficients_.data();
+        for (; i + kLanes <= count; i += kLanes) {
+            for (int c = 0; c < kLanes; ++c) powersOf(points[i + std::size_t(c)], degree_, xs[c], ys[c], zs[c]);
+            sumLanes<kLanes>(degree_, coefficients, xs, ys, zs, values + i);
+        }
+    }
+    for (; i < count; ++i) values[i] = (*this)(points[i]);
+}
+
+void HomogeneousPolynomial::evaluateTogether(const HomogeneousPolynomial* const* polynomials, int count,
+                                             const Eigen::Vector3d& point, double* values) {
+    const int degree = count > 0 ? polynomials[0]->degree_ : 0;
+    bool together = count <= kMaxTogether && degree <= kStackDegree;
+    for (int c = 0; c < count; ++c) together = together && polynomials[c]->degree_ == degree;
+    if (!together) {
+        for (int c = 0; c < count; ++c) values[c] = (*polynomials[c])(point);
+        return;
+    }
+    double xs[kMaxTogether][kStackDegree + 1], ys[kMaxTogether][kStackDegree + 1], zs[kMaxTogether][kStackDegree + 1];
+    powersOf(point, degree, xs[0], ys[0], zs[0]);
+    const double* coefficients[kMaxTogether];
+    for (int c = 0; c < count; ++c) {
+        coefficients[c] = polynomials[c]->coefficients_.data();
+        if (c > 0)
+            for (int e = 0; e <= degree; ++e) xs[c][e] = xs[0][e], ys[c][e] = ys[0][e], zs[c][e] = zs[0][e];
+    }
+    if (count == 3) return sumLanes<3>(degree, coefficients, xs, ys, zs, values);
+    if (count == 6) return sumLanes<6>(degree, coefficients, xs, ys, zs, values);
+    for (int c = 0; c < count; ++c) values[c] = (*polynomials[c])(point);
+}
+
 HomogeneousPolynomial HomogeneousPolynomial::derivative(int axis) const {
     if (degree_ == 0) return HomogeneousPolynomial(0);
     HomogeneousPolynomial result(degree_ - 1);

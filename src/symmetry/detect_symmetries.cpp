@@ -60,95 +60,144 @@ Eigen::Matrix3d rotationAbout(const Eigen::Vector3d& axis, double angle) {
     return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
 }
 
+// The sines and cosines of the ring points about any axis, and the Fourier factors of the rings: the same
+// for every axis of a shape, so computed once per detection rather than once per candidate axis.
+class RingLayout {
+public:
+    explicit RingLayout(int azimuths) : azimuths_(azimuths) {
+        modePoints_ = anglesAt(0);
+        changePoints_ = anglesAt(0.37);  // off the azimuths of the modes
+        // e^(-2 pi i m k / azimuths), row m.
+        for (int m = 0; m < azimuths_ / 2; ++m)
+            for (int k = 0; k < azimuths_; ++k) twiddles_.push_back(std::polar(1.0, -2 * kPi * m * k / azimuths_));
+    }
+
+    // sin(theta), cos(phi), sin(phi), cos(theta) of one ring point.
+    struct Angles {
+        double sinTheta, cosPhi, sinPhi, cosTheta;
+    };
+    int azimuths() const { return azimuths_; }
+    const std::vector<Angles>& modePoints() const { return modePoints_; }
+    const std::vector<Angles>& changePoints() const { return changePoints_; }
+    const std::complex<double>& twiddle(int m, int k) const { return twiddles_[std::size_t(m * azimuths_ + k)]; }
+
+private:
+    // Ring after ring (each angle of kRingAngles and its mirror about the equator), `azimuths` points on
+    // each, the first `offset` of a step from the frame's first axis.
+    std::vector<Angles> anglesAt(double offset) const {
+        std::vector<Angles> angles;
+        for (double theta : kRingAngles)
+            for (double ring : {theta, kPi - theta})
+                for (int k = 0; k < azimuths_; ++k) {
+                    const double phi = 2 * kPi * (k + offset) / azimuths_;
+                    angles.push_back({std::sin(ring), std::cos(phi), std::sin(phi), std::cos(ring)});
+                }
+        return angles;
+    }
+
+    int azimuths_;
+    std::vector<Angles> modePoints_, changePoints_;
+    std::vector<std::complex<double>> twiddles_;
+};
+
 // The moment functions seen from one axis a: values on rings of constant angle to a, which tell which
 // rotations about a, mirrors with normal a and rotoreflections about a leave every function unchanged:
 // a cheap filter before the shape is asked. Changes are measured relative to each function's largest
-// value and compared with that function's own tolerance, so that 1 means "at the tolerance".
+// value and compared with that function's own tolerance, so that 1 means "at the tolerance". Most axes
+// of a shape with a degenerate function (a circle of critical points) allow nothing, so every answer
+// stops as soon as it is known, and the values at the comparison points are computed only when asked.
 class AxisView {
 public:
     AxisView(const std::vector<MomentFunction>& functions, const std::vector<double>& tolerances,
-             const Eigen::Vector3d& axis, int azimuths)
-        : functions_(functions), tolerances_(tolerances), axis_(axis), azimuths_(azimuths) {
+             const Eigen::Vector3d& axis, const RingLayout& layout)
+        : functions_(functions),
+          tolerances_(tolerances),
+          axis_(axis),
+          layout_(layout),
+          changeValues_(functions.size()),
+          changeScales_(functions.size(), 0.0) {
         const Eigen::Vector3d helper = std::abs(axis.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
         u_ = axis.cross(helper).normalized();
         v_ = axis.cross(u_);
-        // The points `change` compares at, off the azimuths of modeAmplitudes, and the functions there:
-        // the same for every map tried about this axis.
-        changePoints_ = ringPoints(0.37);
-        for (const MomentFunction& f : functions_) {
-            std::vector<double> values;
-            double scale = 0;
-            for (const Eigen::Vector3d& w : changePoints_) {
-                values.push_back(f.value(w));
-                scale = std::max(scale, std::abs(values.back()));
-            }
-            changeValues_.push_back(std::move(values));
-            changeScales_.push_back(scale);
-        }
+        for (const RingLayout::Angles& a : layout_.changePoints()) changePoints_.push_back(direction(a));
     }
 
-    Eigen::Vector3d direction(double theta, double phi) const {
-        return std::sin(theta) * (std::cos(phi) * u_ + std::sin(phi) * v_) + std::cos(theta) * axis_;
+    Eigen::Vector3d direction(const RingLayout::Angles& a) const {
+        return a.sinTheta * (a.cosPhi * u_ + a.sinPhi * v_) + a.cosTheta * axis_;
     }
 
-    // Ring after ring (each angle of kRingAngles and its mirror about the equator), `azimuths_` points on
-    // each, the first `offset` of a step from the u axis.
-    std::vector<Eigen::Vector3d> ringPoints(double offset) const {
-        std::vector<Eigen::Vector3d> points;
-        for (double theta : kRingAngles)
-            for (double ring : {theta, kPi - theta})
-                for (int k = 0; k < azimuths_; ++k) points.push_back(direction(ring, 2 * kPi * (k + offset) / azimuths_));
-        return points;
-    }
-
-    // For each Fourier mode m about the axis (1 <= m < azimuths / 2), its largest relative amplitude over
-    // functions and rings, in units of the functions' tolerances.
-    std::vector<double> modeAmplitudes() const {
-        std::vector<double> amplitude(azimuths_ / 2, 0.0);
-        const std::vector<Eigen::Vector3d> points = ringPoints(0);  // the same for every function
-        // The Fourier factors e^(-2 pi i m k / azimuths), row m: computed once, not per function and ring.
-        std::vector<std::complex<double>> twiddles;
-        for (int m = 0; m < azimuths_ / 2; ++m)
-            for (int k = 0; k < azimuths_; ++k) twiddles.push_back(std::polar(1.0, -2 * kPi * m * k / azimuths_));
-        for (std::size_t i = 0; i < functions_.size(); ++i)
-            for (std::size_t first = 0; first < points.size(); first += std::size_t(azimuths_)) {
-                std::vector<double> values(azimuths_);
-                double energy = 0;
-                for (int k = 0; k < azimuths_; ++k) {
-                    values[k] = functions_[i].value(points[first + std::size_t(k)]);
-                    energy += values[k] * values[k];
-                }
-                for (int m = 1; m < azimuths_ / 2; ++m) {
-                    std::complex<double> mode = 0;
-                    for (int k = 0; k < azimuths_; ++k) mode += values[k] * twiddles[std::size_t(m * azimuths_ + k)];
-                    // Parseval: the pair (m, -m) carries 2 |mode|^2 / K of the ring's energy.
-                    const double relative = std::sqrt(2 * std::norm(mode) / (azimuths_ * energy));
-                    amplitude[m] = std::max(amplitude[m], relative / tolerances_[i]);
-                }
-            }
-        return amplitude;
-    }
-
-    // The largest change of the functions under w -> linear w at the ring points, in units of their tolerances.
-    double change(const Eigen::Matrix3d& linear) const {
-        double largest = 0;
+    // The gcd of the Fourier modes m about the axis (1 <= m < azimuths / 2) present in some function on
+    // some ring, present meaning a relative amplitude above the function's tolerance; 0 when none is.
+    // The moments allow n-fold rotations for n dividing it: once it is 1, no further mode changes it.
+    int presentModes() const {
+        const int azimuths = layout_.azimuths();
+        std::vector<Eigen::Vector3d> points;  // the same for every function
+        for (const RingLayout::Angles& a : layout_.modePoints()) points.push_back(direction(a));
+        std::vector<char> present(std::size_t(azimuths / 2), 0);
+        int modes = 0;
+        std::vector<double> values(static_cast<std::size_t>(azimuths));
         for (std::size_t i = 0; i < functions_.size(); ++i) {
-            double difference = 0;
-            for (std::size_t j = 0; j < changePoints_.size(); ++j)
-                difference = std::max(difference, std::abs(functions_[i].value(linear * changePoints_[j]) - changeValues_[i][j]));
-            largest = std::max(largest, difference / changeScales_[i] / tolerances_[i]);
+            for (std::size_t first = 0; first < points.size(); first += std::size_t(azimuths)) {
+                functions_[i].polynomial().evaluate(&points[first], std::size_t(azimuths), values.data());
+                double energy = 0;
+                for (int k = 0; k < azimuths; ++k) energy += values[k] * values[k];
+                for (int m = 1; m < azimuths / 2; ++m) {
+                    if (present[m]) continue;
+                    std::complex<double> mode = 0;
+                    for (int k = 0; k < azimuths; ++k) mode += values[k] * layout_.twiddle(m, k);
+                    // Parseval: the pair (m, -m) carries 2 |mode|^2 / K of the ring's energy.
+                    const double relative = std::sqrt(2 * std::norm(mode) / (azimuths * energy));
+                    if (relative / tolerances_[i] > 1) {
+                        present[m] = 1;
+                        modes = std::gcd(modes, m);
+                    }
+                }
+                if (modes == 1) return 1;
+            }
         }
-        return largest;
+        return modes;
+    }
+
+    // Whether w -> linear w changes every function by at most its tolerance at the comparison points.
+    bool allows(const Eigen::Matrix3d& linear) const {
+        // A few points at a time (evaluated side by side), in order.
+        constexpr std::size_t kChunk = 8;
+        Eigen::Vector3d mapped[kChunk];
+        double after[kChunk];
+        for (std::size_t i = 0; i < functions_.size(); ++i) {
+            const std::vector<double>& before = changeValuesOf(i);
+            for (std::size_t first = 0; first < changePoints_.size(); first += kChunk) {
+                const std::size_t count = std::min(kChunk, changePoints_.size() - first);
+                for (std::size_t j = 0; j < count; ++j) mapped[j] = linear * changePoints_[first + j];
+                functions_[i].polynomial().evaluate(mapped, count, after);
+                for (std::size_t j = 0; j < count; ++j)
+                    if (std::abs(after[j] - before[first + j]) / changeScales_[i] / tolerances_[i] > 1) return false;
+            }
+        }
+        return true;
     }
 
 private:
+    // Function i at the comparison points, and its largest magnitude there: the same for every map tried.
+    const std::vector<double>& changeValuesOf(std::size_t i) const {
+        std::vector<double>& values = changeValues_[i];
+        if (values.empty()) {
+            values.resize(changePoints_.size());
+            functions_[i].polynomial().evaluate(changePoints_.data(), changePoints_.size(), values.data());
+            double scale = 0;
+            for (const double value : values) scale = std::max(scale, std::abs(value));
+            changeScales_[i] = scale;
+        }
+        return values;
+    }
+
     const std::vector<MomentFunction>& functions_;
     const std::vector<double>& tolerances_;
     Eigen::Vector3d axis_, u_, v_;
-    int azimuths_;
+    const RingLayout& layout_;
     std::vector<Eigen::Vector3d> changePoints_;
-    std::vector<std::vector<double>> changeValues_;  // per function, at changePoints_
-    std::vector<double> changeScales_;               // per function, its largest magnitude there
+    mutable std::vector<std::vector<double>> changeValues_;  // per function, at changePoints_, when first asked
+    mutable std::vector<double> changeScales_;               // per function, its largest magnitude there
 };
 
 std::vector<int> divisorsDescending(int n) {
@@ -257,6 +306,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         return rotationAbout(axis, before.angle) * mirrorWithNormal(axis);
     };
     std::vector<Eigen::Matrix3d> generators;
+    std::vector<double> generatorDeviations;  // generators[i]'s d_A, as measured when it was accepted
     std::vector<Eigen::Vector3d> revolutionAxes;
     std::mutex generatorsMutex;
     std::vector<Eigen::Matrix3d> known{Eigen::Matrix3d::Identity()};  // the group the generators so far make
@@ -268,37 +318,40 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     // new one is screened on a few sample points, refined, and verified on all of them.
     const std::size_t limit = 4 * std::size_t(options.maxFold) + 8;
     std::atomic<bool> overflow{false};  // the accepted maps make no finite group: stop looking
-    auto tryAccept = [&](const Eigen::Matrix3d& map) {
+    // Near misses tend to fail at the same sample points: each axis's work remembers them (`hints`).
+    auto tryAccept = [&](const Eigen::Matrix3d& map, RejectingPoints* hints) {
         if (overflow) return false;
         if (isKnown(map)) return true;
-        if (verifier.deviation(map, preliminary, kScreeningPoints) > preliminary) return false;
+        if (verifier.deviation(map, preliminary, kScreeningPoints, hints) > preliminary) return false;
         Eigen::Matrix3d best = refined(map);
-        if (verifier.deviation(best, tolerance) > tolerance) {
-            if (verifier.deviation(map, tolerance) > tolerance) return false;
+        double deviation = verifier.deviation(best, tolerance, SIZE_MAX, hints);
+        if (deviation > tolerance) {
+            deviation = verifier.deviation(map, tolerance, SIZE_MAX, hints);
+            if (deviation > tolerance) return false;
             best = map;
         }
         std::lock_guard<std::mutex> lock(generatorsMutex);
         generators.push_back(best);
+        generatorDeviations.push_back(deviation);
         known = closeGroup(generators, limit);
         if (known.size() > limit) overflow = true;
         return true;
     };
 
     // Every map the moments allow about each axis, tested on the shape; the largest fold per axis.
-    const int azimuths = 2 * maxOrder + 2;
+    const RingLayout layout(2 * maxOrder + 2);
     withThreads(options.threads, [&] {
         tbb::parallel_for(std::size_t(0), axes.size(), [&](std::size_t i) {
             const Eigen::Vector3d& axis = axes[i];
-            const AxisView view(tests, momentTolerances, axis, azimuths);
-            const std::vector<double> amplitude = view.modeAmplitudes();
-            int modes = 0;  // gcd of the modes present: the moments allow n-fold rotations for n dividing it
-            for (int m = 1; m < int(amplitude.size()); ++m)
-                if (amplitude[m] > 1) modes = std::gcd(modes, m);
+            const AxisView view(tests, momentTolerances, axis, layout);
+            RejectingPoints hints;                  // decisions only: never for a distance that is reported
+            const int modes = view.presentModes();  // the moments allow n-fold rotations for n dividing it
             std::vector<int> folds;
             if (modes == 0) {  // invariant under every rotation about the axis: find n on the shape
                 // Unless the shape itself is, within the tolerance, invariant under a rotation by an angle
                 // that belongs to no small fold: a surface of revolution has no finite fold to report.
-                if (verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), tolerance) <= tolerance) {
+                if (verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), tolerance, SIZE_MAX, &hints) <=
+                    tolerance) {
                     std::lock_guard<std::mutex> lock(generatorsMutex);
                     revolutionAxes.push_back(axis);
                     return;
@@ -312,22 +365,27 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 // many (a nearly round shape at a loose tolerance), refining each would cost too much, so
                 // they must pass as they are.
                 // A generic turn within the preliminary bound says the same at once.
-                const bool nearlyRound =
-                    verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), preliminary) <= preliminary;
+                const bool nearlyRound = verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), preliminary,
+                                                            SIZE_MAX, &hints) <= preliminary;
                 std::vector<int> plausible;
                 std::map<int, double> fit;  // deviation of the rotation by 2 pi / n, for the plausible n
                 if (!nearlyRound)
                     for (int n : folds) {
-                        const double d = verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary);
+                        const double d =
+                            verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary, SIZE_MAX, &hints);
                         if (d <= preliminary) plausible.push_back(n), fit[n] = d;
                     }
                 if (nearlyRound || plausible.size() > kMaxRefinedFolds) {
                     if (nearlyRound) plausible = folds;
-                    plausible.erase(std::remove_if(plausible.begin(), plausible.end(), [&](int n) {
-                        const double d = verifier.deviation(rotationAbout(axis, 2 * kPi / n), tolerance);
-                        fit[n] = d;
-                        return d > tolerance;
-                    }), plausible.end());
+                    plausible.erase(std::remove_if(plausible.begin(), plausible.end(),
+                                                   [&](int n) {
+                                                       const double d =
+                                                           verifier.deviation(rotationAbout(axis, 2 * kPi / n),
+                                                                              tolerance, SIZE_MAX, &hints);
+                                                       fit[n] = d;
+                                                       return d > tolerance;
+                                                   }),
+                                    plausible.end());
                 }
                 // A 24-sided part is within a loose tolerance of 360-fold too: the folds that fit best
                 // (within a factor of the best fit) come first, the largest of them first.
@@ -343,17 +401,17 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
             int fold = 1;
             for (int n : folds) {
                 const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi / n);
-                if ((modes == 0 || view.change(rotation) <= 1) && tryAccept(rotation)) {
+                if ((modes == 0 || view.allows(rotation)) && tryAccept(rotation, &hints)) {
                     fold = n;
                     break;
                 }
             }
             const Eigen::Matrix3d mirror = mirrorWithNormal(axis);
-            if (view.change(mirror) <= 1) tryAccept(mirror);
+            if (view.allows(mirror)) tryAccept(mirror, &hints);
             // A rotoreflection by pi / k squares to the rotation by 2 pi / k: k divides the fold.
             for (int k : divisorsDescending(fold)) {
                 const Eigen::Matrix3d rotoreflection = rotationAbout(axis, kPi / k) * mirror;
-                if (view.change(rotoreflection) <= 1 && tryAccept(rotoreflection)) break;
+                if (view.allows(rotoreflection) && tryAccept(rotoreflection, &hints)) break;
             }
             // Moments invariant about the axis cannot point at the 2-fold axes and mirror normals across
             // it (all directions across are alike to them): try the directions through the farthest
@@ -362,17 +420,18 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 const Eigen::Vector3d across = verifier.farthestFromAxis(axis);
                 for (int k = 0; k < 2 * fold; ++k) {
                     const Eigen::Vector3d d = rotationAbout(axis, k * kPi / (2 * fold)) * across;
-                    tryAccept(rotationAbout(d, kPi));
-                    tryAccept(mirrorWithNormal(d));
+                    tryAccept(rotationAbout(d, kPi), &hints);
+                    tryAccept(mirrorWithNormal(d), &hints);
                 }
             }
         });
     });
-    tryAccept(-Eigen::Matrix3d::Identity());
+    tryAccept(-Eigen::Matrix3d::Identity(), nullptr);
     if (!revolutionAxes.empty())
         group.warnings.push_back("at this tolerance the shape is a surface of revolution about " +
                                  std::to_string(revolutionAxes.size()) +
                                  " axis(es): rotations by every angle fit, so no finite fold is reported for them");
+    const std::vector<Eigen::Matrix3d> accepted = generators;  // in the order of generatorDeviations
     std::sort(generators.begin(), generators.end(), [](const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
         return a.determinant() > b.determinant();  // rotations first: a stable, readable order
     });
@@ -396,11 +455,22 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
             if ((elements[j] - elements[i].transpose()).norm() < 1e-6) inverse[i] = j;
     }
     const double searchRadius = kDeviationSearch * tolerance;
+    // A generator's d_A was measured in full when it was accepted (every point within the tolerance, so
+    // every distance exact): the same number as a search up to searchRadius gives, unless sample points
+    // answer for the surface at distances that search would let them.
+    auto measuredOnAcceptance = [&](const Eigen::Matrix3d& element) -> std::optional<double> {
+        if (!verifier.exactUpTo(tolerance)) return std::nullopt;
+        for (std::size_t g = 0; g < accepted.size(); ++g)
+            if (accepted[g] == element) return generatorDeviations[g];
+        return std::nullopt;
+    };
     withThreads(options.threads, [&] {
         tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t i) {
             group.elements[i] = describeOrthogonal(elements[i]);
-            if (group.elements[i].kind != Symmetry::Kind::Identity && inverse[i] >= i)
-                group.elements[i].deviation = verifier.deviation(elements[i], searchRadius) / group.diagonal;
+            if (group.elements[i].kind == Symmetry::Kind::Identity || inverse[i] < i) return;
+            const std::optional<double> known = measuredOnAcceptance(elements[i]);
+            group.elements[i].deviation =
+                (known ? *known : verifier.deviation(elements[i], searchRadius)) / group.diagonal;
         });
     });
     for (std::size_t i = 0; i < elements.size(); ++i)

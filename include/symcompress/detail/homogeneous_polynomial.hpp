@@ -23,6 +23,14 @@ public:
     double coefficient(int j, int k) const { return coefficients_[monomialIndex(degree_, j, k)]; }
 
     double operator()(const Eigen::Vector3d& point) const;
+    // The same at `count` points, each value the very number operator() gives: the points' sums are
+    // independent, so they run side by side instead of one waiting for the other's additions.
+    void evaluate(const Eigen::Vector3d* points, std::size_t count, double* values) const;
+    // `count` polynomials (at most kMaxTogether) of one degree at one point, each value the very number
+    // operator() gives (a gradient's three, a Hessian's six).
+    static constexpr int kMaxTogether = 6;
+    static void evaluateTogether(const HomogeneousPolynomial* const* polynomials, int count,
+                                 const Eigen::Vector3d& point, double* values);
     HomogeneousPolynomial derivative(int axis) const;  // d/dx, d/dy or d/dz (axis 0, 1, 2)
 
     HomogeneousPolynomial& operator+=(const HomogeneousPolynomial& other);  // degrees must be equal
