@@ -7,6 +7,7 @@
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "rotation_and_scale.hpp"
+#include "common/markup_text.hpp"
 #include "common/number_text.hpp"
 
 #include <Eigen/Geometry>
@@ -33,21 +34,6 @@ void appendVector(std::string& out, const Vector& v, int components, Round round
         if (c) out += ' ';
         appendShortestFloat(out, round(v[c]));
     }
-}
-
-std::string escapeXml(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default: out += c;
-        }
-    }
-    return out;
 }
 
 std::string base64(const std::vector<std::uint8_t>& bytes) {
@@ -124,10 +110,10 @@ public:
             out_ += "<component name='Navigation' level='3'/>\n";
         out_ += "<meta name='generator' content='symcompress'/>\n";
         if (!options_.extrasJson.empty())
-            out_ += "<meta name='symcompress' content='" + escapeXml(options_.extrasJson) + "'/>\n";
+            out_ += "<meta name='symcompress' content='" + escapedMarkup(options_.extrasJson) + "'/>\n";
         out_ += "</head>\n<Scene>\n";
         if (!options_.extrasJson.empty())
-            out_ += "<MetadataString name='symcompress' value='\"" + escapeXml(escapeQuotes(options_.extrasJson)) + "\"'/>\n";
+            out_ += "<MetadataString name='symcompress' value='\"" + escapedMarkup(escapeQuotes(options_.extrasJson)) + "\"'/>\n";
         for (const std::string& node : scene_.x3dEnvironment) out_ += " " + node + "\n";
         written_.assign(scene_.meshes.size(), false);
         for (const Animation& animation : scene_.animations)
@@ -187,7 +173,7 @@ private:
             appendShortestFloat(out_, fieldOfView);
         }
         out_ += "'";
-        if (!camera.name.empty()) out_ += " description='" + escapeXml(camera.name) + "'";
+        if (!camera.name.empty()) out_ += " description='" + escapedMarkup(camera.name) + "'";
         out_ += "/>\n";
     }
 
@@ -351,7 +337,7 @@ private:
         if (url.empty()) return;
         textureWritten_.insert(index);
         names_.insert(def);
-        out_ += "<ImageTexture DEF='" + def + "' url='\"" + escapeXml(url) + "\"'/>";
+        out_ += "<ImageTexture DEF='" + def + "' url='\"" + escapedMarkup(url) + "\"'/>";
     }
 
     void writeShape(const Primitive& primitive, int depth) {

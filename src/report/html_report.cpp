@@ -2,6 +2,7 @@
 // the page around it with the viewer inlined (viewer/src/report.js draws it).
 #include "symcompress/html_report.hpp"
 
+#include "common/markup_text.hpp"
 #include "report/preview_geometry.hpp"
 #include "report/viewer_script.hpp"
 #include "symcompress/assembly.hpp"
@@ -95,20 +96,6 @@ json symmetryJson(const SymmetryGroup& group, const Eigen::Vector3d& centre, dou
             {"planes", planes},   {"axes", axes},           {"elements", elements}};
 }
 
-std::string htmlEscaped(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        default: out += c;
-        }
-    }
-    return out;
-}
-
 // `text` inside a <script> element: "</" could end it early; "<\/" means the same in JSON and in
 // JavaScript strings and regular expressions (the only places a minified script has it).
 std::string scriptSafe(std::string text) {
@@ -162,9 +149,9 @@ std::string page(const std::string& title, const std::string& summary, const std
     std::string html =
         "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
-        htmlEscaped(title) + "</title>\n<style>" + kStyle + "</style></head>\n<body>\n<header><h1>" +
-        htmlEscaped(title) + "</h1><p class=\"summary\">" + htmlEscaped(summary) + "</p>";
-    for (const std::string& note : notes) html += "<p class=\"notes\">" + htmlEscaped(note) + "</p>";
+        escapedMarkup(title) + "</title>\n<style>" + kStyle + "</style></head>\n<body>\n<header><h1>" +
+        escapedMarkup(title) + "</h1><p class=\"summary\">" + escapedMarkup(summary) + "</p>";
+    for (const std::string& note : notes) html += "<p class=\"notes\">" + escapedMarkup(note) + "</p>";
     html += "</header>\n<main><section id=\"view\"><canvas id=\"scene\"></canvas><div id=\"legend\">" + legend +
             "</div></section>\n<section id=\"side\">" + side +
             "</section></main>\n<section id=\"charts\"></section>\n<script type=\"application/json\" "
@@ -464,7 +451,7 @@ std::string compressionReportHtml(const CompressionPicture& picture, const HtmlR
         "<h2>Classes <button id=\"clear\" title=\"show every class\">show all</button></h2>"
         "<div id=\"selection\"></div>";
     if (sceneGroup.order() > 1)
-        side += "<p>The scene's symmetry: <b>" + htmlEscaped(sceneGroup.name) + "</b> (order " +
+        side += "<p>The scene's symmetry: <b>" + escapedMarkup(sceneGroup.name) + "</b> (order " +
                 std::to_string(sceneGroup.order()) +
                 (stats.tilesInSceneSymmetry ? ", used for " + std::to_string(stats.tilesInSceneSymmetry) + " tiles"
                                             : ", not used") +
@@ -499,7 +486,7 @@ std::string detectionReportHtml(const TriangleMesh& mesh, const SymmetryGroup& g
     char line[160];
     std::snprintf(line, sizeof line, "group %s, order %d; %zu triangles; tolerance %g of the diagonal %g.",
                   group.name.c_str(), group.order(), mesh.triangles.size(), tolerance, group.diagonal);
-    const std::string side = "<h2>Symmetry elements of " + htmlEscaped(group.name) +
+    const std::string side = "<h2>Symmetry elements of " + escapedMarkup(group.name) +
                              "</h2><div id=\"selection\"></div><p>Click an element to draw only its plane or axis.</p>"
                              "<table id=\"classes\"></table>";
     const std::string legend = "mirror planes: blue discs &nbsp; rotation axes: lines labelled with their order";
