@@ -151,6 +151,21 @@ TEST_CASE("Writers: names read from X3D that are not UTF-8 are written to glTF a
     }
 }
 
+TEST_CASE("Writers: an OBJ texture name with control bytes is written to X3D that reads back", "[io][fuzz]") {
+    // Found by fuzz_obj: a map_Kd name holding a NUL and a BEL made the X3D writer's url malformed XML.
+    TemporaryFolder folder;
+    writeTextFile(folder / "part.obj", "mtllib part.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                       "usemtl m\nf 1/1 2/2 3/3\n");
+    writeTextFile(folder / "part.mtl", std::string("newmtl m\nmap_Kd a") + '\0' + "b\x07c.png\n");
+    const Scene scene = readScene(folder / "part.obj");
+    REQUIRE(scene.textures.size() == 1);
+    writeScene(scene, folder / "part.x3d");
+    const Scene back = readScene(folder / "part.x3d");
+    CHECK(back.meshes.size() == scene.meshes.size());
+    REQUIRE(back.textures.size() == 1);
+    CHECK(back.textures[0].uri.find('\0') == std::string::npos);
+}
+
 TEST_CASE("GLB: an image whose buffer view runs past its buffer is refused before its bytes are copied", "[io][fuzz]") {
     const std::string error = readError(regressionInput("glb_image_view_past_buffer.glb"));
     CHECK_THAT(error, Catch::Contains("glb_image_view_past_buffer.glb: invalid glTF: image 0: its buffer view runs past the end"));
