@@ -6,6 +6,7 @@
 //   bench_level mirror [TRIANGLES]  detect on a torus-like shape with one mirror plane, irregular rows,
 //                                   a random orientation, float32 (233k triangles by default)
 // Every generator is deterministic.
+#include "bench_meshes.hpp"
 #include "sample_scenes.hpp"
 #include "symcompress/congruence.hpp"
 #include "symcompress/symmetry.hpp"
@@ -207,20 +208,8 @@ TriangleMesh mirrorShape(std::size_t triangles) {
     const Eigen::Matrix3d turn = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
                                      .normalized()
                                      .toRotationMatrix();
-    TriangleMesh mesh;
-    for (std::size_t i = 0; i < rows; ++i)
-        for (std::size_t j = 0; j < columns; ++j) {
-            const double u = rowAngle[i], v = 2 * kPi * double(j) / double(columns), r = radius(u, v);
-            const Eigen::Vector3d p((1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u),
-                                    r * std::sin(v));
-            mesh.positions.push_back((turn * p).cast<float>().cast<double>());
-        }
-    auto index = [&](std::size_t i, std::size_t j) { return std::uint32_t((i % rows) * columns + j % columns); };
-    for (std::size_t i = 0; i < rows; ++i)
-        for (std::size_t j = 0; j < columns; ++j) {
-            mesh.triangles.push_back({index(i, j), index(i + 1, j), index(i + 1, j + 1)});
-            mesh.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i, j + 1)});
-        }
+    TriangleMesh mesh = bench::torusOnRows(rowAngle, columns, radius);
+    for (Eigen::Vector3d& p : mesh.positions) p = (turn * p).cast<float>().cast<double>();
     return mesh;
 }
 
