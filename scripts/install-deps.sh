@@ -4,13 +4,14 @@
 #   (apt-get; sudo when not root).
 #   The peer tools in ../shared/bench (Khronos glTF validator, glTF Transform's decoder, X_ITE, the render
 #   check's three.js and puppeteer-core), used by the interoperability tests, when Node.js >= 20 and
-#   ../shared are present. Chromium (Debian's) opens the HTML reports in the tests; the report's own viewer
+#   ../shared are present. Chromium (Debian's) opens the HTML reports in the tests (and, with python3-pil,
+#   draws ../shared/bench/render/render_compare.sh); the report's own viewer
 #   (viewer/package-lock.json) is installed by CMake into the build folder.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 packages=(build-essential clang libclang-rt-14-dev cmake pkg-config libtinygltf-dev libdraco-dev libmeshoptimizer-dev libeigen3-dev
-          libpugixml-dev catch2 libcli11-dev nlohmann-json3-dev libtbb-dev zlib1g-dev chromium)
+          libpugixml-dev catch2 libcli11-dev nlohmann-json3-dev libtbb-dev zlib1g-dev chromium python3-pil)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
