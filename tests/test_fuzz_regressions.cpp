@@ -130,6 +130,22 @@ TEST_CASE("X3D: key times that do not fit a float are left out and not cast", "[
     CHECK(hasWarning(scene, "1 animation ROUTEs left out"));
 }
 
+TEST_CASE("X3D: a key before the cycle's start is left out, as glTF's times start at 0", "[io][fuzz]") {
+    const Scene scene = readScene(regressionInput("x3d_animation_key_negative.x3d"));
+    CHECK(scene.animations.empty());
+    CHECK(hasWarning(scene, "1 animation ROUTEs left out"));
+}
+
+TEST_CASE("glTF: negative key times are left out with a warning, where X3D output made keys of -inf", "[io][fuzz]") {
+    const fs::path input = regressionInput("gltf_animation_times_negative.gltf");
+    const Scene scene = readScene(input);
+    CHECK(scene.animations.empty());
+    CHECK(hasWarning(scene, "animation 0 channel 0 ignored: negative key times"));
+    TemporaryFolder folder;
+    writeScene(scene, folder / "written.x3d");
+    CHECK(readScene(folder / "written.x3d").meshes.size() == 1);
+}
+
 TEST_CASE("PLY: an element count that the rest of the file cannot hold is refused before it is read", "[io][fuzz]") {
     const std::string error = readError(regressionInput("ply_count_beyond_bytes.ply"));
     CHECK_THAT(error, Catch::Contains("ply_count_beyond_bytes.ply: element 'vertex' has a count of 100000000000000, more than"));

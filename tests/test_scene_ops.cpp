@@ -183,6 +183,7 @@ TEST_CASE("validateScene checks animation channels", "[scene]") {
     expectBroken([](AnimationChannel& c) { c.interpolation = AnimationChannel::Interpolation::CubicSpline; }, "8 values for 2 keys");
     expectBroken([](AnimationChannel& c) { c.values[2] = std::nan(""); }, "NaN");
     expectBroken([](AnimationChannel& c) { c.times = {1, 1}; }, "key times do not increase");
+    expectBroken([](AnimationChannel& c) { c.times = {-1e30f, 1e-30f}; }, "negative key times");
 }
 
 TEST_CASE("validateScene checks cameras and lights, and expandInstances keeps them where they were", "[scene]") {

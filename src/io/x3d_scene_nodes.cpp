@@ -69,9 +69,10 @@ void X3dReader::readAnimations() {
                        : to == "scale" ? AnimationChannel::Path::Scale
                                        : AnimationChannel::Path::Translation;
         const double cycle = scalar(clock, "cycleInterval", 1);
-        // Times are nudged as floats below: each must be one (a cycle of 1e300 makes none).
-        const bool timesFit = std::all_of(keys.begin(), keys.end(), [cycle](double key) {
-            return std::abs(key * cycle) < std::numeric_limits<float>::max();
+        // Times are nudged as floats below: each must be one (a cycle of 1e300 makes none). glTF's times
+        // start at 0 or later; a key before the cycle's start is never reached anyway.
+        const bool timesFit = cycle > 0 && std::all_of(keys.begin(), keys.end(), [cycle](double key) {
+            return key >= 0 && key * cycle < std::numeric_limits<float>::max();
         });
         if (!timesFit) {
             ++leftOut;

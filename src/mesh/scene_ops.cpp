@@ -175,6 +175,7 @@ std::string animationChannelProblem(const AnimationChannel& channel, std::size_t
     const auto finite = [](double v) { return std::isfinite(v); };
     if (!std::all_of(channel.times.begin(), channel.times.end(), finite) || !std::all_of(channel.values.begin(), channel.values.end(), finite))
         return "NaN or infinite values";
+    if (channel.times.front() < 0) return "negative key times";  // glTF 2.0: time[0] >= 0
     if (std::adjacent_find(channel.times.begin(), channel.times.end(), std::greater_equal<double>()) != channel.times.end())
         return "key times do not increase";
     return "";
