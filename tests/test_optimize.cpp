@@ -71,7 +71,7 @@ TEST_CASE("Textures of the same image are merged and different images stay apart
     scene.textures[0].bytes = scene.textures[1].bytes = {1, 2, 3};  // the same image twice
     scene.textures[2].bytes = {1, 2, 4};
     scene.textures[3].uri = scene.textures[4].uri = "missing.png";  // not read, the same reference
-    for (int m = 0; m < 5; ++m) scene.materials[std::size_t(m)].baseColorTexture = m;
+    for (int m = 0; m < 5; ++m) scene.materials[std::size_t(m)].baseColorTexture.texture = m;
     scene.textures[0].mimeType = scene.textures[1].mimeType = scene.textures[2].mimeType = "image/png";
     const OptimizeReport report = optimizeScene(scene);
     CHECK(report.texturesMerged == 2);
@@ -87,14 +87,14 @@ TEST_CASE("Materials no primitive uses and textures no material uses are removed
     Scene scene = sceneOfMaterials({named("unused", 0.1), named("used", 0.2), named("also unused", 0.3)}, {1, -1});
     scene.textures.resize(2);
     scene.textures[1].bytes = {7};
-    scene.materials[1].baseColorTexture = 1;
-    scene.materials[2].baseColorTexture = 0;
+    scene.materials[1].baseColorTexture.texture = 1;
+    scene.materials[2].baseColorTexture.texture = 0;
     const OptimizeReport report = optimizeScene(scene);
     CHECK(report.materialsRemoved == 2);
     CHECK(report.texturesRemoved == 1);
     REQUIRE(scene.materials.size() == 1);
     CHECK(scene.materials[0].name == "used");
-    CHECK(scene.materials[0].baseColorTexture == 0);
+    CHECK(scene.materials[0].baseColorTexture.texture == 0);
     CHECK(scene.textures[0].bytes == std::vector<std::uint8_t>{7});
     CHECK(scene.meshes[0].primitives[0].material == 0);
     CHECK(scene.meshes[0].primitives[1].material == -1);

@@ -493,7 +493,7 @@ TEST_CASE("glTF compressed by meshoptimizer (EXT_meshopt_compression, KHR_mesh_q
                        {{"bufferView", 1}, {"componentType", 5120}, {"normalized", true}, {"count", 4}, {"type", "VEC3"}},
                        {{"bufferView", 2}, {"componentType", 5123}, {"normalized", true}, {"count", 4}, {"type", "VEC2"}},
                        {{"bufferView", 3}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
-        {"images", {{{"uri", "data:image/png;base64,AAAA"}}}},
+        {"images", {{{"uri", "data:image/png;base64,iVBORw0KGgo="}}}},  // a PNG's signature
         {"textures", {{{"source", 0}}}},
         {"materials", {{{"pbrMetallicRoughness",
                          {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.25, 0.5}}, {"scale", {2, 4}}}}}}}}}}}}},
@@ -538,9 +538,15 @@ TEST_CASE("glTF compressed by meshoptimizer (EXT_meshopt_compression, KHR_mesh_q
         const Eigen::Vector3d expected(normalFloats[4 * v], normalFloats[4 * v + 1], normalFloats[4 * v + 2]);
         CHECK((quad.normals[v] - expected).norm() < 0.02);  // 8 bits
     }
-    // (u, v) = offset + scale * q / 65535
-    CHECK((quad.texcoords[1] - Eigen::Vector2d(2.25, 0.5)).norm() < 1e-12);
-    CHECK((quad.texcoords[3] - Eigen::Vector2d(0.25, 0.5 + 4 * 32768.0 / 65535)).norm() < 1e-12);
+    // The texture transform is kept as the extension (q / 65535 in the coordinates); the base colour texture
+    // reads (u, v) = offset + scale * q / 65535.
+    REQUIRE(scene.materials.size() == 1);
+    REQUIRE(scene.materials[0].baseColorTexture.transform);
+    CHECK(scene.materials[0].baseColorTexture.transform->offset == Eigen::Vector2d(0.25, 0.5));
+    CHECK(scene.materials[0].baseColorTexture.transform->scale == Eigen::Vector2d(2, 4));
+    CHECK((quad.texcoords[1] - Eigen::Vector2d(1, 0)).norm() < 1e-12);
+    CHECK((baseColorTexcoord(scene, quad, 1) - Eigen::Vector2d(2.25, 0.5)).norm() < 1e-12);
+    CHECK((baseColorTexcoord(scene, quad, 3) - Eigen::Vector2d(0.25, 0.5 + 4 * 32768.0 / 65535)).norm() < 1e-12);
     CHECK(quad.triangles == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}});
 }
 

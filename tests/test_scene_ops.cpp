@@ -139,8 +139,8 @@ TEST_CASE("dropUnreadTexcoords keeps texture coordinates only where a texture re
     scene.textures.resize(2);
     scene.textures[0].bytes = {0x89, 'P', 'N', 'G'};  // textures[1]: an image that could not be read
     scene.materials.resize(3);
-    scene.materials[0].baseColorTexture = 0;
-    scene.materials[1].baseColorTexture = 1;
+    scene.materials[0].baseColorTexture.texture = 0;
+    scene.materials[1].baseColorTexture.texture = 1;
     // Materials: reads an image, names a missing image (its reference is kept: it still reads them), has
     // no texture, none at all (-1); the last primitive has no texture coordinates to drop.
     Mesh mesh;

@@ -288,7 +288,7 @@ TEST_CASE("An image several materials show is written to X3D once and USEd, and 
     for (int texture : {0, 1, 2}) {
         Material material;
         material.name = "m" + std::to_string(texture);
-        material.baseColorTexture = texture;
+        material.baseColorTexture.texture = texture;
         scene.materials.push_back(material);
     }
     Mesh mesh;
@@ -317,8 +317,8 @@ TEST_CASE("An image several materials show is written to X3D once and USEd, and 
     const Scene again = readScene(folder / "shared.x3d");
     REQUIRE(again.materials.size() == 3);
     for (int m : {0, 1, 2}) {
-        REQUIRE(again.materials[std::size_t(m)].baseColorTexture >= 0);
-        const Texture& texture = again.textures[std::size_t(again.materials[std::size_t(m)].baseColorTexture)];
+        REQUIRE(again.materials[std::size_t(m)].baseColorTexture.texture >= 0);
+        const Texture& texture = again.textures[std::size_t(again.materials[std::size_t(m)].baseColorTexture.texture)];
         CHECK(texture.bytes == scene.textures[std::size_t(m)].bytes);
         CHECK(texture.mimeType == scene.textures[std::size_t(m)].mimeType);
     }

@@ -7,7 +7,8 @@
 // - Primitive::material is -1 (default material) or an index into Scene::materials;
 // - Node::mesh is -1 or an index into Scene::meshes; Node::children index into Scene::nodes and the
 //   node graph is a forest (a node is the child of at most one node, no cycles);
-// - Material::baseColorTexture is -1 or an index into Scene::textures;
+// - every TextureRef of a Material (Material::textureRefs) has a texture of -1 or an index into
+//   Scene::textures;
 // - Node::camera and Node::light are -1 or indices into Scene::cameras and Scene::lights, whose numbers are
 //   finite (a perspective camera's yfov and znear > 0, an orthographic one's xmag and ymag != 0);
 // - every AnimationChannel targets a node of Scene::nodes, has finite, increasing times and finite values,
@@ -33,12 +34,66 @@ struct TriangleMesh {
     std::vector<Triangle> triangles;  // counter-clockwise seen from outside
 };
 
-// An image used by a material, kept as the bytes of the file so that writers can embed it unchanged.
+// How a texture is sampled, as glTF's sampler holds it (its enums: 9728 NEAREST, 9729 LINEAR, 9984 to 9987 the
+// mipmap filters; 10497 REPEAT, 33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT). A filter of 0 is left to the viewer.
+struct TextureSampler {
+    int magFilter = 0, minFilter = 0;
+    int wrapS = 10497, wrapT = 10497;
+    std::string name;
+    bool operator==(const TextureSampler& o) const {
+        return magFilter == o.magFilter && minFilter == o.minFilter && wrapS == o.wrapS && wrapT == o.wrapT &&
+               name == o.name;
+    }
+};
+
+// An image used by a material with its sampler, the image kept as the bytes of the file so that writers can
+// embed it unchanged. Textures of the same image share it in the output (firstTextureOfSameImage).
 struct Texture {
     std::string name;
     std::string uri;                  // as written in the source file (may be empty when embedded)
-    std::string mimeType;             // "image/png", "image/jpeg", ... (may be empty when unknown)
+    std::string mimeType;             // "image/png", "image/jpeg", "image/webp", "image/ktx2", ... (may be empty)
     std::vector<std::uint8_t> bytes;  // empty when the image file could not be read (a warning says so)
+    TextureSampler sampler;
+};
+
+// KHR_texture_transform on one use of a texture: uv' = T(offset) R(rotation) S(scale) uv, on texCoord set
+// `texCoord` where that is not -1 (it then overrides the use's own set).
+struct TextureTransform {
+    Eigen::Vector2d offset{0, 0};
+    double rotation = 0;  // radians, counter-clockwise in glTF's uv (v down)
+    Eigen::Vector2d scale{1, 1};
+    int texCoord = -1;
+    bool operator==(const TextureTransform& o) const {
+        return offset == o.offset && rotation == o.rotation && scale == o.scale && texCoord == o.texCoord;
+    }
+    // The transform as a matrix on (u, v, 1).
+    Eigen::Matrix<double, 2, 3> matrix() const;
+};
+
+// One use of a texture by a material: glTF's textureInfo (and normalTextureInfo, occlusionTextureInfo).
+struct TextureRef {
+    int texture = -1;  // index into Scene::textures, -1: none
+    int texCoord = 0;  // the TEXCOORD_n set it reads
+    double scale = 1;  // normalTexture.scale, occlusionTexture.strength; 1 elsewhere
+    std::optional<TextureTransform> transform;
+    bool operator==(const TextureRef& o) const {
+        return texture == o.texture && texCoord == o.texCoord && scale == o.scale && transform == o.transform;
+    }
+    // The texture coordinate set it reads, once its transform's override is applied.
+    int texCoordSet() const { return transform && transform->texCoord >= 0 ? transform->texCoord : texCoord; }
+};
+
+// A material extension kept as the file had it (KHR_materials_clearcoat, _unlit, _pbrSpecularGlossiness, ...):
+// its JSON object without its textures, which are held apart so that stages that renumber or count textures
+// see them. A writer puts each texture back under its key.
+struct MaterialExtension {
+    std::string name;
+    std::string json = "{}";
+    std::vector<std::pair<std::string, TextureRef>> textures;  // key in the object, texture
+    bool required = false;  // in the file's extensionsRequired: a viewer without it must not draw a fallback
+    bool operator==(const MaterialExtension& o) const {
+        return name == o.name && json == o.json && textures == o.textures && required == o.required;
+    }
 };
 
 // X3D's Phong Material fields, kept when the source was X3D so that an X3D writer gives them back.
@@ -66,14 +121,24 @@ struct Material {
     enum class AlphaMode { Opaque, Mask, Blend } alphaMode = AlphaMode::Opaque;
     double alphaCutoff = 0.5;
     bool doubleSided = false;
-    int baseColorTexture = -1;  // index into Scene::textures
+    TextureRef baseColorTexture, metallicRoughnessTexture, normalTexture, occlusionTexture, emissiveTexture;
+    std::vector<MaterialExtension> extensions;
+    std::string extrasJson;  // glTF extras as read (JSON text), empty for none
     std::optional<PhongMaterial> phong;
     bool operator==(const Material& o) const {
-        return name == o.name && baseColorFactor == o.baseColorFactor && metallicFactor == o.metallicFactor &&
+        return name == o.name && sameButName(o);
+    }
+    bool sameButName(const Material& o) const {
+        return extrasJson == o.extrasJson && baseColorFactor == o.baseColorFactor && metallicFactor == o.metallicFactor &&
                roughnessFactor == o.roughnessFactor && emissiveFactor == o.emissiveFactor && alphaMode == o.alphaMode &&
                alphaCutoff == o.alphaCutoff && doubleSided == o.doubleSided && baseColorTexture == o.baseColorTexture &&
-               phong == o.phong;
+               metallicRoughnessTexture == o.metallicRoughnessTexture && normalTexture == o.normalTexture &&
+               occlusionTexture == o.occlusionTexture && emissiveTexture == o.emissiveTexture &&
+               extensions == o.extensions && phong == o.phong;
     }
+    // Every use of a texture, the core slots' and the extensions' (those without a texture too).
+    std::vector<TextureRef*> textureRefs();
+    std::vector<const TextureRef*> textureRefs() const;
 };
 
 // Triangles of one material with their per-vertex attributes.
@@ -100,6 +165,7 @@ struct Primitive {
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
+    std::string extrasJson;  // glTF extras as read (JSON text), empty for none
 };
 
 // A viewpoint, as glTF holds it: it looks down its node's -z, +y up (X3D's Viewpoint has the same frame).
@@ -131,6 +197,7 @@ struct Node {
     int camera = -1;                                          // index into Scene::cameras
     int light = -1;                                           // index into Scene::lights
     std::vector<int> children;                                // indices into Scene::nodes
+    std::string extrasJson;                                   // glTF extras as read (JSON text), empty for none
 };
 
 // A keyframed transform of one node (glTF's animation channel with its sampler), kept as read so that a

@@ -50,6 +50,13 @@ TriangleMesh worldMesh(const Scene& scene);
 // placement, animations left out (a warning says so).
 Scene expandInstances(const Scene& scene);
 
+// The texture coordinate of `primitive`'s vertex `v` as its base colour texture reads it: through the
+// texture's KHR_texture_transform, for writers of formats without one (X3D, OBJ, PLY).
+Eigen::Vector2d baseColorTexcoord(const Scene& scene, const Primitive& primitive, std::size_t v);
+
+// Every material's texture uses renumbered: texture t becomes newIndex[t] (-1: the use is dropped).
+void renumberTextures(Scene& scene, const std::vector<int>& newIndex);
+
 // For each texture, the first one with the same image bytes and type: an image that several materials
 // (or an X3D file's several ImageTextures of one URL) use is written once.
 std::vector<int> firstTextureOfSameImage(const std::vector<Texture>& textures);

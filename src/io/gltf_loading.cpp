@@ -39,8 +39,8 @@ bool keepImageBytes(tinygltf::Image* image, const int index, std::string* error,
     return true;
 }
 
-// Extensions that change how a surface looks, never where it is: a file that requires one is still read,
-// its geometry right, with a warning that the extension is left out.
+// Extensions that change how a surface looks, never where it is: kept on their materials as the file has
+// them (gltf_materials.cpp), so a file that requires one is read.
 bool appearanceOnly(const std::string& name) { return name.rfind("KHR_materials_", 0) == 0; }
 
 // EXT_meshopt_compression: each compressed buffer view decoded (meshoptimizer) into a buffer of its own,
@@ -223,7 +223,8 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
 bool readExtension(const std::string& name) {
     static const std::set<std::string> read = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
                                                "KHR_mesh_quantization",      "EXT_mesh_gpu_instancing",
-                                               "KHR_lights_punctual",        "KHR_texture_transform"};
+                                               "KHR_lights_punctual",        "KHR_texture_transform",
+                                               "EXT_texture_webp",           "KHR_texture_basisu"};
     return read.count(name) > 0;
 }
 

@@ -24,22 +24,6 @@ namespace {
 // is read can be written as X3D, nested, and read back.
 constexpr std::size_t kMaxNodeDepth = 256;
 
-// KHR_texture_transform's matrix: translation(offset) * rotation(rotation) * scale(scale), on (u, v, 1).
-Eigen::Matrix<double, 2, 3> textureTransform(const tinygltf::Value& extension) {
-    auto pair = [&](const char* key, Eigen::Vector2d fallback) {
-        const tinygltf::Value& value = member(extension, key);
-        if (!value.IsArray() || value.ArrayLen() != 2) return fallback;
-        return Eigen::Vector2d(numberOr(value.Get(0), fallback.x()), numberOr(value.Get(1), fallback.y()));
-    };
-    const Eigen::Vector2d offset = pair("offset", Eigen::Vector2d::Zero()),
-                          scale = pair("scale", Eigen::Vector2d::Ones());
-    const double rotation = numberOr(member(extension, "rotation"), 0);
-    Eigen::Matrix<double, 2, 3> matrix;
-    const double c = std::cos(rotation), s = std::sin(rotation);
-    matrix << c * scale.x(), s * scale.y(), offset.x(), -s * scale.x(), c * scale.y(), offset.y();
-    return matrix;
-}
-
 }  // namespace
 
 void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, const std::string& where) {
@@ -110,10 +94,6 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
     out.triangles = trianglesFromIndices(indices, mode);
     out.material =
         source.material >= 0 && source.material < static_cast<int>(model_.materials.size()) ? source.material : -1;
-    // KHR_texture_transform on the base colour texture (how gltfpack dequantizes texture coordinates),
-    // applied to the coordinates themselves: the writers have no such transform to give.
-    if (const auto transform = texcoordTransforms_.find(out.material); transform != texcoordTransforms_.end())
-        for (Eigen::Vector2d& t : out.texcoords) t = transform->second * t.homogeneous();
     for (const auto& [name, accessor] : source.attributes)
         if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0" && name != "COLOR_0")
             warnAbout("attribute " + name + " not carried through");
@@ -136,57 +116,6 @@ Eigen::Matrix4d GltfReader::nodeTransform(const tinygltf::Node& node) const {
     }
     if (!transform.allFinite()) fail("node '" + node.name + "': transform contains NaN or infinite values");
     return transform;
-}
-
-void GltfReader::readMaterials(Scene& scene) {
-    std::map<int, int> textureOfImage;
-    for (const tinygltf::Material& source : model_.materials) {
-        Material material;
-        material.name = source.name;
-        const auto& pbr = source.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() == 4)
-            material.baseColorFactor = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
-                                        pbr.baseColorFactor[3]};
-        material.metallicFactor = pbr.metallicFactor;
-        material.roughnessFactor = pbr.roughnessFactor;
-        if (source.emissiveFactor.size() == 3)
-            material.emissiveFactor = {source.emissiveFactor[0], source.emissiveFactor[1], source.emissiveFactor[2]};
-        material.alphaMode = source.alphaMode == "MASK"    ? Material::AlphaMode::Mask
-                             : source.alphaMode == "BLEND" ? Material::AlphaMode::Blend
-                                                           : Material::AlphaMode::Opaque;
-        material.alphaCutoff = source.alphaCutoff;
-        material.doubleSided = source.doubleSided;
-        const int texture = pbr.baseColorTexture.index;
-        if (texture >= 0 && texture < static_cast<int>(model_.textures.size())) {
-            const int imageIndex = model_.textures[texture].source;
-            if (imageIndex >= 0 && imageIndex < static_cast<int>(model_.images.size())) {
-                auto [entry, inserted] =
-                    textureOfImage.try_emplace(imageIndex, static_cast<int>(scene.textures.size()));
-                if (inserted) {
-                    const tinygltf::Image& image = model_.images[imageIndex];
-                    Texture out;
-                    out.name = image.name;
-                    out.uri = image.uri.rfind("data:", 0) == 0 ? "" : image.uri;
-                    out.mimeType = image.mimeType.empty() ? imageMimeType(image.uri) : image.mimeType;
-                    out.bytes = image.image;
-                    if (out.bytes.empty())
-                        warnAbout("image '" + image.uri +
-                                  "' could not be read; materials using it are written without it");
-                    scene.textures.push_back(std::move(out));
-                }
-                material.baseColorTexture = entry->second;
-            }
-            if (pbr.baseColorTexture.texCoord != 0)
-                warnAbout("base colour textures on TEXCOORD_1 or higher are not carried through");
-            const auto transform = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
-            if (transform != pbr.baseColorTexture.extensions.end())
-                texcoordTransforms_[scene.materials.size()] = textureTransform(transform->second);
-        }
-        if (source.normalTexture.index >= 0 || source.occlusionTexture.index >= 0 ||
-            source.emissiveTexture.index >= 0 || pbr.metallicRoughnessTexture.index >= 0)
-            warnAbout("normal, occlusion, emissive and metallic-roughness textures are not carried through");
-        scene.materials.push_back(std::move(material));
-    }
 }
 
 // Node transform channels are kept; a channel the scene model cannot hold (morph weights, a target other
@@ -385,6 +314,7 @@ Scene GltfReader::read() {
     for (std::size_t m = 0; m < model_.meshes.size(); ++m) {
         Mesh mesh;
         mesh.name = model_.meshes[m].name;
+        mesh.extrasJson = extrasOf(model_.meshes[m].extras_json_string);
         for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p)
             readPrimitive(model_.meshes[m].primitives[p], mesh,
                           "mesh " + std::to_string(m) + " primitive " + std::to_string(p));
@@ -394,6 +324,7 @@ Scene GltfReader::read() {
     for (const tinygltf::Node& source : model_.nodes) {
         Node node;
         node.name = source.name;
+        node.extrasJson = extrasOf(source.extras_json_string);
         node.transform = nodeTransform(source);
         node.mesh = source.mesh >= 0 && source.mesh < static_cast<int>(scene.meshes.size()) ? source.mesh : -1;
         for (int child : source.children) {
@@ -443,8 +374,11 @@ Scene readGltf(const fs::path& file) {
     const tinygltf::Model model = loadGltfModel(file);
     Scene scene = GltfReader(file, model).read();
     scene.extrasJson = model.asset.extras_json_string;
+    std::set<std::string> kept;  // on a material that was read
+    for (const Material& material : scene.materials)
+        for (const MaterialExtension& extension : material.extensions) kept.insert(extension.name);
     for (const std::string& used : model.extensionsUsed)
-        if (!readExtension(used))
+        if (!readExtension(used) && !kept.count(used))
             scene.warnings.push_back(file.filename().string() + ": extension " + used + " ignored");
     return scene;
 }

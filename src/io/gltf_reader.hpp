@@ -4,6 +4,7 @@
 
 #include "symcompress/io.hpp"
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <Eigen/Core>
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -78,6 +80,13 @@ private:
                               std::vector<std::uint32_t>& indices, const std::string& where) const;
     Eigen::Matrix4d nodeTransform(const tinygltf::Node& node) const;
     void readMaterials(Scene& scene);
+    int sceneTexture(int gltfTexture, Scene& scene, const std::string& where);
+    TextureRef readTextureUse(int gltfTexture, int texCoord, double scale, const std::string& extensionsJson,
+                              Scene& scene, const std::string& where);
+    std::optional<TextureTransform> readTextureTransform(const std::string& extensionsJson, const std::string& where);
+    std::optional<MaterialExtension> readMaterialExtension(const std::string& name, nlohmann::json object, Scene& scene,
+                                                           const std::string& where);
+    static std::string extrasOf(const std::string& extrasJson);  // tinygltf's extras text as compact JSON
     void readAnimations(Scene& scene);
     void readCamerasAndLights(Scene& scene);
     void expandGpuInstances(Scene& scene);
@@ -87,7 +96,8 @@ private:
     const tinygltf::Model& model_;
     std::set<std::string> warnings_;
     std::map<std::string, int> skippedModes_;
-    std::map<int, Eigen::Matrix<double, 2, 3>> texcoordTransforms_;  // material -> its KHR_texture_transform
+    std::map<int, int> textureOfGltfTexture_;  // glTF texture -> scene texture (-1: none)
+    std::set<std::string> materialExtensions_;  // the names of the extensions kept on materials
 };
 
 }  // namespace symcompress

@@ -4,6 +4,7 @@
 // WriteOptions::draco is false.
 #include "common/number_text.hpp"
 #include "gltf_builder.hpp"
+#include "image_reference.hpp"
 #include "rotation_and_scale.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
@@ -18,6 +19,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <set>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -43,6 +45,13 @@ Json transformFields(const Eigen::Vector3d& translation, const Eigen::Matrix3d& 
     return out;
 }
 
+// Extras as read (JSON text), or nothing where the text is empty or not JSON.
+void putExtras(Json& object, const std::string& extrasJson) {
+    if (extrasJson.empty()) return;
+    Json extras = Json::parse(extrasJson, nullptr, false);
+    if (!extras.is_discarded()) object["extras"] = std::move(extras);
+}
+
 // Writes a node. glTF requires node matrices to decompose into TRS, so a transform that shears (X3D's
 // scaleOrientation, a turned child of a non-uniformly scaled parent) is split by the SVD L = U Σ V^T:
 // this node takes translation, U and Σ, and a new child, appended to `extra` (its index is firstExtra +
@@ -66,6 +75,7 @@ Json writeNode(const Node& node, const std::vector<int>& meshIndex, std::size_t 
         drawing = &extra.back();
     }
     if (!node.name.empty()) out["name"] = node.name;
+    putExtras(out, node.extrasJson);
     if (node.mesh >= 0 && meshIndex[node.mesh] >= 0) (*drawing)["mesh"] = meshIndex[node.mesh];
     if (node.camera >= 0) (*drawing)["camera"] = node.camera;
     if (node.light >= 0) (*drawing)["extensions"]["KHR_lights_punctual"]["light"] = node.light;
@@ -105,10 +115,120 @@ Json writeLight(const Light& light) {
     return out;
 }
 
-// textureIndex: the glTF texture of each of the scene's textures once written (-1 before), shared by
-// textures of the same image.
-Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, const Scene& scene,
-                   const std::vector<int>& sameImage, std::vector<int>& textureIndex) {
+// The extensions a file uses, for its extensionsUsed and extensionsRequired.
+struct ExtensionsInUse {
+    std::set<std::string> used, required;
+    void add(const std::string& name, bool isRequired) {
+        used.insert(name);
+        if (isRequired) required.insert(name);
+    }
+};
+
+// The textures, images and samplers the materials use, each written the first time a material uses it: one
+// glTF image per image (textures of the same image share it), one sampler per distinct sampler (none for
+// the default one), one glTF texture per scene texture. WebP and KTX2 images are sources of
+// EXT_texture_webp and KHR_texture_basisu, without a fallback.
+class TextureWriter {
+public:
+    TextureWriter(const Scene& scene, GltfBuilder& builder, Json& root, const fs::path& file,
+                  ExtensionsInUse& extensions)
+        : scene_(scene), builder_(builder), root_(root), file_(file), extensions_(extensions),
+          sameImage_(firstTextureOfSameImage(scene.textures)), texture_(scene.textures.size(), -1),
+          image_(scene.textures.size(), -1) {}
+
+    // The textureInfo of `use`, or null where it has no texture that can be written; `scaleKey` names its
+    // scale ("scale" for normal textures, "strength" for occlusion), nullptr where it has none.
+    Json textureInfo(const TextureRef& use, const char* scaleKey) {
+        const int index = use.texture >= 0 ? textureIndex(use.texture) : -1;
+        if (index < 0) return nullptr;
+        Json info = {{"index", index}};
+        if (use.texCoord != 0) info["texCoord"] = use.texCoord;
+        if (scaleKey && use.scale != 1) info[scaleKey] = asFloat32(use.scale);
+        if (use.transform) {
+            const TextureTransform& t = *use.transform;
+            Json transform = Json::object();
+            if (!t.offset.isZero(0)) transform["offset"] = {asFloat32(t.offset.x()), asFloat32(t.offset.y())};
+            if (t.rotation != 0) transform["rotation"] = asFloat32(t.rotation);
+            if (t.scale != Eigen::Vector2d::Ones()) transform["scale"] = {asFloat32(t.scale.x()), asFloat32(t.scale.y())};
+            if (t.texCoord >= 0) transform["texCoord"] = t.texCoord;
+            info["extensions"]["KHR_texture_transform"] = transform;
+            extensions_.add("KHR_texture_transform", false);
+        }
+        return info;
+    }
+
+private:
+    int textureIndex(int t) {
+        if (texture_[t] >= 0) return texture_[t];
+        const Texture& source = scene_.textures[std::size_t(t)];
+        const int image = imageIndex(sameImage_[std::size_t(t)]);
+        if (image < 0) return -1;
+        Json texture = Json::object();
+        const char* extension = source.mimeType == "image/webp"   ? "EXT_texture_webp"
+                                : source.mimeType == "image/ktx2" ? "KHR_texture_basisu"
+                                                                  : nullptr;
+        if (extension) {
+            texture["extensions"][extension]["source"] = image;
+            extensions_.add(extension, true);
+        } else {
+            texture["source"] = image;
+        }
+        if (const int sampler = samplerIndex(source.sampler); sampler >= 0) texture["sampler"] = sampler;
+        if (!source.name.empty()) texture["name"] = source.name;
+        root_["textures"].push_back(texture);
+        return texture_[t] = static_cast<int>(root_["textures"].size()) - 1;
+    }
+
+    // An image is embedded; one that could not be read is referred to where it should be.
+    int imageIndex(int t) {
+        if (image_[t] >= 0) return image_[t];
+        const Texture& source = scene_.textures[std::size_t(t)];
+        Json image = Json::object();
+        if (!source.bytes.empty()) {
+            image["bufferView"] = builder_.addBufferView(source.bytes.data(), source.bytes.size());
+            image["mimeType"] = source.mimeType.empty() ? "image/png" : source.mimeType;
+        } else if (!source.uri.empty()) {
+            image["uri"] = imageReference(source.uri, file_);
+        } else {
+            return -1;
+        }
+        if (!source.name.empty()) image["name"] = source.name;
+        root_["images"].push_back(image);
+        return image_[t] = static_cast<int>(root_["images"].size()) - 1;
+    }
+
+    int samplerIndex(const TextureSampler& sampler) {
+        if (sampler == TextureSampler{}) return -1;  // glTF's default: repeat, filters left to the viewer
+        for (std::size_t s = 0; s < samplers_.size(); ++s)
+            if (samplers_[s] == sampler) return int(s);
+        Json out = Json::object();
+        if (sampler.magFilter) out["magFilter"] = sampler.magFilter;
+        if (sampler.minFilter) out["minFilter"] = sampler.minFilter;
+        if (sampler.wrapS != 10497) out["wrapS"] = sampler.wrapS;
+        if (sampler.wrapT != 10497) out["wrapT"] = sampler.wrapT;
+        if (!sampler.name.empty()) out["name"] = sampler.name;
+        root_["samplers"].push_back(out);
+        samplers_.push_back(sampler);
+        return int(samplers_.size()) - 1;
+    }
+
+    const Scene& scene_;
+    GltfBuilder& builder_;
+    Json& root_;
+    fs::path file_;
+    ExtensionsInUse& extensions_;
+    std::vector<int> sameImage_, texture_, image_;
+    std::vector<TextureSampler> samplers_;
+};
+
+// The scale key of an extension's textureInfo: glTF names normal textures' "scale", occlusion's "strength".
+const char* scaleKeyOf(const std::string& key) {
+    if (key.find("ormal") != std::string::npos) return "scale";
+    if (key.find("cclusion") != std::string::npos) return "strength";
+    return nullptr;
+}
+
+Json writeMaterial(const Material& material, TextureWriter& textures, ExtensionsInUse& extensions) {
     // Factors as float32 text, and left out where they are glTF's defaults.
     Json pbr = Json::object();
     if (material.baseColorFactor != Eigen::Vector4d::Ones())
@@ -116,22 +236,16 @@ Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, c
                                   asFloat32(material.baseColorFactor[2]), asFloat32(material.baseColorFactor[3])};
     if (material.metallicFactor != 1) pbr["metallicFactor"] = asFloat32(material.metallicFactor);
     if (material.roughnessFactor != 1) pbr["roughnessFactor"] = asFloat32(material.roughnessFactor);
-    const int texture = material.baseColorTexture >= 0 ? sameImage[material.baseColorTexture] : -1;
-    if (texture >= 0 && !scene.textures[texture].bytes.empty()) {
-        if (textureIndex[texture] < 0) {
-            const Texture& source = scene.textures[texture];
-            Json image = {{"bufferView", builder.addBufferView(source.bytes.data(), source.bytes.size())},
-                          {"mimeType", source.mimeType.empty() ? "image/png" : source.mimeType}};
-            if (!source.name.empty()) image["name"] = source.name;
-            root["images"].push_back(image);
-            if (!root.contains("samplers")) root["samplers"].push_back(Json::object());
-            root["textures"].push_back({{"source", root["images"].size() - 1}, {"sampler", 0}});
-            textureIndex[texture] = static_cast<int>(root["textures"].size()) - 1;
-        }
-        pbr["baseColorTexture"] = {{"index", textureIndex[texture]}};
-    }
     Json out = Json::object();
+    auto put = [&](Json& object, const char* key, const TextureRef& use, const char* scaleKey) {
+        if (Json info = textures.textureInfo(use, scaleKey); !info.is_null()) object[key] = std::move(info);
+    };
+    put(pbr, "baseColorTexture", material.baseColorTexture, nullptr);
+    put(pbr, "metallicRoughnessTexture", material.metallicRoughnessTexture, nullptr);
     if (!pbr.empty()) out["pbrMetallicRoughness"] = pbr;
+    put(out, "normalTexture", material.normalTexture, "scale");
+    put(out, "occlusionTexture", material.occlusionTexture, "strength");
+    put(out, "emissiveTexture", material.emissiveTexture, nullptr);
     if (!material.name.empty()) out["name"] = material.name;
     if (!material.emissiveFactor.isZero())
         out["emissiveFactor"] = {asFloat32(material.emissiveFactor[0]), asFloat32(material.emissiveFactor[1]),
@@ -143,6 +257,14 @@ Json writeMaterial(const Material& material, GltfBuilder& builder, Json& root, c
         out["alphaMode"] = "BLEND";
     }
     if (material.doubleSided) out["doubleSided"] = true;
+    for (const MaterialExtension& extension : material.extensions) {
+        Json object = Json::parse(extension.json, nullptr, false);
+        if (!object.is_object()) object = Json::object();
+        for (const auto& [key, use] : extension.textures) put(object, key.c_str(), use, scaleKeyOf(key));
+        out["extensions"][extension.name] = std::move(object);
+        extensions.add(extension.name, extension.required);
+    }
+    putExtras(out, material.extrasJson);
     return out;
 }
 
@@ -224,10 +346,10 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         }
     }
     GltfBuilder builder(root);
-    std::vector<int> textureIndex(scene.textures.size(), -1);
-    const std::vector<int> sameImage = firstTextureOfSameImage(scene.textures);
+    ExtensionsInUse extensions;
+    TextureWriter textures(scene, builder, root, file, extensions);
     for (const Material& material : scene.materials)
-        root["materials"].push_back(writeMaterial(material, builder, root, scene, sameImage, textureIndex));
+        root["materials"].push_back(writeMaterial(material, textures, extensions));
 
     // Meshes with no triangles are left out (glTF requires at least one primitive), and so is the
     // reference to them from nodes.
@@ -243,6 +365,7 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         if (primitives.empty()) continue;
         Json mesh = {{"primitives", primitives}};
         if (!scene.meshes[m].name.empty()) mesh["name"] = scene.meshes[m].name;
+        putExtras(mesh, scene.meshes[m].extrasJson);
         root["meshes"].push_back(mesh);
         meshIndex[m] = static_cast<int>(root["meshes"].size()) - 1;
     }
@@ -257,11 +380,10 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     for (const Camera& camera : scene.cameras) root["cameras"].push_back(writeCamera(camera));
     for (const Light& light : scene.lights)
         root["extensions"]["KHR_lights_punctual"]["lights"].push_back(writeLight(light));
-    if (usedDraco) {
-        root["extensionsUsed"].push_back("KHR_draco_mesh_compression");
-        root["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-    }
-    if (!scene.lights.empty()) root["extensionsUsed"].push_back("KHR_lights_punctual");
+    if (usedDraco) extensions.add("KHR_draco_mesh_compression", true);
+    if (!scene.lights.empty()) extensions.add("KHR_lights_punctual", false);
+    for (const std::string& extension : extensions.used) root["extensionsUsed"].push_back(extension);
+    for (const std::string& extension : extensions.required) root["extensionsRequired"].push_back(extension);
 
     std::vector<unsigned char>& binary = builder.binary();
     if (formatFromExtension(file) == FileFormat::Glb) {

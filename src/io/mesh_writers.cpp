@@ -1,6 +1,7 @@
 // OBJ (with .mtl) and PLY writers. Both formats have no instancing: the scene is written flattened to
 // world space. Coordinates are printed with the shortest text that reads back to the same double.
 #include "symcompress/detail/atomic_file.hpp"
+#include "image_reference.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "common/number_text.hpp"
@@ -37,12 +38,12 @@ std::string mtlFile(const Scene& scene, const fs::path& file) {
         out += "d ";
         appendShortest(out, material.baseColorFactor[3]);
         out += '\n';
-        if (material.baseColorTexture >= 0) {
-            const Texture& texture = scene.textures[material.baseColorTexture];
-            if (!texture.uri.empty()) out += "map_Kd " + texture.uri + "\n";
+        if (material.baseColorTexture.texture >= 0) {
+            const Texture& texture = scene.textures[material.baseColorTexture.texture];
+            if (!texture.uri.empty())
+                out += "map_Kd " + (texture.bytes.empty() ? imageReference(texture.uri, file) : texture.uri) + "\n";
         }
     }
-    (void)file;
     return out;
 }
 
@@ -56,7 +57,10 @@ void writeObj(const Scene& scene, const fs::path& file, const WriteOptions&) {
         const Primitive& primitive = world.primitive;
         out += "o part" + std::to_string(part++) + "\nusemtl " + materialName(scene, primitive.material) + "\n";
         for (const Eigen::Vector3d& p : primitive.positions) appendVector(out, "v", p, 3);
-        for (const Eigen::Vector2d& t : primitive.texcoords) appendVector(out, "vt", Eigen::Vector2d(t.x(), 1 - t.y()), 2);
+        for (std::size_t v = 0; v < primitive.texcoords.size(); ++v) {
+            const Eigen::Vector2d t = baseColorTexcoord(scene, primitive, v);
+            appendVector(out, "vt", Eigen::Vector2d(t.x(), 1 - t.y()), 2);
+        }
         for (const Eigen::Vector3d& n : primitive.normals) appendVector(out, "vn", n, 3);
         const bool hasT = !primitive.texcoords.empty(), hasN = !primitive.normals.empty();
         for (const Triangle& triangle : primitive.triangles) {

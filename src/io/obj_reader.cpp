@@ -82,11 +82,15 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
                 texture.mimeType = imageMimeType(image.string());
                 if (fs::is_regular_file(image, error))
                     texture.bytes = readFileBytes(image);
-                else
-                    scene.warnings.push_back(library.filename().string() + ": texture '" + name + "' not found; materials using it are written without it");
+                else {
+                    // Where it was looked for: the writers refer to it relative to their output.
+                    texture.uri = image.lexically_normal().string();
+                    scene.warnings.push_back(library.filename().string() + ": texture '" + name +
+                                             "' not found; its reference is kept");
+                }
                 scene.textures.push_back(std::move(texture));
             }
-            current->baseColorTexture = entry->second;
+            current->baseColorTexture.texture = entry->second;
         }
     }
     return byName;

@@ -60,6 +60,17 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
         losses.push_back("X3D's " + list + " not written: " + file.extension().string() + " output has no place for them");
     }
     if (format == FileFormat::Glb || format == FileFormat::Gltf) return losses;
+    // X3D 3.3's Material, OBJ's and PLY's hold a colour and one texture (transformed into the coordinates).
+    const std::size_t richer = std::count_if(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
+        const auto refs = m.textureRefs();
+        const bool otherTextures = std::any_of(refs.begin() + 1, refs.end(), [](const TextureRef* use) { return use->texture >= 0; });
+        const bool sampled = m.baseColorTexture.texture >= 0 &&
+                             !(scene.textures[std::size_t(m.baseColorTexture.texture)].sampler == TextureSampler{});
+        return otherTextures || sampled || !m.extensions.empty();
+    });
+    if (richer)
+        losses.push_back(std::to_string(richer) + " materials written with their base colour only: their other " +
+                         "textures, samplers and extensions have no place in " + file.extension().string() + " output");
     if (format != FileFormat::X3d) {
         const std::string extension = file.extension().string();
         if (!scene.animations.empty())

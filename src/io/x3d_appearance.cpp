@@ -84,8 +84,11 @@ int X3dReader::readTexture(const pugi::xml_node& appearance) {
         }
     }
     if (out.uri.empty()) return -1;
-    if (out.bytes.empty())
-        notes_.insert("texture '" + out.uri + "' not found; materials using it are written without it");
+    if (out.bytes.empty()) {
+        notes_.insert("texture '" + out.uri + "' not found; its reference is kept");
+        // Where it was looked for: the writers refer to it relative to their output.
+        if (out.uri.find("://") == std::string::npos) out.uri = (file_.parent_path() / out.uri).lexically_normal().string();
+    }
     out.mimeType = imageMimeType(out.uri);
     return addTexture(entry->second, std::move(out));
 }
@@ -143,7 +146,7 @@ int X3dReader::readMaterial(const pugi::xml_node& shape) {
         material.metallicFactor = 0;
     }
     if (material.baseColorFactor[3] < 1) material.alphaMode = Material::AlphaMode::Blend;
-    material.baseColorTexture = readTexture(appearance);
+    material.baseColorTexture.texture = readTexture(appearance);
     // Appearances written out one per Shape, with the same Material and texture USEd in each, are one
     // material (else every Shape would look like its own part). Double-sidedness comes from the geometry
     // (solid="false" makes the material double-sided, below in readShape), so it is not compared.

@@ -5,6 +5,7 @@
 // is the same, gzip-compressed.
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
+#include "image_reference.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "rotation_and_scale.hpp"
 #include "common/markup_text.hpp"
@@ -98,7 +99,9 @@ void appendTransformFields(std::string& out, const Eigen::Matrix4d& matrix, bool
 
 class X3dWriter {
 public:
-    X3dWriter(const Scene& scene, const WriteOptions& options) : scene_(scene), options_(options) {}
+    // `file`: where the text goes, which unread images are referred to relative to (empty: as they are).
+    X3dWriter(const Scene& scene, const WriteOptions& options, fs::path file = {})
+        : scene_(scene), options_(options), file_(std::move(file)) {}
 
     std::string write() {
         out_ += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -318,7 +321,7 @@ private:
         out_ += "' transparency='";
         appendShortestFloat(out_, phong.transparency);
         out_ += "'/>";
-        if (m.baseColorTexture >= 0) writeImageTexture(sameImage_[std::size_t(m.baseColorTexture)]);
+        if (m.baseColorTexture.texture >= 0) writeImageTexture(sameImage_[std::size_t(m.baseColorTexture.texture)]);
         out_ += "</Appearance>\n";
     }
 
@@ -330,7 +333,7 @@ private:
             return;
         }
         const Texture& texture = scene_.textures[std::size_t(index)];
-        std::string url = texture.uri;
+        std::string url = file_.empty() ? texture.uri : imageReference(texture.uri, file_);
         if (!texture.bytes.empty())
             url = "data:" + (texture.mimeType.empty() ? std::string("image/png") : texture.mimeType) + ";base64," +
                   base64(texture.bytes);
@@ -367,9 +370,12 @@ private:
         auto same = [](const auto& v) { return v; };
         writeValues("Coordinate", "point", primitive.positions, 3, same);
         if (!primitive.normals.empty()) writeValues("Normal", "vector", primitive.normals, 3, same);
-        if (!primitive.texcoords.empty())
-            writeValues("TextureCoordinate", "point", primitive.texcoords, 2,
+        if (!primitive.texcoords.empty()) {
+            std::vector<Eigen::Vector2d> texcoords(primitive.texcoords.size());
+            for (std::size_t v = 0; v < texcoords.size(); ++v) texcoords[v] = baseColorTexcoord(scene_, primitive, v);
+            writeValues("TextureCoordinate", "point", texcoords, 2,
                         [](const Eigen::Vector2d& t) { return Eigen::Vector2d(t.x(), 1 - t.y()); });
+        }
         if (!primitive.colors.empty()) writeValues("ColorRGBA", "color", primitive.colors, 4, same);
         indent(depth + 1);
         out_ += "</IndexedTriangleSet>\n";
@@ -379,6 +385,7 @@ private:
 
     const Scene& scene_;
     const WriteOptions& options_;
+    fs::path file_;
     std::string out_;
     std::vector<bool> written_;
     std::set<int> materialWritten_;
@@ -441,7 +448,7 @@ std::size_t x3dNodeBytes(const Node& node) {
 }
 
 void writeX3d(const Scene& scene, const fs::path& file, const WriteOptions& options) {
-    std::string text = X3dWriter(scene, options).write();
+    std::string text = X3dWriter(scene, options, file).write();
     std::string extension = file.extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     writeFileAtomically(file, extension == ".x3dz" ? gzip(text, file) : text);

@@ -85,9 +85,9 @@ Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& worl
 
 void validateScene(const Scene& scene) {
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
-        const int texture = scene.materials[m].baseColorTexture;
-        if (texture < -1 || texture >= static_cast<int>(scene.textures.size()))
-            throw std::invalid_argument("material " + std::to_string(m) + ": texture index out of range");
+        for (const TextureRef* use : scene.materials[m].textureRefs())
+            if (use->texture < -1 || use->texture >= static_cast<int>(scene.textures.size()) || use->texCoord < 0)
+                throw std::invalid_argument("material " + std::to_string(m) + ": texture index out of range");
     }
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         for (std::size_t p = 0; p < scene.meshes[m].primitives.size(); ++p)
@@ -179,6 +179,19 @@ std::string animationChannelProblem(const AnimationChannel& channel, std::size_t
     if (std::adjacent_find(channel.times.begin(), channel.times.end(), std::greater_equal<double>()) != channel.times.end())
         return "key times do not increase";
     return "";
+}
+
+Eigen::Vector2d baseColorTexcoord(const Scene& scene, const Primitive& primitive, std::size_t v) {
+    const Eigen::Vector2d& t = primitive.texcoords[v];
+    if (primitive.material < 0) return t;
+    const std::optional<TextureTransform>& transform = scene.materials[std::size_t(primitive.material)].baseColorTexture.transform;
+    return transform ? Eigen::Vector2d(transform->matrix() * t.homogeneous()) : t;
+}
+
+void renumberTextures(Scene& scene, const std::vector<int>& newIndex) {
+    for (Material& material : scene.materials)
+        for (TextureRef* use : material.textureRefs())
+            if (use->texture >= 0 && (use->texture = newIndex[std::size_t(use->texture)]) < 0) *use = TextureRef{};
 }
 
 std::vector<int> firstTextureOfSameImage(const std::vector<Texture>& textures) {

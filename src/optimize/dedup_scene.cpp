@@ -8,11 +8,6 @@
 namespace symcompress {
 namespace {
 
-bool equalButName(Material a, const Material& b) {
-    a.name = b.name;
-    return a == b;
-}
-
 // For each material, the first one equal to it but for its name (itself when none is earlier). Compared only
 // within a texture and base colour, so a scene of thousands of distinct materials costs a sort, not all pairs.
 std::vector<int> firstEqualMaterial(const std::vector<Material>& materials) {
@@ -21,11 +16,11 @@ std::vector<int> firstEqualMaterial(const std::vector<Material>& materials) {
     std::vector<int> first(materials.size());
     for (std::size_t i = 0; i < materials.size(); ++i) {
         const Material& m = materials[i];
-        std::vector<int>& candidates = byKey[{m.baseColorTexture, m.baseColorFactor.x(), m.baseColorFactor.y(),
+        std::vector<int>& candidates = byKey[{m.baseColorTexture.texture, m.baseColorFactor.x(), m.baseColorFactor.y(),
                                               m.baseColorFactor.z(), m.baseColorFactor.w()}];
         first[i] = int(i);
         for (int c : candidates)
-            if (equalButName(materials[std::size_t(c)], m)) {
+            if (materials[std::size_t(c)].sameButName(m)) {
                 first[i] = c;
                 break;
             }
@@ -38,12 +33,20 @@ std::vector<int> firstEqualMaterial(const std::vector<Material>& materials) {
 
 std::pair<std::size_t, std::size_t> mergeDuplicateMaterialsAndTextures(Scene& scene) {
     std::size_t texturesMerged = 0, materialsMerged = 0;
-    // Textures of the same image (bytes and type, or the same URL where the image could not be read).
-    const std::vector<int> sameTexture = firstTextureOfSameImage(scene.textures);
-    for (std::size_t t = 0; t < sameTexture.size(); ++t) texturesMerged += sameTexture[t] != int(t);
-    for (Material& material : scene.materials)
-        if (material.baseColorTexture >= 0)
-            material.baseColorTexture = sameTexture[std::size_t(material.baseColorTexture)];
+    // Textures of the same image (bytes and type, or the same URL where the image could not be read) and the
+    // same sampler.
+    const std::vector<int> sameImage = firstTextureOfSameImage(scene.textures);
+    std::vector<int> sameTexture(scene.textures.size());
+    for (std::size_t t = 0; t < sameTexture.size(); ++t) {
+        sameTexture[t] = int(t);
+        for (std::size_t u = 0; u < t; ++u)
+            if (sameImage[u] == sameImage[t] && scene.textures[u].sampler == scene.textures[t].sampler) {
+                sameTexture[t] = int(u);
+                break;
+            }
+        texturesMerged += sameTexture[t] != int(t);
+    }
+    renumberTextures(scene, sameTexture);
     const std::vector<int> sameMaterial = firstEqualMaterial(scene.materials);
     for (std::size_t m = 0; m < sameMaterial.size(); ++m) materialsMerged += sameMaterial[m] != int(m);
     for (Mesh& mesh : scene.meshes)

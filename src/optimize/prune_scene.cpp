@@ -1,14 +1,18 @@
 // Pruning: what nothing draws or reads, removed (docs/optimizations.md).
 #include "symcompress/optimize.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <numeric>
 
 namespace symcompress {
 
 std::size_t dropUnreadTexcoords(Scene& scene) {
-    // Only the base colour texture is carried through: nothing else reads TEXCOORD_0.
+    // Only TEXCOORD_0 is carried through, and every texture the reader keeps reads it.
     auto readsTexcoords = [&scene](int material) {
-        return material >= 0 && scene.materials[material].baseColorTexture >= 0;
+        if (material < 0) return false;
+        for (const TextureRef* use : scene.materials[std::size_t(material)].textureRefs())
+            if (use->texture >= 0) return true;
+        return false;
     };
     std::size_t dropped = 0;
     for (Mesh& mesh : scene.meshes)
@@ -52,12 +56,10 @@ std::pair<std::size_t, std::size_t> pruneUnused(Scene& scene) {
 
     std::vector<bool> textureUsed(scene.textures.size(), false);
     for (const Material& material : scene.materials)
-        if (material.baseColorTexture >= 0) textureUsed[std::size_t(material.baseColorTexture)] = true;
+        for (const TextureRef* use : material.textureRefs())
+            if (use->texture >= 0) textureUsed[std::size_t(use->texture)] = true;
     const std::size_t textures = scene.textures.size();
-    const std::vector<int> newTexture = keepUsed(scene.textures, textureUsed);
-    for (Material& material : scene.materials)
-        if (material.baseColorTexture >= 0)
-            material.baseColorTexture = newTexture[std::size_t(material.baseColorTexture)];
+    renumberTextures(scene, keepUsed(scene.textures, textureUsed));
     return {materials - scene.materials.size(), textures - scene.textures.size()};
 }
 

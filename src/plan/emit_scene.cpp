@@ -12,9 +12,10 @@
 namespace symcompress {
 namespace {
 
-int addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const std::string& name) {
+// A root node drawing `mesh`, with the name and extras of the input node `source` stands for (if any).
+int addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const Node* source) {
     Node node;
-    node.name = name;
+    if (source) node.name = source->name, node.extrasJson = source->extrasJson;
     node.mesh = mesh;
     node.transform = transform;
     out.roots.push_back(int(out.nodes.size()));
@@ -37,6 +38,7 @@ void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Sce
         const Node& from = input.nodes[std::size_t(node)];
         Node to;
         to.name = from.name;
+        to.extrasJson = from.extrasJson;
         to.transform = from.transform;
         to.camera = from.camera;
         to.light = from.light;
@@ -60,7 +62,7 @@ void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Sce
         // scale of 0 at rest (hidden until its animation shows it).
         const int above = parent[std::size_t(top)];
         const int holder =
-            addRootNode(out, -1, above < 0 ? Eigen::Matrix4d::Identity() : world[std::size_t(above)], "");
+            addRootNode(out, -1, above < 0 ? Eigen::Matrix4d::Identity() : world[std::size_t(above)], nullptr);
         const int copied = copy(copy, top);
         out.nodes[std::size_t(holder)].children.push_back(copied);
     }
@@ -100,7 +102,7 @@ void keepCamerasAndLights(const Scene& input, const SceneAnalysis& analysis, Sce
         if (std::binary_search(animated.begin(), animated.end(), node)) continue;
         const Eigen::Matrix4d world = parentWorld * from.transform;
         if (from.camera >= 0 || from.light >= 0) {
-            const int kept = addRootNode(out, -1, world, from.name);
+            const int kept = addRootNode(out, -1, world, &from);
             out.nodes[std::size_t(kept)].camera = from.camera;
             out.nodes[std::size_t(kept)].light = from.light;
             ++stats.camerasAndLightsKept;
@@ -174,17 +176,18 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     out.warnings = input.warnings;
     std::map<int, int> keptMesh;   // input mesh -> output mesh
     PrimitivesByKind unique;       // what is stored as it is
-    std::set<std::string> merged;  // names of the input nodes whose parts are merged into `unique`
+    std::set<std::string> merged;      // names of the input nodes whose parts are merged into `unique`
+    const Node* mergedSource = nullptr;  // one of them
     for (const KeptInstance& kept : analysis.keptInstances) {
         if (!plan.shareInputInstances) {
             for (const Primitive& primitive : input.meshes[std::size_t(kept.mesh)].primitives)
                 unique.add(transformPrimitive(primitive, kept.transform));
-            if (!kept.name.empty()) merged.insert(kept.name);
+            if (kept.source && !kept.source->name.empty()) merged.insert(kept.source->name), mergedSource = kept.source;
             continue;
         }
         auto [entry, added] = keptMesh.emplace(kept.mesh, int(out.meshes.size()));
         if (added) out.meshes.push_back(input.meshes[std::size_t(kept.mesh)]);
-        result.instanceNodes.push_back(addRootNode(out, entry->second, kept.transform, kept.name));
+        result.instanceNodes.push_back(addRootNode(out, entry->second, kept.transform, kept.source));
         ++stats.inputInstancesKept;
         ++stats.instances;
     }
@@ -194,12 +197,13 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         const int mesh = int(out.meshes.size());
         out.meshes.push_back(part.mesh);
         for (const PlacedCopy& node : part.nodes)
-            result.instanceNodes.push_back(addRootNode(out, mesh, node.transform, node.name));
+            result.instanceNodes.push_back(addRootNode(out, mesh, node.transform, node.source));
         count(part, stats);
     }
     for (std::size_t t : plan.tilesAsTheyAre) {
         unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
-        if (std::string name = sourceNodeName(input, analysis, t); !name.empty()) merged.insert(name);
+        if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())
+            merged.insert(source->name), mergedSource = source;
     }
     if (!unique.empty()) {
         // One mesh per material for every tile stored as it is, drawn by one node: it takes the name of the
@@ -211,7 +215,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         unique.moveInto(mesh);
         out.meshes.push_back(std::move(mesh));
         addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(),
-                    merged.size() == 1 ? *merged.begin() : "");
+                    merged.size() == 1 ? mergedSource : nullptr);
     }
     dropPointLikeTriangles(out, stats);
     return result;

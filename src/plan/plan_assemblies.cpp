@@ -40,8 +40,8 @@ std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<b
         for (std::size_t j = 0; j < assembly.copies.size(); ++j) {
             for (std::size_t t : assembly.copies[j]) apart += context.costs.apart(t);
             shared.nodes.push_back(
-                {assembly.placements[j].matrix() * translationTo(center), context.sourceName(assembly.copies[j][0])});
-            nodes += context.costs.node(shared.nodes.back().transform, shared.nodes.back().name);
+                {assembly.placements[j].matrix() * translationTo(center), context.sourceOf(assembly.copies[j][0])});
+            nodes += context.costs.node(shared.nodes.back().transform, shared.nodes.back().source);
         }
         if (context.costs.meshOf(assembly.copies[0]) + nodes >= apart) continue;
         PrimitivesByKind parts;

@@ -75,7 +75,7 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
         double bytes = 0;
         for (std::size_t i : placed)
             for (const Eigen::Matrix4d& copy : copiesInTile)
-                bytes += costs.node(placements[i].matrix() * copy, context.sourceName(c.members[i]));
+                bytes += costs.node(placements[i].matrix() * copy, context.sourceOf(c.members[i]));
         return bytes;
     };
     const Eigen::Vector3d center = shape.moments.centroid;
@@ -128,7 +128,7 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
     }
     for (std::size_t i : placed) {
         for (const Eigen::Matrix4d& copy : copiesInTile)
-            shared.nodes.push_back({placements[i].matrix() * copy, context.sourceName(c.members[i])});
+            shared.nodes.push_back({placements[i].matrix() * copy, context.sourceOf(c.members[i])});
         shared.tiles.push_back(c.members[i]);
         shared.deviation = std::max(shared.deviation, c.deviations[i]);
     }

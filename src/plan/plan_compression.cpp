@@ -7,11 +7,11 @@
 
 namespace symcompress {
 
-std::string sourceNodeName(const Scene& input, const SceneAnalysis& analysis, std::size_t t) {
+const Node* sourceNode(const Scene& input, const SceneAnalysis& analysis, std::size_t t) {
     const Tile& tile = analysis.tiles[t];
-    if (tile.sources.empty()) return {};
+    if (tile.sources.empty()) return nullptr;
     const int node = analysis.soup[tile.sources.front().primitive].node;
-    return node >= 0 && std::size_t(node) < input.nodes.size() ? input.nodes[std::size_t(node)].name : std::string();
+    return node >= 0 && std::size_t(node) < input.nodes.size() ? &input.nodes[std::size_t(node)] : nullptr;
 }
 
 bool PlanContext::reproduces(std::size_t from, std::size_t to, const Isometry& map) const {

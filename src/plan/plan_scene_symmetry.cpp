@@ -63,7 +63,7 @@ std::optional<SharedPart> planSceneSymmetry(const PlanContext& context) {
         shared.nodes.push_back(std::move(node));
     }
     double nodes = 0;
-    for (const PlacedCopy& node : shared.nodes) nodes += context.costs.node(node.transform, node.name);
+    for (const PlacedCopy& node : shared.nodes) nodes += context.costs.node(node.transform, node.source);
     if (part.empty() || context.costs.meshOf(part, orbitTiles.size() < tiles.size()) + nodes >= apart)
         return std::nullopt;
     PrimitivesByKind parts;

@@ -11,8 +11,8 @@
 
 namespace symcompress {
 
-// The name of the input node that draws tile t (empty when it has none): instance nodes keep it.
-std::string sourceNodeName(const Scene& input, const SceneAnalysis& analysis, std::size_t t);
+// The input node that draws tile t (nullptr when it has none): instance nodes keep its name and extras.
+const Node* sourceNode(const Scene& input, const SceneAnalysis& analysis, std::size_t t);
 
 // What every planner reads.
 struct PlanContext {
@@ -21,7 +21,7 @@ struct PlanContext {
     const PlanOptions& options;
     StorageCosts& costs;
     double tolerance() const { return analysis.absoluteTolerance; }
-    std::string sourceName(std::size_t t) const { return sourceNodeName(input, analysis, t); }
+    const Node* sourceOf(std::size_t t) const { return sourceNode(input, analysis, t); }
     // Whether tile `from` placed by `map` reproduces tile `to` (the member check, as the options ask).
     bool reproduces(std::size_t from, std::size_t to, const Isometry& map) const;
 };

@@ -52,7 +52,7 @@ void setAsideScaledInstances(const Scene& input, SceneAnalysis& analysis) {
         if (mesh >= 0 && nodes.size() > 1 && !std::all_of(nodes.begin(), nodes.end(), rigid)) {
             kept.insert(mesh);
             for (int node : nodes)
-                analysis.keptInstances.push_back({mesh, world[std::size_t(node)], input.nodes[std::size_t(node)].name});
+                analysis.keptInstances.push_back({mesh, world[std::size_t(node)], &input.nodes[std::size_t(node)]});
         }
     analysis.soup.erase(std::remove_if(analysis.soup.begin(), analysis.soup.end(),
                                        [&](const WorldPrimitive& placed) { return kept.count(placed.mesh) > 0; }),

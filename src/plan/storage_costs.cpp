@@ -26,10 +26,10 @@ double StorageCosts::node(const Node& node) const {
     return model_.nodeBytes ? model_.nodeBytes(node) : model_.bytesPerInstance;
 }
 
-double StorageCosts::node(const Eigen::Matrix4d& transform, const std::string& name) const {
+double StorageCosts::node(const Eigen::Matrix4d& transform, const Node* source) const {
     Node drawing;
     drawing.transform = transform;
-    drawing.name = name;
+    if (source) drawing.name = source->name, drawing.extrasJson = source->extrasJson;
     return node(drawing);
 }
 
@@ -46,7 +46,7 @@ double StorageCosts::alone(std::size_t t) {
 double StorageCosts::apart(std::size_t t) {
     if (classOf_[t] == kNone) return std::min(merged(t), model_.bytesPerInstance + alone(t));
     const CongruenceClass& c = analysis_.classification.classes[classOf_[t]];
-    return std::min(merged(t), node(c.placements[memberOf_[t]].matrix(), "") + alone(t) / double(c.members.size()));
+    return std::min(merged(t), node(c.placements[memberOf_[t]].matrix(), nullptr) + alone(t) / double(c.members.size()));
 }
 
 double StorageCosts::meshOf(const std::vector<std::size_t>& tiles, bool overhead) {

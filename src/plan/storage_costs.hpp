@@ -20,8 +20,9 @@ public:
     StorageCosts(const SceneAnalysis& analysis, const StorageCostModel& model);
 
     double asMesh(const Primitive& part) const;
-    // A node drawing a shared mesh with this transform and name, as the writer measures it.
-    double node(const Eigen::Matrix4d& transform, const std::string& name) const;
+    // A node drawing a shared mesh with this transform and the name and extras of `source` (if any), as the
+    // writer measures it.
+    double node(const Eigen::Matrix4d& transform, const Node* source) const;
     double node(const Node& node) const;
     // Tile t's triangles in a mesh with other parts.
     double merged(std::size_t t) { return double(analysis_.tiles[t].mesh.triangles.size()) * kindOf(t).perTriangle; }

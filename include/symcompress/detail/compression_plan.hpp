@@ -29,7 +29,7 @@ struct AnalysisOptions {
 struct KeptInstance {
     int mesh = -1;                                            // in the input
     Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // world
-    std::string name;
+    const Node* source = nullptr;  // in the input scene: the instance node keeps its name and extras
 };
 
 // What every plan is made from: the tiles and their congruence classes (the expensive part), computed once
@@ -88,7 +88,7 @@ struct PlanOptions {
 // A node drawing a stored mesh.
 struct PlacedCopy {
     Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // world
-    std::string name;
+    const Node* source = nullptr;  // the input node whose tile it draws (its name and extras are kept), if any
 };
 
 // One mesh stored once and the nodes that draw it: a decision of one of the planners.
