@@ -140,6 +140,28 @@ def scene_graph():
     return g
 
 
+def materials():
+    """Every texture slot, samplers, a texture transform, material extensions with textures, extras."""
+    g = plain()
+    png = base64.b64decode("iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==")
+    g.doc["images"] = [{"mimeType": "image/png", "bufferView": g.view(png)}, {"uri": "missing.png"}]
+    g.doc["samplers"] = [{"magFilter": 9728, "minFilter": 9986, "wrapS": 33071, "wrapT": 33648}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 1}]
+    g.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = g.accessor("2f", [(0, 0), (1, 0), (0, 1), (1, 1)], FLOAT, "VEC2")
+    material = g.doc["materials"][0]
+    material["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0], "rotation": 1}}}
+    material["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {"index": 1}
+    material["normalTexture"] = {"index": 0, "scale": 0.5}
+    material["occlusionTexture"] = {"index": 1, "strength": 0.25}
+    material["emissiveTexture"] = {"index": 0}
+    material["extensions"] = {"KHR_materials_clearcoat": {"clearcoatFactor": 0.5, "clearcoatNormalTexture": {"index": 1, "scale": 2}},
+                              "KHR_materials_emissive_strength": {"emissiveStrength": 3}}
+    material["extras"] = {"tag": [1, 2]}
+    g.doc["extensionsUsed"] = ["KHR_texture_transform", "KHR_materials_clearcoat", "KHR_materials_emissive_strength"]
+    g.doc["extensionsRequired"] = ["KHR_materials_clearcoat"]
+    return g
+
+
 def animated():
     g = plain()
     times = g.accessor("f", [0.0, 0.5, 1.0], FLOAT, "SCALAR", minmax=False)
@@ -167,7 +189,8 @@ def instanced():
     return g
 
 
-for name, make in [("plain", plain), ("scene_graph", scene_graph), ("animated", animated), ("instanced", instanced)]:
+for name, make in [("plain", plain), ("scene_graph", scene_graph), ("animated", animated), ("instanced", instanced),
+                   ("materials", materials)]:
     write("glb", name + ".glb", make().glb())
     write("gltf", name + ".gltf", make().gltf())
 
