@@ -336,6 +336,7 @@ TEST_CASE("X3D viewpoints and lights are read where X3D puts them, written back,
           <DirectionalLight DEF='sun' direction='0 -1 0' intensity='0.8' color='1 0.9 0.8' global='true'/>
           <SpotLight DEF='lamp' location='1 2 3' direction='1 0 0' beamWidth='1.2' cutOffAngle='0.5' radius='20' attenuation='0 0 1'/>
           <PointLight DEF='off' on='false'/>
+          <PointLight DEF='bulb' location='0 3 0' attenuation='1 0 0'/>
         </Transform>
         <OrthoViewpoint DEF='plan' position='0 10 0' orientation='1 0 0 -1.5707963' fieldOfView='-4 -2 2 2'/>
     </Scene></X3D>)");
@@ -346,7 +347,14 @@ TEST_CASE("X3D viewpoints and lights are read where X3D puts them, written back,
     CHECK(scene.x3dEnvironment.size() == 3);  // NavigationInfo, Background, WorldInfo: given back in X3D output
     CHECK(hasWarning(scene, "lights that are off (on='false') left out"));
     REQUIRE(scene.cameras.size() == 2);
-    REQUIRE(scene.lights.size() == 2);
+    REQUIRE(scene.lights.size() == 3);
+    // X3D's default attenuation (none) is kept for X3D output; glTF output says it cannot hold it.
+    CHECK_FALSE(scene.lights[1].x3dAttenuation);  // 0 0 1: glTF's own
+    REQUIRE(scene.lights[2].x3dAttenuation);
+    CHECK(*scene.lights[2].x3dAttenuation == Eigen::Vector3d(1, 0, 0));
+    const std::vector<std::string> losses = formatLosses(scene, folder / "again.glb");
+    CHECK(std::count(losses.begin(), losses.end(),
+                     "1 X3D lights' attenuation not written: .glb lights fall off with the inverse square of the distance") == 1);
 
     const Camera& front = scene.cameras[0];
     CHECK(front.name == "Front");
@@ -390,7 +398,9 @@ TEST_CASE("X3D viewpoints and lights are read where X3D puts them, written back,
     for (const char* name : {"again.x3d", "again.glb"}) {
         const Scene again = readScene(folder / name);
         REQUIRE(again.cameras.size() == 2);
-        REQUIRE(again.lights.size() == 2);
+        REQUIRE(again.lights.size() == 3);
+        CHECK(again.lights[2].x3dAttenuation == (std::string(name) == "again.x3d" ? std::optional<Eigen::Vector3d>(Eigen::Vector3d(1, 0, 0))
+                                                                                : std::nullopt));
         CHECK(again.cameras[0].yfov == Approx(0.6));
         CHECK(again.cameras[1].xmag == Approx(3));
         CHECK(again.lights[1].range == 20);

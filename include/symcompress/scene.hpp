@@ -188,6 +188,9 @@ struct Light {
     double intensity = 1;  // glTF: candela (point, spot) or lux (directional); X3D: 0 to 1, taken as is
     double range = 0;      // 0: no limit
     double innerConeAngle = 0, outerConeAngle = 0.7853981633974483;  // spot, radians
+    // X3D's attenuation (constant, linear, quadratic) of a point or spot light read from X3D, so that an X3D
+    // writer gives it back; glTF's lights fall off with the inverse square (0 0 1), which is the default.
+    std::optional<Eigen::Vector3d> x3dAttenuation;
 };
 
 struct Node {

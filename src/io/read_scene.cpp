@@ -59,6 +59,13 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
         for (const auto& [type, count] : types) list += (list.empty() ? "" : ", ") + std::to_string(count) + " " + type;
         losses.push_back("X3D's " + list + " not written: " + file.extension().string() + " output has no place for them");
     }
+    if (format != FileFormat::X3d) {
+        const std::size_t attenuated = std::count_if(scene.lights.begin(), scene.lights.end(),
+                                                     [](const Light& light) { return light.x3dAttenuation.has_value(); });
+        if (attenuated)
+            losses.push_back(std::to_string(attenuated) + " X3D lights' attenuation not written: " +
+                             file.extension().string() + " lights fall off with the inverse square of the distance");
+    }
     if (format == FileFormat::Glb || format == FileFormat::Gltf) return losses;
     // X3D 3.3's Material, OBJ's and PLY's hold a colour and one texture (transformed into the coordinates).
     const std::size_t richer = std::count_if(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {

@@ -183,8 +183,8 @@ int X3dReader::addPlacedNode(const pugi::xml_node& source, const Eigen::Affine3d
 }
 
 // A light as a node at its location, turned so that its direction is -z (glTF's frame). What glTF's
-// KHR_lights_punctual cannot hold is said in a note: attenuation (glTF lights fall off with the inverse
-// square of the distance), ambient intensity, a light scoped to its group, a light that is off.
+// KHR_lights_punctual cannot hold is said in a note (ambient intensity, a light scoped to its group, a light
+// that is off) or kept for X3D output (attenuation: glTF's lights fall off with the inverse square).
 int X3dReader::readLight(const pugi::xml_node& source, int depth) {
     const std::string type = source.name();
     if (!boolean(source, "on", true)) {
@@ -206,11 +206,10 @@ int X3dReader::readLight(const pugi::xml_node& source, int depth) {
         light.innerConeAngle =
             std::min(scalar(source, "beamWidth", std::acos(0.0)), std::nextafter(light.outerConeAngle, 0.0));
     }
-    if (light.type != Light::Type::Directional &&
-        vector3(source, "attenuation", Eigen::Vector3d(1, 0, 0)) != Eigen::Vector3d(0, 0, 1))
-        notes_.insert(
-            "the attenuation of point and spot lights is not kept: glTF's lights fall off with the inverse square of "
-            "the distance");
+    if (light.type != Light::Type::Directional) {
+        const Eigen::Vector3d attenuation = vector3(source, "attenuation", Eigen::Vector3d(1, 0, 0));
+        if (attenuation != Eigen::Vector3d(0, 0, 1)) light.x3dAttenuation = attenuation;
+    }
     if (scalar(source, "ambientIntensity", 0) != 0)
         notes_.insert("the ambientIntensity of lights is not kept (glTF's lights have none)");
     if (!boolean(source, "global", light.type != Light::Type::Directional) && depth > 1)

@@ -182,7 +182,8 @@ private:
 
     // A light in its node's frame: at the origin, shining down -z. It lights the whole scene (global), as
     // glTF's do; its intensity is cut to X3D's largest, 1 (formatLosses warns); a point or spot light's
-    // falls off with the inverse square of the distance, as glTF's does; no range is X3D's largest radius.
+    // falls off as the X3D input had it, else with the inverse square of the distance, as glTF's does; no
+    // range is X3D's largest radius.
     void writeLight(const Light& light, int depth) {
         indent(depth);
         out_ += light.type == Light::Type::Directional ? "<DirectionalLight direction='0 0 -1'"
@@ -194,7 +195,9 @@ private:
         appendShortestFloat(out_, std::min(light.intensity, 1.0));
         out_ += "'";
         if (light.type != Light::Type::Directional) {
-            out_ += " attenuation='0 0 1' radius='";
+            out_ += " attenuation='";
+            appendVector(out_, light.x3dAttenuation.value_or(Eigen::Vector3d(0, 0, 1)), 3);
+            out_ += "' radius='";
             appendShortestFloat(out_, light.range > 0 ? light.range : std::numeric_limits<float>::max());
             out_ += "'";
         }

@@ -165,6 +165,8 @@ std::string lightProblem(const Light& light) {
     if (light.type == Light::Type::Spot &&
         !(0 <= light.innerConeAngle && light.innerConeAngle < light.outerConeAngle && light.outerConeAngle <= std::acos(0.0)))  // pi/2
         return "a spot light needs 0 <= innerConeAngle < outerConeAngle <= pi/2";
+    if (light.x3dAttenuation && (!light.x3dAttenuation->allFinite() || (light.x3dAttenuation->array() < 0).any()))
+        return "an attenuation with NaN, infinite or negative values";
     return "";
 }
 
