@@ -53,6 +53,7 @@ inline void appendShortestFloat(std::string& out, double value) {
 
 // Places kept in a rotation (quaternion or axis and angle): 1e-7, about float32's resolution at 1.
 constexpr int kRotationDecimals = 7;
+constexpr int kNormalDecimals = 4;  // X3D output's unit normals
 // Significant digits of a translation or scale written as text (X3D): what float32 holds.
 constexpr int kPlacementDigits = 9;
 

@@ -6,9 +6,63 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace symcompress {
 namespace fs = std::filesystem;
+namespace {
+
+// The normals an X3D browser makes for a face set without a Normal node, one per corner (X3D 3.3, 13.3.6
+// and 11.2.3): at a point, the average of the unit normals of the faces around it whose normal turns by less
+// than `creaseAngle` from that of the corner's own face (unweighted, as X_ITE averages them). Returns the distinct normals (flat)
+// and, for each corner in face order, the index of its normal. Points out of range are left to the caller.
+std::pair<std::vector<double>, std::vector<std::int64_t>> creasedNormals(const std::vector<std::vector<std::int64_t>>& faces,
+                                                                          const std::vector<double>& points,
+                                                                          double creaseAngle, bool ccw) {
+    const std::size_t pointCount = points.size() / 3;
+    auto point = [&](std::int64_t p) { return Eigen::Vector3d(points[3 * p], points[3 * p + 1], points[3 * p + 2]); };
+    // Newell's normal of each face.
+    std::vector<Eigen::Vector3d> faceNormal(faces.size(), Eigen::Vector3d::Zero());
+    std::vector<std::vector<std::size_t>> facesAt(pointCount);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& face = faces[f];
+        if (!std::all_of(face.begin(), face.end(), [&](std::int64_t p) { return p >= 0 && std::size_t(p) < pointCount; }))
+            continue;
+        for (std::size_t k = 0; k < face.size(); ++k) faceNormal[f] += point(face[k]).cross(point(face[(k + 1) % face.size()]));
+        if (!ccw) faceNormal[f] = -faceNormal[f];
+        for (std::int64_t p : face)
+            if (facesAt[std::size_t(p)].empty() || facesAt[std::size_t(p)].back() != f) facesAt[std::size_t(p)].push_back(f);
+    }
+    const double cosCrease = std::cos(std::min(creaseAngle, M_PI));
+    std::vector<double> normals;
+    std::vector<std::int64_t> cornerNormal;
+    std::vector<std::vector<std::pair<Eigen::Vector3d, std::int64_t>>> madeAt(pointCount);  // distinct, per point
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const Eigen::Vector3d own = faceNormal[f].normalized();
+        for (std::int64_t p : faces[f]) {
+            if (p < 0 || std::size_t(p) >= pointCount) {
+                cornerNormal.push_back(-1);
+                continue;
+            }
+            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+            for (std::size_t g : facesAt[std::size_t(p)])
+                if (g == f || own.dot(faceNormal[g].normalized()) > cosCrease) sum += faceNormal[g].normalized();
+            Eigen::Vector3d normal = sum.norm() > 0 ? sum.normalized() : own.norm() > 0 ? own : Eigen::Vector3d::UnitZ();
+            auto& made = madeAt[std::size_t(p)];
+            const auto found = std::find_if(made.begin(), made.end(), [&](const auto& m) { return m.first == normal; });
+            if (found != made.end()) {
+                cornerNormal.push_back(found->second);
+                continue;
+            }
+            made.push_back({normal, std::int64_t(normals.size() / 3)});
+            cornerNormal.push_back(made.back().second);
+            normals.insert(normals.end(), {normal.x(), normal.y(), normal.z()});
+        }
+    }
+    return {normals, cornerNormal};
+}
+
+}  // namespace
 
 bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out) {
     const std::string type = geometry.name();
@@ -51,7 +105,7 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
     const pugi::xml_node normalNode = child({"Normal"});
     const pugi::xml_node colorNode = child({"Color", "ColorRGBA"});
     const pugi::xml_node texcoordNode = child({"TextureCoordinate"});
-    const std::vector<double> normalValues = normalNode ? numbers(normalNode, "vector") : std::vector<double>();
+    std::vector<double> normalValues = normalNode ? numbers(normalNode, "vector") : std::vector<double>();
     const std::vector<double> colorValues = colorNode ? numbers(colorNode, "color") : std::vector<double>();
     const int colorComponents = colorNode && std::strcmp(colorNode.name(), "ColorRGBA") == 0 ? 4 : 3;
     const std::vector<double> texcoordValues = texcoordNode ? numbers(texcoordNode, "point") : std::vector<double>();
@@ -106,20 +160,31 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
         }
     };
     std::map<CornerKey, std::uint32_t> vertexOf;
+    // Without a Normal node, the normals the browser would make: flat (none, as glTF draws a mesh without
+    // normals) unless normalPerVertex and, for an IndexedFaceSet, a creaseAngle above 0 ask for smoothing
+    // (the triangle sets smooth across every shared point).
+    std::vector<std::int64_t> madeNormalOfCorner;
+    if (!normalNode && normalPerVertex) {
+        const double creaseAngle = indexedFaces ? scalar(geometry, "creaseAngle", 0) : M_PI;
+        if (creaseAngle > 0) std::tie(normalValues, madeNormalOfCorner) = creasedNormals(faces, points, creaseAngle, ccw);
+    }
     const bool hasNormals = !normalValues.empty(), hasColors = !colorValues.empty(),
                hasTexcoords = !texcoordValues.empty();
-    std::size_t cornerInCoordIndex = 0;
+    std::size_t cornerInCoordIndex = 0, corner = 0;
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
         std::vector<std::uint32_t> local;
         std::vector<Eigen::Vector3d> polygon;
-        for (std::size_t k = 0; k < face.size(); ++k, ++cornerInCoordIndex) {
+        for (std::size_t k = 0; k < face.size(); ++k, ++cornerInCoordIndex, ++corner) {
             const std::int64_t point = face[k];
             if (point < 0 || static_cast<std::size_t>(point) >= pointCount)
                 fail(geometry, "coordinate index " + std::to_string(point) + " out of range (" +
                                    std::to_string(pointCount) + " points)");
             CornerKey key{point, -1, -1, -1};
-            if (hasNormals) key.normal = attributeIndex(normalIndex, normalPerVertex, f, cornerInCoordIndex, point);
+            if (hasNormals)
+                key.normal = !madeNormalOfCorner.empty()
+                                 ? madeNormalOfCorner[corner]
+                                 : attributeIndex(normalIndex, normalPerVertex, f, cornerInCoordIndex, point);
             if (hasColors) key.color = attributeIndex(colorIndex, colorPerVertex, f, cornerInCoordIndex, point);
             if (hasTexcoords) key.texcoord = attributeIndex(texcoordIndex, true, f, cornerInCoordIndex, point);
             auto check = [&](std::int64_t index, std::size_t available, const char* what) {

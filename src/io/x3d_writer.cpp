@@ -352,7 +352,9 @@ private:
         writeAppearance(primitive.material, depth + 1);
         const bool doubleSided = primitive.material >= 0 && scene_.materials[primitive.material].doubleSided;
         indent(depth + 1);
-        out_ += "<IndexedTriangleSet solid='" + std::string(doubleSided ? "false" : "true") + "' index='";
+        // Without normals, flat shading, as glTF draws such a mesh (X3D's default would smooth it).
+        out_ += "<IndexedTriangleSet solid='" + std::string(doubleSided ? "false" : "true") +
+                (primitive.normals.empty() ? "' normalPerVertex='false" : "") + "' index='";
         bool first = true;
         for (const Triangle& t : primitive.triangles)
             for (std::uint32_t i : t) {
@@ -372,7 +374,12 @@ private:
         };
         auto same = [](const auto& v) { return v; };
         writeValues("Coordinate", "point", primitive.positions, 3, same);
-        if (!primitive.normals.empty()) writeValues("Normal", "vector", primitive.normals, 3, same);
+        // Unit normals to 4 decimals (within 0.01 degree; GLB output keeps 10 bits, about 0.1 degree): the text of
+        // the normals the reader makes for a creaseAngle is then not much longer than the coordinates'.
+        if (!primitive.normals.empty())
+            writeValues("Normal", "vector", primitive.normals, 3, [](const Eigen::Vector3d& n) -> Eigen::Vector3d {
+                return n.unaryExpr([](double x) { return roundedDecimals(x, kNormalDecimals); });
+            });
         if (!primitive.texcoords.empty()) {
             std::vector<Eigen::Vector2d> texcoords(primitive.texcoords.size());
             for (std::size_t v = 0; v < texcoords.size(); ++v) texcoords[v] = baseColorTexcoord(scene_, primitive, v);

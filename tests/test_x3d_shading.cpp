@@ -1,0 +1,97 @@
+// X3D shading as a browser does it and as glTF draws it (issue 15): a face set without a Normal node gets
+// the normals an X3D browser makes (creaseAngle, normalPerVertex), and a mesh without normals is written
+// to X3D flat, as glTF draws it.
+#include "symcompress/io.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+using namespace symcompress;
+using namespace symcompress::testing;
+
+namespace {
+
+// An octagonal prism's side, 8 quads around the z axis (45 degrees between neighbours), as an IndexedFaceSet.
+std::string prism(const std::string& fields) {
+    std::string points, index;
+    for (int k = 0; k < 8; ++k) {
+        const double angle = k * M_PI / 4;
+        points += std::to_string(std::cos(angle)) + " " + std::to_string(std::sin(angle)) + " 0 " +
+                  std::to_string(std::cos(angle)) + " " + std::to_string(std::sin(angle)) + " 1 ";
+        const int a = 2 * k, b = 2 * k + 1, c = 2 * ((k + 1) % 8) + 1, d = 2 * ((k + 1) % 8);
+        index += std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + " " + std::to_string(b) + " -1 ";
+    }
+    return "<X3D><Scene><Shape><IndexedFaceSet " + fields + " coordIndex='" + index + "'><Coordinate point='" + points +
+           "'/></IndexedFaceSet></Shape></Scene></X3D>";
+}
+
+Primitive readOnly(const std::filesystem::path& file) {
+    const Scene scene = readScene(file);
+    REQUIRE(scene.meshes.size() == 1);
+    REQUIRE(scene.meshes[0].primitives.size() == 1);
+    return scene.meshes[0].primitives[0];
+}
+
+}  // namespace
+
+TEST_CASE("X3D face sets without normals are shaded as the browser would: creaseAngle and normalPerVertex", "[io][x3d]") {
+    TemporaryFolder folder;
+    SECTION("creaseAngle 0 (the default) is flat: no normals, as glTF draws a mesh without them") {
+        writeTextFile(folder / "flat.x3d", prism(""));
+        const Primitive flat = readOnly(folder / "flat.x3d");
+        CHECK(flat.normals.empty());
+        CHECK(flat.positions.size() == 16);
+    }
+    SECTION("a creaseAngle above the 45 degrees between faces is smooth: each point's normal points away from the axis") {
+        writeTextFile(folder / "smooth.x3d", prism("creaseAngle='1'"));
+        const Primitive smooth = readOnly(folder / "smooth.x3d");
+        REQUIRE(smooth.normals.size() == smooth.positions.size());
+        CHECK(smooth.positions.size() == 16);  // one vertex a point: the normals are shared
+        for (std::size_t v = 0; v < smooth.positions.size(); ++v) {
+            const Eigen::Vector3d radial(smooth.positions[v].x(), smooth.positions[v].y(), 0);
+            CHECK((smooth.normals[v] - radial.normalized()).norm() < 1e-6);
+        }
+    }
+    SECTION("a creaseAngle below it keeps the edges: each corner has its face's normal") {
+        writeTextFile(folder / "creased.x3d", prism("creaseAngle='0.5'"));
+        const Primitive creased = readOnly(folder / "creased.x3d");
+        REQUIRE(creased.normals.size() == creased.positions.size());
+        CHECK(creased.positions.size() == 32);  // each point on two faces, with two normals
+        for (const Triangle& t : creased.triangles) {
+            const Eigen::Vector3d face =
+                (creased.positions[t[1]] - creased.positions[t[0]]).cross(creased.positions[t[2]] - creased.positions[t[0]]).normalized();
+            for (std::uint32_t v : t) CHECK((creased.normals[v] - face).norm() < 1e-6);
+        }
+    }
+    SECTION("normalPerVertex='false' is flat whatever the creaseAngle") {
+        writeTextFile(folder / "faces.x3d", prism("creaseAngle='3' normalPerVertex='false'"));
+        CHECK(readOnly(folder / "faces.x3d").normals.empty());
+    }
+    SECTION("an IndexedTriangleSet is smooth across its shared points, flat with normalPerVertex='false'") {
+        const std::string triangles = "<Coordinate point='0 0 0 1 0 0 0 1 0 0 0 1'/></IndexedTriangleSet></Shape></Scene></X3D>";
+        writeTextFile(folder / "its.x3d", "<X3D><Scene><Shape><IndexedTriangleSet index='0 2 1 0 1 3'>" + triangles);
+        const Primitive its = readOnly(folder / "its.x3d");
+        REQUIRE(its.normals.size() == 4);
+        CHECK((its.normals[0] - Eigen::Vector3d(0, -1, -1).normalized()).norm() < 1e-6);  // between -z and -y
+        writeTextFile(folder / "its_flat.x3d",
+                      "<X3D><Scene><Shape><IndexedTriangleSet normalPerVertex='false' index='0 2 1 0 1 3'>" + triangles);
+        CHECK(readOnly(folder / "its_flat.x3d").normals.empty());
+    }
+}
+
+TEST_CASE("A mesh without normals is written to X3D flat, as glTF draws it", "[io][x3d]") {
+    TemporaryFolder folder;
+    writeTextFile(folder / "flat.x3d", prism(""));
+    const Scene scene = readScene(folder / "flat.x3d");
+    writeScene(scene, folder / "again.x3d");
+    const std::string text = readTextFile(folder / "again.x3d");
+    CHECK_THAT(text, Catch::Contains("normalPerVertex='false'"));
+    CHECK(readOnly(folder / "again.x3d").normals.empty());  // and read back flat
+    writeTextFile(folder / "smooth.x3d", prism("creaseAngle='1'"));
+    writeScene(readScene(folder / "smooth.x3d"), folder / "smooth_again.x3d");
+    CHECK_THAT(readTextFile(folder / "smooth_again.x3d"), !Catch::Contains("normalPerVertex='false'"));
+}
