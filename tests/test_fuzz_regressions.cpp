@@ -8,7 +8,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -29,6 +34,64 @@ std::string readError(const fs::path& file) {
     }
     FAIL("read without an error: " << file);
     return "";
+}
+
+// A gzip file of about 1032 * `zeroBytes` zero bytes in about `zeroBytes` bytes: deflate's densest coding, one
+// dynamic Huffman block in which length 258 and distance 1 have one-bit codes, so that each 258 bytes take two
+// zero bits. Built by hand, as zlib takes seconds per gigabyte to compress.
+std::string gzipBomb(std::size_t zeroBytes) {
+    std::string out("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03", 10);
+    unsigned pending = 0, count = 0;
+    const auto bits = [&](unsigned value, unsigned length) {  // fields go least significant bit first
+        for (unsigned bit = 0; bit < length; ++bit) {
+            pending |= ((value >> bit) & 1u) << count;
+            if (++count == 8) {
+                out += static_cast<char>(pending);
+                pending = count = 0;
+            }
+        }
+    };
+    const auto code = [&](unsigned value, unsigned length) {  // Huffman codes most significant bit first
+        for (unsigned bit = length; bit-- > 0;) bits((value >> bit) & 1u, 1);
+    };
+    bits(1, 1);  // the last block
+    bits(2, 2);  // dynamic Huffman codes
+    bits(286 - 257, 5);
+    bits(1 - 1, 5);
+    bits(19 - 4, 4);
+    // The code length code's lengths, in deflate's order 16 17 18 0 8 7 9 6 10 5 11 4 12 3 13 2 14 1 15: 18 (a
+    // run of zero lengths, 7 bits for 11 to 138 of them) gets '0', lengths 1 and 2 get '10' and '11'.
+    for (unsigned length : {0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0}) bits(length, 3);
+    const auto zeroLengths = [&](unsigned run) {
+        code(0, 1);
+        bits(run - 11, 7);
+    };
+    // Literal 0 and end of block get 2 bits ('10', '11'), length 258 (285) gets 1 ('0'), distance 1 gets 1 ('0').
+    code(3, 2);        // literal 0: 2
+    zeroLengths(138);  // literals 1 to 138: none
+    zeroLengths(117);  // 139 to 255: none
+    code(3, 2);        // end of block: 2
+    zeroLengths(28);   // lengths 3 to 257: none
+    code(2, 2);        // length 258: 1
+    code(2, 2);        // distance 1: 1
+    code(2, 2);        // the data: literal 0
+    std::uint64_t copies = 4 * std::uint64_t(zeroBytes);
+    for (; count != 0; ++copies) bits(0, 2);  // until the bits fill whole bytes: the header has an even count
+    out.append(zeroBytes, '\0');
+    code(3, 2);  // end of block
+    if (count != 0) bits(0, 8 - count);
+    const std::uint64_t size = 1 + 258 * copies;
+    std::vector<unsigned char> zeros(1 << 20, 0);
+    uLong crc = crc32(0, zeros.data(), 1);
+    const uLong chunk = crc32(0, zeros.data(), static_cast<uInt>(zeros.size()));
+    for (std::uint64_t left = size - 1; left > 0;) {
+        const std::uint64_t piece = std::min<std::uint64_t>(left, zeros.size());
+        crc = crc32_combine(crc, piece == zeros.size() ? chunk : crc32(0, zeros.data(), uInt(piece)), z_off_t(piece));
+        left -= piece;
+    }
+    for (const std::uint64_t field : {std::uint64_t(crc), size})
+        for (int byte = 0; byte < 4; ++byte) out += static_cast<char>((field >> (8 * byte)) & 0xff);
+    return out;
 }
 
 bool hasWarning(const Scene& scene, const std::string& text) {
@@ -112,6 +175,19 @@ TEST_CASE("X3D: a Background nesting 200000 elements does not exhaust the stack"
     for (int level = 0; level < 200000; ++level) nested += "</Group>";
     writeTextFile(folder / "deep.x3d", "<X3D><Scene><Background>" + nested + "</Background></Scene></X3D>");
     CHECK_THAT(readError(folder / "deep.x3d"), Catch::Contains("deep.x3d: XML elements nested deeper than 300 levels"));
+}
+
+TEST_CASE("X3D: a gzip bomb is refused once it inflates past 2 GiB, and a genuine .x3dz still reads", "[io][fuzz]") {
+    TemporaryFolder folder;
+    // 2.1 MB that inflate to 2.17 GB (2^31 bytes and a little more).
+    writeTextFile(folder / "bomb.x3dz", gzipBomb(std::size_t(2100) << 10));
+    CHECK_THAT(readError(folder / "bomb.x3dz"),
+               Catch::Contains("bomb.x3dz: the gzip data inflates to more than 2 GiB of XML"));
+    // The same coding, 1 MB of it: valid gzip (zeros, which are no X3D) under the limit.
+    writeTextFile(folder / "small.x3dz", gzipBomb(1000));
+    CHECK_THAT(readError(folder / "small.x3dz"), !Catch::Contains("gzip"));
+    const Scene scene = readScene(fs::path(SYMCOMPRESS_SOURCE_DIR) / "fuzz" / "corpus" / "x3d" / "faces.x3dz");
+    CHECK(!scene.meshes.empty());
 }
 
 TEST_CASE("X3D: a coordIndex value beyond 32 bits is refused before it is converted", "[io][fuzz]") {
