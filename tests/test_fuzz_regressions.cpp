@@ -267,3 +267,19 @@ TEST_CASE("GLB: a BIN chunk that runs past the end of the file is refused before
     const std::string error = readError(regressionInput("glb_bin_chunk_past_end.glb"));
     CHECK_THAT(error, Catch::Contains("glb_bin_chunk_past_end.glb: the BIN chunk (40 bytes) runs past the end of the file"));
 }
+
+// A Draco stream's counts (its triangles, vertices and edgebreaker symbols) raised in a valid GLB: libdraco
+// sized its tables and ran its traversal by them (10^8 triangles in 263 bytes: 10 s and 2.3 GB before it gave
+// up). The counts are checked against the POSITION accessor and the stream's bytes first.
+TEST_CASE("GLB: a Draco stream claiming 10^8 triangles on 4 vertices is refused before libdraco decodes it",
+          "[io][fuzz]") {
+    CHECK_THAT(readError(regressionInput("glb_draco_faces_huge.glb")),
+               Catch::Contains("glb_draco_faces_huge.glb: mesh 0 primitive 0: the Draco stream claims 100000000 "
+                               "triangles on 4 vertices, more than 8 per vertex"));
+    CHECK_THAT(readError(regressionInput("glb_draco_vertices_undeclared.glb")),
+               Catch::Contains("the Draco stream claims 100000000 vertices, more than the 4 its POSITION accessor "
+                               "declares"));
+    // With the accessors' counts raised to match, the symbols still cannot fit the stream's bytes.
+    CHECK_THAT(readError(regressionInput("glb_draco_symbols_past_bytes.glb")),
+               Catch::Contains("the Draco stream claims 100000000 edgebreaker symbols, more than its"));
+}
