@@ -283,3 +283,11 @@ TEST_CASE("GLB: a Draco stream claiming 10^8 triangles on 4 vertices is refused 
     CHECK_THAT(readError(regressionInput("glb_draco_symbols_past_bytes.glb")),
                Catch::Contains("the Draco stream claims 100000000 edgebreaker symbols, more than its"));
 }
+
+TEST_CASE("GLB: an EXT_meshopt_compression TRIANGLES view of 17 indices is refused before meshoptimizer asserts",
+          "[io][fuzz]") {
+    // Found by fuzz_glb: the packaged meshoptimizer aborts on a count that is not a multiple of 3.
+    CHECK_THAT(readError(regressionInput("glb_meshopt_triangles_count.glb")),
+               Catch::Contains("buffer view 3 (EXT_meshopt_compression): mode TRIANGLES with a count of 17, which is "
+                               "not a multiple of 3"));
+}
