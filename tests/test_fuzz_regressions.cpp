@@ -279,6 +279,10 @@ TEST_CASE("GLB: a Draco stream claiming 10^8 triangles on 4 vertices is refused 
     CHECK_THAT(readError(regressionInput("glb_draco_vertices_undeclared.glb")),
                Catch::Contains("the Draco stream claims 100000000 vertices, more than the 4 its POSITION accessor "
                                "declares"));
+    // A sequential stream (no edgebreaker) names its points.
+    CHECK_THAT(readError(regressionInput("glb_draco_sequential_points.glb")),
+               Catch::Contains("the Draco stream claims 100000000 points, more than the 4 its POSITION accessor "
+                               "declares"));
     // With the accessors' counts raised to match, the symbols still cannot fit the stream's bytes.
     CHECK_THAT(readError(regressionInput("glb_draco_symbols_past_bytes.glb")),
                Catch::Contains("the Draco stream claims 100000000 edgebreaker symbols, more than its"));
