@@ -295,3 +295,21 @@ TEST_CASE("GLB: an EXT_meshopt_compression TRIANGLES view of 17 indices is refus
                Catch::Contains("buffer view 3 (EXT_meshopt_compression): mode TRIANGLES with a count of 17, which is "
                                "not a multiple of 3"));
 }
+
+TEST_CASE("Writers: values near float32's limit are refused by the Draco writer, where its quantization overflowed",
+          "[io][fuzz]") {
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    // Found by fuzz_ply: s = 2.5e38 and -2.5e38 span beyond float32; Draco's entropy coder then wrote through a
+    // null pointer. Found by fuzz_stl: a z of -3.4e38 (float32's lowest) decoded as infinite.
+    for (const std::string name : {"ply_texcoords_beyond_float.ply", "stl_position_float_lowest.stl"}) {
+        const Scene scene = readScene(regressionInput(name));
+        const std::string attribute = name[0] == 'p' ? "TEXCOORD_0" : "POSITION";
+        CHECK_THROWS_WITH(writeScene(scene, folder / "out.glb"),
+                          Catch::Contains("out.glb: " + attribute + " holds values beyond 8.5e37 in magnitude") &&
+                              Catch::Contains("write with --no-draco"));
+        writeScene(scene, folder / "plain.glb", plain);
+        CHECK(readScene(folder / "plain.glb").meshes.size() == scene.meshes.size());
+    }
+}
