@@ -312,4 +312,13 @@ TEST_CASE("Writers: values near float32's limit are refused by the Draco writer,
         writeScene(scene, folder / "plain.glb", plain);
         CHECK(readScene(folder / "plain.glb").meshes.size() == scene.meshes.size());
     }
+    // Beyond float32 itself glTF cannot hold the value at all, with or without Draco (it was written as inf).
+    writeTextFile(folder / "huge.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                  "property double z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                  "end_header\n0 0 0\n1e300 0 0\n0 1 0\n3 0 1 2\n");
+    const Scene huge = readScene(folder / "huge.ply");
+    for (const WriteOptions& options : {WriteOptions{}, plain})
+        CHECK_THROWS_WITH(writeScene(huge, folder / "huge.glb", options),
+                          Catch::Contains("huge.glb: POSITION holds values beyond float32's range (3.4e38)"));
 }

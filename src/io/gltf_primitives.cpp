@@ -181,6 +181,16 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
     return out;
 }
 
+// glTF stores attributes as float32: a value beyond its range would be written as infinite (and converting it
+// is undefined).
+template <typename Vector>
+void refuseBeyondFloat(const std::vector<Vector>& values, const char* name, const fs::path& file) {
+    for (const Vector& value : values)
+        if (!(value.cwiseAbs().maxCoeff() <= std::numeric_limits<float>::max()))
+            throw FileError(file, std::string(name) + " holds values beyond float32's range (3.4e38), in which glTF " +
+                                      "stores them");
+}
+
 Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     Json attributes = Json::object();
     attributes["POSITION"] = builder.addFloatAccessor(primitive.positions, 3, "VEC3", true);
@@ -215,6 +225,10 @@ void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const Writ
         if (material >= 0) out["material"] = material;
         primitives.push_back(std::move(out));
     };
+    refuseBeyondFloat(primitive.positions, "POSITION", file);
+    refuseBeyondFloat(primitive.normals, "NORMAL", file);
+    refuseBeyondFloat(primitive.texcoords, "TEXCOORD_0", file);
+    refuseBeyondFloat(primitive.colors, "COLOR_0", file);
     if (!options.draco) {
         add(writePlainPrimitive(builder, primitive), primitive.material);
         return;
