@@ -8,7 +8,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -29,6 +34,64 @@ std::string readError(const fs::path& file) {
     }
     FAIL("read without an error: " << file);
     return "";
+}
+
+// A gzip file of about 1032 * `zeroBytes` zero bytes in about `zeroBytes` bytes: deflate's densest coding, one
+// dynamic Huffman block in which length 258 and distance 1 have one-bit codes, so that each 258 bytes take two
+// zero bits. Built by hand, as zlib takes seconds per gigabyte to compress.
+std::string gzipBomb(std::size_t zeroBytes) {
+    std::string out("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03", 10);
+    unsigned pending = 0, count = 0;
+    const auto bits = [&](unsigned value, unsigned length) {  // fields go least significant bit first
+        for (unsigned bit = 0; bit < length; ++bit) {
+            pending |= ((value >> bit) & 1u) << count;
+            if (++count == 8) {
+                out += static_cast<char>(pending);
+                pending = count = 0;
+            }
+        }
+    };
+    const auto code = [&](unsigned value, unsigned length) {  // Huffman codes most significant bit first
+        for (unsigned bit = length; bit-- > 0;) bits((value >> bit) & 1u, 1);
+    };
+    bits(1, 1);  // the last block
+    bits(2, 2);  // dynamic Huffman codes
+    bits(286 - 257, 5);
+    bits(1 - 1, 5);
+    bits(19 - 4, 4);
+    // The code length code's lengths, in deflate's order 16 17 18 0 8 7 9 6 10 5 11 4 12 3 13 2 14 1 15: 18 (a
+    // run of zero lengths, 7 bits for 11 to 138 of them) gets '0', lengths 1 and 2 get '10' and '11'.
+    for (unsigned length : {0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0}) bits(length, 3);
+    const auto zeroLengths = [&](unsigned run) {
+        code(0, 1);
+        bits(run - 11, 7);
+    };
+    // Literal 0 and end of block get 2 bits ('10', '11'), length 258 (285) gets 1 ('0'), distance 1 gets 1 ('0').
+    code(3, 2);        // literal 0: 2
+    zeroLengths(138);  // literals 1 to 138: none
+    zeroLengths(117);  // 139 to 255: none
+    code(3, 2);        // end of block: 2
+    zeroLengths(28);   // lengths 3 to 257: none
+    code(2, 2);        // length 258: 1
+    code(2, 2);        // distance 1: 1
+    code(2, 2);        // the data: literal 0
+    std::uint64_t copies = 4 * std::uint64_t(zeroBytes);
+    for (; count != 0; ++copies) bits(0, 2);  // until the bits fill whole bytes: the header has an even count
+    out.append(zeroBytes, '\0');
+    code(3, 2);  // end of block
+    if (count != 0) bits(0, 8 - count);
+    const std::uint64_t size = 1 + 258 * copies;
+    std::vector<unsigned char> zeros(1 << 20, 0);
+    uLong crc = crc32(0, zeros.data(), 1);
+    const uLong chunk = crc32(0, zeros.data(), static_cast<uInt>(zeros.size()));
+    for (std::uint64_t left = size - 1; left > 0;) {
+        const std::uint64_t piece = std::min<std::uint64_t>(left, zeros.size());
+        crc = crc32_combine(crc, piece == zeros.size() ? chunk : crc32(0, zeros.data(), uInt(piece)), z_off_t(piece));
+        left -= piece;
+    }
+    for (const std::uint64_t field : {std::uint64_t(crc), size})
+        for (int byte = 0; byte < 4; ++byte) out += static_cast<char>((field >> (8 * byte)) & 0xff);
+    return out;
 }
 
 bool hasWarning(const Scene& scene, const std::string& text) {
@@ -114,6 +177,19 @@ TEST_CASE("X3D: a Background nesting 200000 elements does not exhaust the stack"
     CHECK_THAT(readError(folder / "deep.x3d"), Catch::Contains("deep.x3d: XML elements nested deeper than 300 levels"));
 }
 
+TEST_CASE("X3D: a gzip bomb is refused once it inflates past 2 GiB, and a genuine .x3dz still reads", "[io][fuzz]") {
+    TemporaryFolder folder;
+    // 2.1 MB that inflate to 2.17 GB (2^31 bytes and a little more).
+    writeTextFile(folder / "bomb.x3dz", gzipBomb(std::size_t(2100) << 10));
+    CHECK_THAT(readError(folder / "bomb.x3dz"),
+               Catch::Contains("bomb.x3dz: the gzip data inflates to more than 2 GiB of XML"));
+    // The same coding, 1 MB of it: valid gzip (zeros, which are no X3D) under the limit.
+    writeTextFile(folder / "small.x3dz", gzipBomb(1000));
+    CHECK_THAT(readError(folder / "small.x3dz"), !Catch::Contains("gzip"));
+    const Scene scene = readScene(fs::path(SYMCOMPRESS_SOURCE_DIR) / "fuzz" / "corpus" / "x3d" / "faces.x3dz");
+    CHECK(!scene.meshes.empty());
+}
+
 TEST_CASE("X3D: a coordIndex value beyond 32 bits is refused before it is converted", "[io][fuzz]") {
     const std::string error = readError(regressionInput("x3d_coord_index_huge.x3d"));
     CHECK_THAT(error, Catch::Contains("x3d_coord_index_huge.x3d: <IndexedFaceSet>: coordIndex holds 1000000000000000019884624838656"));
@@ -190,4 +266,59 @@ TEST_CASE("GLB: an image whose buffer view runs past its buffer is refused befor
 TEST_CASE("GLB: a BIN chunk that runs past the end of the file is refused before tinygltf copies it", "[io][fuzz]") {
     const std::string error = readError(regressionInput("glb_bin_chunk_past_end.glb"));
     CHECK_THAT(error, Catch::Contains("glb_bin_chunk_past_end.glb: the BIN chunk (40 bytes) runs past the end of the file"));
+}
+
+// A Draco stream's counts (its triangles, vertices and edgebreaker symbols) raised in a valid GLB: libdraco
+// sized its tables and ran its traversal by them (10^8 triangles in 263 bytes: 10 s and 2.3 GB before it gave
+// up). The counts are checked against the POSITION accessor and the stream's bytes first.
+TEST_CASE("GLB: a Draco stream claiming 10^8 triangles on 4 vertices is refused before libdraco decodes it",
+          "[io][fuzz]") {
+    CHECK_THAT(readError(regressionInput("glb_draco_faces_huge.glb")),
+               Catch::Contains("glb_draco_faces_huge.glb: mesh 0 primitive 0: the Draco stream claims 100000000 "
+                               "triangles on 4 vertices, more than 8 per vertex"));
+    CHECK_THAT(readError(regressionInput("glb_draco_vertices_undeclared.glb")),
+               Catch::Contains("the Draco stream claims 100000000 vertices, more than the 4 its POSITION accessor "
+                               "declares"));
+    // A sequential stream (no edgebreaker) names its points.
+    CHECK_THAT(readError(regressionInput("glb_draco_sequential_points.glb")),
+               Catch::Contains("the Draco stream claims 100000000 points, more than the 4 its POSITION accessor "
+                               "declares"));
+    // With the accessors' counts raised to match, the symbols still cannot fit the stream's bytes.
+    CHECK_THAT(readError(regressionInput("glb_draco_symbols_past_bytes.glb")),
+               Catch::Contains("the Draco stream claims 100000000 edgebreaker symbols, more than its"));
+}
+
+TEST_CASE("GLB: an EXT_meshopt_compression TRIANGLES view of 17 indices is refused before meshoptimizer asserts",
+          "[io][fuzz]") {
+    // Found by fuzz_glb: the packaged meshoptimizer aborts on a count that is not a multiple of 3.
+    CHECK_THAT(readError(regressionInput("glb_meshopt_triangles_count.glb")),
+               Catch::Contains("buffer view 3 (EXT_meshopt_compression): mode TRIANGLES with a count of 17, which is "
+                               "not a multiple of 3"));
+}
+
+TEST_CASE("Writers: values near float32's limit are refused by the Draco writer, where its quantization overflowed",
+          "[io][fuzz]") {
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    // Found by fuzz_ply: s = 2.5e38 and -2.5e38 span beyond float32; Draco's entropy coder then wrote through a
+    // null pointer. Found by fuzz_stl: a z of -3.4e38 (float32's lowest) decoded as infinite.
+    for (const std::string name : {"ply_texcoords_beyond_float.ply", "stl_position_float_lowest.stl"}) {
+        const Scene scene = readScene(regressionInput(name));
+        const std::string attribute = name[0] == 'p' ? "TEXCOORD_0" : "POSITION";
+        CHECK_THROWS_WITH(writeScene(scene, folder / "out.glb"),
+                          Catch::Contains("out.glb: " + attribute + " holds values beyond 8.5e37 in magnitude") &&
+                              Catch::Contains("write with --no-draco"));
+        writeScene(scene, folder / "plain.glb", plain);
+        CHECK(readScene(folder / "plain.glb").meshes.size() == scene.meshes.size());
+    }
+    // Beyond float32 itself glTF cannot hold the value at all, with or without Draco (it was written as inf).
+    writeTextFile(folder / "huge.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                  "property double z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                  "end_header\n0 0 0\n1e300 0 0\n0 1 0\n3 0 1 2\n");
+    const Scene huge = readScene(folder / "huge.ply");
+    for (const WriteOptions& options : {WriteOptions{}, plain})
+        CHECK_THROWS_WITH(writeScene(huge, folder / "huge.glb", options),
+                          Catch::Contains("huge.glb: POSITION holds values beyond float32's range (3.4e38)"));
 }

@@ -73,6 +73,11 @@ void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
                                       ")");
         const unsigned char* source = model.buffers[std::size_t(buffer)].data.data() + std::size_t(offset);
         const std::string mode = text("mode", ""), filter = text("filter", "NONE");
+        // meshoptimizer asserts what its decoders take (the packaged library aborts): the strides are checked
+        // below, and TRIANGLES, as EXT_meshopt_compression says, holds whole triangles.
+        if (mode == "TRIANGLES" && std::size_t(count) % 3 != 0)
+            throw FileError(file, where + ": mode TRIANGLES with a count of " + std::to_string(std::size_t(count)) +
+                                      ", which is not a multiple of 3");
         tinygltf::Buffer decoded;
         decoded.data.resize(std::size_t(stride) * std::size_t(count));
         int status = -1;

@@ -8,6 +8,7 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
+#include <limits>
 #include <optional>
 
 namespace symcompress {
@@ -29,6 +30,22 @@ void addDracoAttribute(draco::TriangleSoupMeshBuilder& builder, const Primitive&
         builder.SetAttributeValuesForFace(attributeId, draco::FaceIndex(static_cast<std::uint32_t>(f)), corner.data(),
                                           corner.data() + components, corner.data() + 2 * components);
     }
+}
+
+// Draco quantizes each attribute in float32 over the span of its values, and dequantizes as min + q * span / qmax:
+// with values near float32's limit the span or that sum overflows (its entropy coder then wrote through a null
+// pointer, or the decoded positions came back infinite). A quarter of float32's largest leaves room for both.
+constexpr double kMaxDracoMagnitude = std::numeric_limits<float>::max() / 4.0;
+
+template <typename Vector>
+void refuseBeyondDracoRange(const Primitive& primitive, const std::vector<Vector>& values, const char* name,
+                            const fs::path& file) {
+    if (values.empty()) return;
+    for (const Triangle& t : primitive.triangles)
+        for (std::uint32_t v : t)
+            if (!(values[v].cwiseAbs().maxCoeff() <= kMaxDracoMagnitude))
+                throw FileError(file, std::string(name) + " holds values beyond 8.5e37 in magnitude, where Draco's " +
+                                          "float32 quantization overflows; write with --no-draco");
 }
 
 struct DracoAttributeIds {
@@ -75,6 +92,10 @@ enum class DracoMethod {
 // (decoded from our own output, since Draco merges equal corners) but no buffer view.
 std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
                                         const fs::path& file, DracoMethod method) {
+    refuseBeyondDracoRange(primitive, primitive.positions, "POSITION", file);
+    refuseBeyondDracoRange(primitive, primitive.normals, "NORMAL", file);
+    refuseBeyondDracoRange(primitive, primitive.texcoords, "TEXCOORD_0", file);
+    refuseBeyondDracoRange(primitive, primitive.colors, "COLOR_0", file);
     draco::TriangleSoupMeshBuilder soup;
     soup.Start(static_cast<int>(primitive.triangles.size()));
     DracoAttributeIds ids;
@@ -160,6 +181,16 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
     return out;
 }
 
+// glTF stores attributes as float32: a value beyond its range would be written as infinite (and converting it
+// is undefined).
+template <typename Vector>
+void refuseBeyondFloat(const std::vector<Vector>& values, const char* name, const fs::path& file) {
+    for (const Vector& value : values)
+        if (!(value.cwiseAbs().maxCoeff() <= std::numeric_limits<float>::max()))
+            throw FileError(file, std::string(name) + " holds values beyond float32's range (3.4e38), in which glTF " +
+                                      "stores them");
+}
+
 Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     Json attributes = Json::object();
     attributes["POSITION"] = builder.addFloatAccessor(primitive.positions, 3, "VEC3", true);
@@ -194,6 +225,10 @@ void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const Writ
         if (material >= 0) out["material"] = material;
         primitives.push_back(std::move(out));
     };
+    refuseBeyondFloat(primitive.positions, "POSITION", file);
+    refuseBeyondFloat(primitive.normals, "NORMAL", file);
+    refuseBeyondFloat(primitive.texcoords, "TEXCOORD_0", file);
+    refuseBeyondFloat(primitive.colors, "COLOR_0", file);
     if (!options.draco) {
         add(writePlainPrimitive(builder, primitive), primitive.material);
         return;

@@ -69,6 +69,48 @@ const std::set<std::string> kUnsupportedGeometry = {"Extrusion",
 // the X3D and Scene elements and a node's fields).
 constexpr int kMaxXmlDepth = 300;
 
+// How much XML an .x3dz file may inflate to. Deflate expands at most about 1032:1, so the format alone lets a
+// 2 MB gzip bomb ask for 2 GB; beyond this the file is refused before more is held.
+constexpr std::size_t kMaxInflatedBytes = std::size_t(2) << 30;
+
+// The XML of a gzip stream, at most kMaxInflatedBytes of it.
+std::vector<unsigned char> inflateGzip(const std::vector<unsigned char>& bytes, const fs::path& file) {
+    z_stream stream{};
+    if (inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK) throw FileError(file, "cannot start gzip decompression");
+    std::vector<unsigned char> text;
+    std::size_t consumed = 0;
+    unsigned char buffer[1 << 16];
+    int status;
+    do {
+        // avail_in is 32 bits: a larger file is handed over in pieces.
+        if (stream.avail_in == 0 && consumed < bytes.size()) {
+            const std::size_t piece = std::min<std::size_t>(bytes.size() - consumed, 1u << 30);
+            stream.next_in = const_cast<unsigned char*>(bytes.data() + consumed);
+            stream.avail_in = static_cast<uInt>(piece);
+            consumed += piece;
+        }
+        stream.next_out = buffer;
+        stream.avail_out = sizeof buffer;
+        status = inflate(&stream, Z_NO_FLUSH);
+        if (status != Z_OK && status != Z_STREAM_END) {
+            inflateEnd(&stream);
+            throw FileError(file, "broken gzip data");
+        }
+        const std::size_t produced = sizeof buffer - stream.avail_out;
+        if (produced > kMaxInflatedBytes - text.size()) {
+            inflateEnd(&stream);
+            throw FileError(file, "the gzip data inflates to more than " + std::to_string(kMaxInflatedBytes >> 30) +
+                                      " GiB of XML (a broken stream or a gzip bomb; an .x3dz may hold at most that)");
+        }
+        // Grown by doubling, but never past the limit, so that a bomb holds at most the limit at its end.
+        if (text.size() + produced > text.capacity())
+            text.reserve(std::min(kMaxInflatedBytes, std::max(text.size() + produced, 2 * text.capacity())));
+        text.insert(text.end(), buffer, buffer + produced);
+    } while (status != Z_STREAM_END);
+    inflateEnd(&stream);
+    return text;
+}
+
 }  // namespace
 
 pugi::xml_node X3dReader::resolve(const pugi::xml_node& node) const {
@@ -153,28 +195,9 @@ Eigen::Matrix4d X3dReader::transformOf(const pugi::xml_node& node) const {
 std::vector<int> X3dReader::read() {
     const std::vector<unsigned char> bytes = readFileBytes(file_);
     if (bytes.empty()) throw FileError(file_, "the file is empty");
-    std::vector<unsigned char> text = bytes;
-    if (bytes.size() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b) {
-        // .x3dz: gzip-compressed XML.
-        z_stream stream{};
-        if (inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK) throw FileError(file_, "cannot start gzip decompression");
-        stream.next_in = const_cast<unsigned char*>(bytes.data());
-        stream.avail_in = static_cast<uInt>(bytes.size());
-        text.clear();
-        unsigned char buffer[1 << 16];
-        int status;
-        do {
-            stream.next_out = buffer;
-            stream.avail_out = sizeof buffer;
-            status = inflate(&stream, Z_NO_FLUSH);
-            if (status != Z_OK && status != Z_STREAM_END) {
-                inflateEnd(&stream);
-                throw FileError(file_, "broken gzip data");
-            }
-            text.insert(text.end(), buffer, buffer + (sizeof buffer - stream.avail_out));
-        } while (status != Z_STREAM_END);
-        inflateEnd(&stream);
-    }
+    // .x3dz: gzip-compressed XML.
+    const bool gzipped = bytes.size() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b;
+    const std::vector<unsigned char> text = gzipped ? inflateGzip(bytes, file_) : bytes;
     const pugi::xml_parse_result parsed = document_.load_buffer(text.data(), text.size());
     if (!parsed)
         throw FileError(
