@@ -322,3 +322,19 @@ TEST_CASE("Writers: values near float32's limit are refused by the Draco writer,
         CHECK_THROWS_WITH(writeScene(huge, folder / "huge.glb", options),
                           Catch::Contains("huge.glb: POSITION holds values beyond float32's range (3.4e38)"));
 }
+
+TEST_CASE("glTF: an image or buffer URI naming a folder is not a file, where tinygltf asked for 2^63 bytes", "[io][fuzz]") {
+    // Found by fuzz_obj: an OBJ texture name cut short by a NUL, its reference kept in the GLB written.
+    TemporaryFolder folder;
+    std::filesystem::create_directories(folder / "images");
+    const std::string triangle = R"("buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}])";
+    writeTextFile(folder / "image_folder.gltf", R"({"asset": {"version": "2.0"}, "images": [{"uri": "images"}], "textures": [{"source": 0}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}], )" + triangle + "}");
+    const Scene scene = readScene(folder / "image_folder.gltf");
+    CHECK(hasWarning(scene, "('images') could not be read; its reference is kept"));
+    writeTextFile(folder / "buffer_folder.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 36, "uri": "images"}]})");
+    CHECK_THAT(readError(folder / "buffer_folder.gltf"), Catch::Contains("buffer_folder.gltf"));
+}

@@ -39,6 +39,32 @@ bool keepImageBytes(tinygltf::Image* image, const int index, std::string* error,
     return true;
 }
 
+// The files a glTF refers to (buffers, images), read by our own callbacks: tinygltf's ReadWholeFile opens a
+// folder as a file and asks for 2^63 bytes (a URI naming "." or a path cut short by a NUL, found by
+// fuzz_obj once unread images kept their references). Only regular files exist; paths are used as they are.
+bool externalFileExists(const std::string& path, void*) {
+    std::error_code error;
+    return path.find('\0') == std::string::npos && fs::is_regular_file(path, error);
+}
+
+std::string externalFilePath(const std::string& path, void*) { return path; }
+
+bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void*) {
+    if (!externalFileExists(path, nullptr)) {
+        if (error) *error += "'" + path + "' is not a file\n";
+        return false;
+    }
+    try {
+        *out = readFileBytes(path);
+    } catch (const FileError& failure) {
+        if (error) *error += std::string(failure.what()) + "\n";
+        return false;
+    }
+    return true;
+}
+
+bool refuseToWrite(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
 // Extensions that change how a surface looks, never where it is: kept on their materials as the file has
 // them (gltf_materials.cpp), so a file that requires one is read.
 bool appearanceOnly(const std::string& name) { return name.rfind("KHR_materials_", 0) == 0; }
@@ -245,6 +271,7 @@ tinygltf::Model loadGltfModel(const fs::path& file) {
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keepImageBytes, &model);
+    loader.SetFsCallbacks({externalFileExists, externalFilePath, readExternalFile, refuseToWrite, nullptr});
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // asset.extras carries symcompress's digest
     std::string error, warning;
     const std::string baseDir = file.parent_path().empty() ? "." : file.parent_path().string();
