@@ -1,71 +1,17 @@
 // Vertex data of glTF primitives: accessors (every byte range checked, with no sum or product of the file's
 // numbers that could wrap), sparse accessors, index topologies, and Draco-compressed primitives.
+#include "draco_stream_checks.hpp"
 #include "gltf_reader.hpp"
 
 #include <draco/compression/decode.h>
-#include <draco/compression/point_cloud/point_cloud_decoder.h>
 #include <draco/core/decoder_buffer.h>
-#include <draco/core/varint_decoding.h>
 #include <draco/mesh/mesh.h>
-#include <draco/metadata/geometry_metadata.h>
-#include <draco/metadata/metadata_decoder.h>
 
 #include <algorithm>
 #include <cstring>
-#include <optional>
 
 namespace symcompress {
 namespace {
-
-// What a Draco mesh stream says it holds, from the counts at the head of its connectivity, before libdraco
-// decodes it: libdraco sizes its tables and runs its traversal loop by these numbers, so that a corrupt count
-// costs seconds and gigabytes before it gives up (10^8 triangles claimed by 263 bytes: 10 s, 2.3 GB).
-struct DracoCounts {
-    bool edgebreaker = false;
-    bool standardTraversal = false;  // edgebreaker's plain symbol coding: at least one bit per symbol
-    std::uint32_t faces = 0;
-    std::uint32_t vertices = 0;  // sequential: points; edgebreaker: the connectivity's vertices
-    std::uint32_t symbols = 0;   // edgebreaker: one per triangle but the first of each part
-    std::uint32_t splitSymbols = 0;
-    std::size_t bytesAfterCounts = 0;
-};
-
-// The counts of a Draco 2.2 mesh stream (what libdraco 1.5 and the encoders in use write; older streams are
-// left to libdraco), or nothing when the stream is something else or too short to hold them.
-std::optional<DracoCounts> dracoCounts(const char* data, std::size_t size) {
-    draco::DecoderBuffer buffer;
-    buffer.Init(data, size);
-    draco::DracoHeader header;
-    if (!draco::PointCloudDecoder::DecodeHeader(&buffer, &header).ok()) return std::nullopt;
-    if (header.encoder_type != draco::TRIANGULAR_MESH || header.version_major != 2 || header.version_minor != 2)
-        return std::nullopt;
-    buffer.set_bitstream_version(DRACO_BITSTREAM_VERSION(2, 2));
-    if (header.flags & METADATA_FLAG_MASK) {
-        draco::GeometryMetadata metadata;
-        if (!draco::MetadataDecoder().DecodeGeometryMetadata(&buffer, &metadata)) return std::nullopt;
-    }
-    DracoCounts counts;
-    if (header.encoder_method == draco::MESH_SEQUENTIAL_ENCODING) {
-        if (!draco::DecodeVarint(&counts.faces, &buffer) || !draco::DecodeVarint(&counts.vertices, &buffer))
-            return std::nullopt;
-    } else if (header.encoder_method == draco::MESH_EDGEBREAKER_ENCODING) {
-        counts.edgebreaker = true;
-        std::uint8_t traversal = 0, attributeData = 0;
-        if (!buffer.Decode(&traversal) || !draco::DecodeVarint(&counts.vertices, &buffer) ||
-            !draco::DecodeVarint(&counts.faces, &buffer) || !buffer.Decode(&attributeData) ||
-            !draco::DecodeVarint(&counts.symbols, &buffer) || !draco::DecodeVarint(&counts.splitSymbols, &buffer))
-            return std::nullopt;
-        counts.standardTraversal = traversal == draco::MESH_EDGEBREAKER_STANDARD_ENCODING;
-    } else {
-        return std::nullopt;
-    }
-    counts.bytesAfterCounts = static_cast<std::size_t>(buffer.remaining_size());
-    return counts;
-}
-
-// Triangles per vertex an edgebreaker stream may claim: a closed surface has 2V - 4 + 4g, and the genus of
-// real models stays far below the number of their vertices, so 8 is generous.
-constexpr std::uint64_t kMaxDracoFacesPerVertex = 8;
 
 int componentSize(int componentType) {
     switch (componentType) {
@@ -274,21 +220,8 @@ void GltfReader::decodeDracoPrimitive(const tinygltf::Primitive& source, const t
         position->second >= static_cast<int>(model_.accessors.size()))
         fail(where + ": a KHR_draco_mesh_compression primitive needs its POSITION accessor");
     const std::size_t declared = model_.accessors[position->second].count;
-    if (const std::optional<DracoCounts> counts = dracoCounts(stream, view.byteLength)) {
-        const char* kind = counts->edgebreaker ? " vertices" : " points";
-        if (counts->vertices > declared)
-            fail(where + ": the Draco stream claims " + std::to_string(counts->vertices) + kind + ", more than the " +
-                 std::to_string(declared) + " its POSITION accessor declares");
-        const std::uint64_t vertices = std::uint64_t(counts->vertices) + counts->splitSymbols;
-        if (counts->edgebreaker && counts->faces > kMaxDracoFacesPerVertex * vertices + kMaxDracoFacesPerVertex)
-            fail(where + ": the Draco stream claims " + std::to_string(counts->faces) + " triangles on " +
-                 std::to_string(vertices) + " vertices, more than " + std::to_string(kMaxDracoFacesPerVertex) +
-                 " per vertex (a broken stream)");
-        if (counts->standardTraversal && counts->symbols / 8 > counts->bytesAfterCounts)
-            fail(where + ": the Draco stream claims " + std::to_string(counts->symbols) +
-                 " edgebreaker symbols, more than its " + std::to_string(counts->bytesAfterCounts) +
-                 " remaining bytes can code at one bit each");
-    }
+    if (const std::string problem = dracoStreamProblem(stream, view.byteLength, declared); !problem.empty())
+        fail(where + ": " + problem);
     draco::DecoderBuffer buffer;
     buffer.Init(stream, view.byteLength);
     draco::Decoder decoder;
