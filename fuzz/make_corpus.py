@@ -189,8 +189,43 @@ def instanced():
     return g
 
 
+def skinned():
+    """A tetrahedron with tangents, a second UV set, joints and weights on a skin of two joints (the second
+    animated), and morph targets of positions and normals whose weights are animated."""
+    g = Gltf()
+    mesh = tetrahedron(g)
+    attributes = g.doc["meshes"][mesh]["primitives"][0]["attributes"]
+    attributes["TANGENT"] = g.accessor("4f", [(1.0, 0.0, 0.0, 1.0)] * 3 + [(0.0, 1.0, 0.0, -1.0)], FLOAT, "VEC4")
+    attributes["TEXCOORD_1"] = g.accessor("2f", [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.5, 0.5)], FLOAT, "VEC2")
+    attributes["JOINTS_0"] = g.accessor("4B", [(0, 0, 0, 0), (1, 0, 0, 0), (0, 1, 0, 0), (1, 0, 0, 0)], UBYTE, "VEC4")
+    attributes["WEIGHTS_0"] = g.accessor("4f", [(1.0, 0, 0, 0), (1.0, 0, 0, 0), (0.5, 0.5, 0, 0), (1.0, 0, 0, 0)],
+                                         FLOAT, "VEC4")
+    morph = dict(g.doc["meshes"][mesh]["primitives"][0])
+    morph["attributes"] = {"POSITION": attributes["POSITION"], "NORMAL": attributes["NORMAL"]}
+    morph["targets"] = [{"POSITION": g.accessor("3f", [(0.0, 0.0, 0.5)] * 4, FLOAT, "VEC3", minmax=True),
+                         "NORMAL": g.accessor("3f", [(0.0, 0.1, 0.0)] * 4, FLOAT, "VEC3")}]
+    g.doc["meshes"].append({"name": "morphed", "primitives": [morph], "weights": [0.5]})
+    g.doc["materials"][0]["normalTexture"] = {"index": 0, "texCoord": 1}
+    g.doc["textures"] = [{"source": 0}]
+    g.doc["images"] = [{"uri": "missing.png"}]
+    hip = g.node({"name": "hip", "children": [1]})
+    g.node({"name": "knee", "translation": [0, 1, 0]}, root=False)
+    g.node({"name": "skinned", "mesh": mesh, "skin": 0})
+    g.node({"name": "morphing", "mesh": 1, "weights": [0.25], "translation": [3, 0, 0]})
+    g.doc["skins"] = [{"joints": [hip, 1], "skeleton": hip, "inverseBindMatrices": g.accessor(
+        "16f", [tuple(float(i % 5 == 0) for i in range(16)), (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1)],
+        FLOAT, "MAT4")}]
+    times = g.accessor("f", [0.0, 1.0], FLOAT, "SCALAR")
+    g.doc["animations"] = [{"samplers": [
+        {"input": times, "output": g.accessor("4f", [(0, 0, 0, 1), (0.3827, 0, 0, 0.9239)], FLOAT, "VEC4")},
+        {"input": times, "output": g.accessor("f", [0.0, 1.0], FLOAT, "SCALAR")}], "channels": [
+        {"sampler": 0, "target": {"node": 1, "path": "rotation"}},
+        {"sampler": 1, "target": {"node": 3, "path": "weights"}}]}]
+    return g
+
+
 for name, make in [("plain", plain), ("scene_graph", scene_graph), ("animated", animated), ("instanced", instanced),
-                   ("materials", materials)]:
+                   ("materials", materials), ("skinned", skinned)]:
     write("glb", name + ".glb", make().glb())
     write("gltf", name + ".gltf", make().gltf())
 

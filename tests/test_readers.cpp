@@ -202,7 +202,7 @@ TEST_CASE("Node animations are read and written back, and channels the scene can
                                          {"sampler": 0, "target": {"node": 0, "path": "translation"}}]}]})");
         const Scene scene = readScene(file);
         CHECK(hasWarning(scene, "animation 0 channel 0 ignored: it targets no node"));
-        CHECK(hasWarning(scene, "1 animation channels of morph target weights ignored"));
+        CHECK(hasWarning(scene, "animation 0 channel 1 ignored: it animates the morph weights of a node without morph targets"));
         // Written back, its mirror moves to x: the rest pose is the same, a channel may not be.
         CHECK(hasWarning(scene, "node 0 is animated with a negative scale on y or z"));
         REQUIRE(scene.animations.size() == 1);
@@ -583,4 +583,35 @@ TEST_CASE("EXT_mesh_gpu_instancing: every instance of a node's mesh is drawn, at
     CHECK((world.positions[1] - Eigen::Vector3d(11, 0, 1)).norm() < 1e-12);
     CHECK((world.positions[4] - Eigen::Vector3d(0, 21, 1)).norm() < 1e-6);  // (1, 0, 0) turned to (0, 1, 0)
     CHECK(scene.meshes.size() == 1);
+}
+
+TEST_CASE("Broken skins and morph targets are left out with a warning naming them, the rest read", "[io]") {
+    // A triangle (positions, then a displacement of 2 elements for its 3 vertices; one matrix over the whole
+    // buffer) drawn by four nodes: one skinned
+    // by a skin whose joint is no node, one by a skin with fewer inverse bind matrices than joints, one with
+    // morph weights its mesh has no targets for, one whose mesh's target is short of a vertex.
+    TemporaryFolder folder;
+    const auto file = folder / "broken.gltf";
+    writeTextFile(file, R"({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 64, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAA=="}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24},
+                        {"buffer": 0, "byteLength": 64}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC3"},
+                      {"bufferView": 2, "componentType": 5126, "count": 1, "type": "MAT4"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]},
+                   {"primitives": [{"attributes": {"POSITION": 0}, "targets": [{"POSITION": 1}]}], "weights": [0.5]}],
+        "skins": [{"joints": [9]}, {"joints": [3, 4], "inverseBindMatrices": 2}],
+        "nodes": [{"mesh": 0, "skin": 0}, {"mesh": 0, "skin": 1}, {"mesh": 0, "weights": [1]}, {"mesh": 1}, {}],
+        "scenes": [{"nodes": [0, 1, 2, 3, 4]}]})");
+    const Scene scene = readScene(file);
+    CHECK(hasWarning(scene, "skin 0 ignored: no joints, or a joint or skeleton that is no node of the file"));
+    CHECK(hasWarning(scene, "skin 1 ignored: fewer inverse bind matrices than joints"));
+    CHECK(hasWarning(scene, "node 2: morph weights that do not match its mesh's targets ignored"));
+    CHECK(hasWarning(scene, "morph targets left out (mesh 1 primitive 0): POSITION of target 0 has 2 elements for 3"));
+    CHECK(scene.skins.empty());
+    for (const Node& node : scene.nodes) CHECK((node.skin == -1 && node.weights.empty()));
+    CHECK(scene.meshes[1].primitives[0].targets.empty());
+    CHECK(scene.meshes[1].weights.empty());  // weights without their targets go with them
+    validateScene(scene);
 }

@@ -132,7 +132,7 @@ TEST_CASE("validateScene names each broken invariant", "[scene]") {
     }
 }
 
-TEST_CASE("dropUnreadTexcoords keeps texture coordinates only where a texture reads them", "[scene]") {
+TEST_CASE("dropUnreadAttributes keeps texture coordinates only where a texture reads them", "[scene]") {
     Primitive textured = unitTriangle();
     textured.texcoords = {{0, 0}, {1, 0}, {0, 1}};
     Scene scene;
@@ -150,13 +150,13 @@ TEST_CASE("dropUnreadTexcoords keeps texture coordinates only where a texture re
     }
     mesh.primitives.push_back(unitTriangle());
     scene.meshes.push_back(mesh);
-    CHECK(dropUnreadTexcoords(scene) == 2);
+    CHECK(dropUnreadAttributes(scene) == 2);
     const auto& kept = scene.meshes[0].primitives;
     CHECK(kept[0].texcoords == textured.texcoords);
     CHECK(kept[1].texcoords == textured.texcoords);
     for (std::size_t p = 2; p < kept.size(); ++p) CHECK(kept[p].texcoords.empty());
     CHECK(kept[0].normals == textured.normals);  // nothing else is touched
-    CHECK(dropUnreadTexcoords(scene) == 0);
+    CHECK(dropUnreadAttributes(scene) == 0);
     validateScene(scene);
 }
 

@@ -11,14 +11,14 @@
 namespace symcompress {
 
 struct OptimizeOptions {
-    bool pruneAttributes = true;  // texture coordinates that no texture reads
+    bool pruneAttributes = true;  // texture coordinates that no texture reads, tangents no normal map reads
     bool prune = true;            // materials no primitive uses, textures no material uses
     bool dedup = true;            // materials equal but for their names, textures equal by content
 };
 
 // What the optimizations removed or merged, counted.
 struct OptimizeReport {
-    std::size_t texcoordsDropped = 0;  // primitives whose texture coordinates no texture reads
+    std::size_t unreadAttributesDropped = 0;  // primitives that lost attributes no material reads
     std::size_t materialsMerged = 0, texturesMerged = 0;
     std::size_t materialsRemoved = 0, texturesRemoved = 0;
     // One line for each optimization that did something, for the warnings a user reads.
@@ -29,10 +29,12 @@ struct OptimizeReport {
 // removes what dedup left unused). The scene stays valid (validateScene): every index is remapped.
 OptimizeReport optimizeScene(Scene& scene, const OptimizeOptions& options = {});
 
-// The texture coordinates of primitives whose material reads no texture (no material, or one that names
-// no texture) dropped; returns how many primitives lost theirs. A texture whose image could not be read
-// still reads them: its reference is written, and the image may be put beside the file.
-std::size_t dropUnreadTexcoords(Scene& scene);
+// The attributes no viewer reads dropped: a TEXCOORD_n set that no texture of the primitive's material reads
+// (no material, or none of its textures on that set), TANGENT where the material has no normal map (core,
+// clear-coat) and no anisotropy. Returns how many primitives lost some. A texture whose image could not be
+// read still reads its set: its reference is written, and the image may be put beside the file. A primitive
+// with morph targets keeps everything (its targets may displace what it has).
+std::size_t dropUnreadAttributes(Scene& scene);
 
 // Materials equal in every field but their names drawn by the first of them (its name kept); textures
 // with the same image (bytes and type, or the same URI where the image could not be read) by the first.

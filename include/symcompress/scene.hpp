@@ -12,12 +12,17 @@
 // - Node::camera and Node::light are -1 or indices into Scene::cameras and Scene::lights, whose numbers are
 //   finite (a perspective camera's yfov and znear > 0, an orthographic one's xmag and ymag != 0);
 // - every AnimationChannel targets a node of Scene::nodes, has finite, increasing times and finite values,
-//   as many as its times, path and interpolation ask for.
+//   as many as its times, path and interpolation ask for;
+// - every VertexAttribute of a Primitive (and of each of its morph targets) has `components` of 1 to 4 and
+//   that many values per vertex; every morph target of a mesh's primitives is there in each (as glTF asks);
+// - Node::skin is -1 or an index into Scene::skins, whose joints index Scene::nodes, with no or one inverse
+//   bind matrix per joint.
 // Geometry is double precision; readers convert whatever the file stores.
 #pragma once
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -150,12 +155,31 @@ struct QuantizationGrid {
     int bits = 14;
 };
 
+// A vertex attribute that the stages carry through as it is: TANGENT (x, y, z and the handedness w),
+// TEXCOORD_n and COLOR_n after the first, JOINTS_n, WEIGHTS_n, an application's _NAME; in a morph target, the
+// displacements of POSITION, NORMAL, TANGENT (3 components) or another attribute. `components` values a
+// vertex, as glTF's accessor held them (normalized integers as their values in [0, 1], JOINTS as indices).
+struct VertexAttribute {
+    std::string name;  // glTF's attribute semantic
+    int components = 0;
+    std::vector<double> values;
+    std::size_t count() const { return components > 0 ? values.size() / std::size_t(components) : 0; }
+    bool operator==(const VertexAttribute& o) const {
+        return name == o.name && components == o.components && values == o.values;
+    }
+};
+
+// A glTF morph target: displaced attributes of its primitive, one value per vertex each.
+using MorphTarget = std::vector<VertexAttribute>;
+
 struct Primitive {
     std::vector<Eigen::Vector3d> positions;
     std::vector<Eigen::Vector3d> normals;    // empty or one per vertex
     std::vector<Eigen::Vector2d> texcoords;  // TEXCOORD_0, glTF convention (v down); empty or one per vertex
     std::vector<Eigen::Vector4d> colors;     // COLOR_0 as linear RGBA; empty or one per vertex
     std::vector<Triangle> triangles;
+    std::vector<VertexAttribute> attributes;  // every other attribute (VertexAttribute), sorted by name
+    std::vector<MorphTarget> targets;         // glTF morph targets, in the file's order
     int material = -1;  // index into Scene::materials, -1 for the default material
     // Where positions must be quantized on a given grid (the seams of a fundamental region's copies stay
     // closed on it; fundamental_region.hpp), else nothing: a compressing writer then fits its own grid.
@@ -165,7 +189,17 @@ struct Primitive {
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
-    std::string extrasJson;  // glTF extras as read (JSON text), empty for none
+    std::string extrasJson;       // glTF extras as read (JSON text), empty for none
+    std::vector<double> weights;  // the morph targets' default weights, empty for none (or 0 each)
+};
+
+// glTF's skin: the joints that move a skinned mesh's vertices (JOINTS_n and WEIGHTS_n), with the inverse bind
+// matrix of each (none: identity). A skinned mesh is drawn by its joints, not by its node's transform.
+struct Skin {
+    std::string name;
+    std::vector<int> joints;                           // indices into Scene::nodes
+    std::vector<Eigen::Matrix4d> inverseBindMatrices;  // empty or one per joint
+    int skeleton = -1;                                 // the skeleton's root node, -1 when the file names none
 };
 
 // A viewpoint, as glTF holds it: it looks down its node's -z, +y up (X3D's Viewpoint has the same frame).
@@ -199,6 +233,8 @@ struct Node {
     int mesh = -1;                                            // index into Scene::meshes
     int camera = -1;                                          // index into Scene::cameras
     int light = -1;                                           // index into Scene::lights
+    int skin = -1;                                            // index into Scene::skins, for a skinned mesh
+    std::vector<double> weights;                              // morph weights replacing the mesh's, or empty
     std::vector<int> children;                                // indices into Scene::nodes
     std::string extrasJson;                                   // glTF extras as read (JSON text), empty for none
 };
@@ -207,14 +243,17 @@ struct Node {
 // glTF writer gives it back. The node's own transform is its rest pose, what every other stage draws.
 struct AnimationChannel {
     int node = -1;  // index into Scene::nodes
-    enum class Path { Translation, Rotation, Scale } path = Path::Translation;
+    enum class Path { Translation, Rotation, Scale, Weights } path = Path::Translation;
+    int weights = 0;  // Path::Weights: the number of morph targets, the values of one key
     enum class Interpolation { Linear, Step, CubicSpline } interpolation = Interpolation::Linear;
     std::vector<double> times;   // seconds, increasing
-    // Per key: 3 values (translation, scale) or 4 (rotation quaternion x, y, z, w); cubic splines store
-    // in-tangent, value and out-tangent for each key.
+    // Per key: 3 values (translation, scale), 4 (rotation quaternion x, y, z, w) or `weights` (morph weights);
+    // cubic splines store in-tangent, value and out-tangent for each key.
     std::vector<double> values;
 
-    std::size_t components() const { return path == Path::Rotation ? 4 : 3; }  // of one value
+    std::size_t components() const {  // of one value
+        return path == Path::Rotation ? 4 : path == Path::Weights ? std::size_t(std::max(weights, 0)) : 3;
+    }
     std::size_t valuesPerKey() const { return components() * (interpolation == Interpolation::CubicSpline ? 3 : 1); }
 };
 
@@ -232,6 +271,7 @@ struct Scene {
     std::vector<Animation> animations;
     std::vector<Camera> cameras;
     std::vector<Light> lights;
+    std::vector<Skin> skins;
     // X3D's NavigationInfo, Background, Fog and WorldInfo nodes as read (XML text), which the scene model and
     // glTF have no place for: an X3D writer gives them back.
     std::vector<std::string> x3dEnvironment;

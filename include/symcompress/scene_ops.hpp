@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@ Scene sceneOfOneMesh(const std::string& name, Primitive primitive);
 
 // Throws std::invalid_argument naming the first broken invariant of scene.hpp.
 void validateScene(const Scene& scene);
+
+// The number of morph targets of a mesh (each of its primitives has as many).
+std::size_t morphTargetCount(const Mesh& mesh);
 
 // What breaks scene.hpp's invariants in an animation channel of a scene of `nodes` nodes, or "" when
 // nothing does (validateScene throws it; readers leave such a channel out with it as a warning).
@@ -47,7 +51,7 @@ TriangleMesh worldMesh(const Scene& scene);
 
 // The same drawing as one mesh under one root node with the identity transform: every instance
 // expanded, materials and textures kept, cameras and lights kept on root nodes at their world
-// placement, animations left out (a warning says so).
+// placement; the animated subtrees (markAnimatedSubtrees) kept as they are, with their animations.
 Scene expandInstances(const Scene& scene);
 
 // The texture coordinate of `primitive`'s vertex `v` as its base colour texture reads it: through the
@@ -60,6 +64,18 @@ void renumberTextures(Scene& scene, const std::vector<int>& newIndex);
 // For each texture, the first one with the same image bytes and type: an image that several materials
 // (or an X3D file's several ImageTextures of one URL) use is written once.
 std::vector<int> firstTextureOfSameImage(const std::vector<Texture>& textures);
+
+// Which nodes are animated or under an animated node (reached from the roots); `tops` gets the animated nodes
+// with no animated ancestor, in increasing order. Animated: the target of an animation channel, a skin's
+// joint, a node drawing a skinned mesh or one with morph targets: what they draw moves, and is kept as it is.
+std::vector<bool> markAnimatedSubtrees(const Scene& scene, std::vector<int>& tops);
+
+// The subtrees at `tops` (markAnimatedSubtrees) copied into `out` as they are, each under a new root node
+// holding its parent's world transform, with the skins of their joints and the input's animations retargeted
+// to them (a channel of a node no root reaches is left out with a warning). Meshes are shared with the other
+// kept meshes through `keptMesh` (input mesh -> output mesh). Returns the number of nodes copied.
+std::size_t keepAnimatedSubtrees(const Scene& input, const std::vector<int>& tops, Scene& out,
+                                 std::map<int, int>& keptMesh);
 
 // The world transform of every node (identity for nodes that are not reachable from the roots).
 std::vector<Eigen::Matrix4d> worldTransforms(const Scene& scene);

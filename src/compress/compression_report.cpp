@@ -43,7 +43,7 @@ std::string CompressionReport::json() const {
                                 {"cameras_and_lights_kept", stats.camerasAndLightsKept},
                                 {"bytes_per_instance", bytesPerInstance},
                                 {"optimizations",
-                                 {{"texcoords_dropped", optimizations.texcoordsDropped},
+                                 {{"unread_attributes_dropped", optimizations.unreadAttributesDropped},
                                   {"materials_merged", optimizations.materialsMerged},
                                   {"textures_merged", optimizations.texturesMerged},
                                   {"materials_removed", optimizations.materialsRemoved},

@@ -202,7 +202,7 @@ std::vector<Eigen::Vector4d> toColors(const std::vector<double>& flat, int compo
 
 void GltfReader::decodeDracoPrimitive(const tinygltf::Primitive& source, const tinygltf::Value& extension,
                                       Primitive& out, std::vector<std::uint32_t>& indices,
-                                      const std::string& where) const {
+                                      const std::string& where) {
     const int viewIndex = indexIn(member(extension, "bufferView"));
     if (viewIndex < 0 || viewIndex >= static_cast<int>(model_.bufferViews.size()))
         fail(where + ": KHR_draco_mesh_compression has no valid bufferView");
@@ -234,22 +234,27 @@ void GltfReader::decodeDracoPrimitive(const tinygltf::Primitive& source, const t
              std::to_string(declared) + " its POSITION accessor declares");
 
     const tinygltf::Value& attributes = member(extension, "attributes");
-    auto readDracoAttribute = [&](const char* name, int components) -> std::vector<double> {
+    auto readDracoAttribute = [&](const std::string& name, int components) -> std::vector<double> {
         if (!member(attributes, name).IsInt()) return {};
         const draco::PointAttribute* attribute = mesh->GetAttributeByUniqueId(attributes.Get(name).Get<int>());
         if (!attribute) fail(where + ": Draco attribute " + name + " is missing from the compressed data");
         const int stored = attribute->num_components();
+        // Draco stores normalized integers as integers: bring them to [0, 1] (or [-1, 1]), as glTF reads them.
+        double scale = 1;
+        if (attribute->normalized()) {
+            const draco::DataType type = attribute->data_type();
+            scale = type == draco::DT_UINT8 ? 255.0 : type == draco::DT_UINT16 ? 65535.0 : type == draco::DT_INT8 ? 127.0
+                    : type == draco::DT_INT16 ? 32767.0 : 1.0;
+        }
         std::vector<double> values(mesh->num_points() * static_cast<std::size_t>(components), 0.0);
         std::vector<float> element(std::max(stored, 4));
         for (draco::PointIndex point(0); point < mesh->num_points(); ++point) {
             attribute->ConvertValue<float>(attribute->mapped_index(point), stored, element.data());
-            for (int c = 0; c < std::min(stored, components); ++c) values[point.value() * components + c] = element[c];
-            if (components == 4 && stored == 3) values[point.value() * components + 3] = 1;
-            // Draco stores normalized integer colours as integers: bring them to [0, 1].
-            if (std::string(name) == "COLOR_0" && attribute->normalized()) {
-                const double scale = attribute->data_type() == draco::DT_UINT8 ? 255.0 : 65535.0;
-                for (int c = 0; c < std::min(stored, components); ++c) values[point.value() * components + c] /= scale;
+            for (int c = 0; c < std::min(stored, components); ++c) {
+                const double value = element[c] / scale;
+                values[point.value() * components + c] = scale > 1 ? std::max(value, -1.0) : value;
             }
+            if (components == 4 && stored == 3) values[point.value() * components + 3] = 1;
         }
         return values;
     };
@@ -257,6 +262,11 @@ void GltfReader::decodeDracoPrimitive(const tinygltf::Primitive& source, const t
     out.normals = toVectors<Eigen::Vector3d>(readDracoAttribute("NORMAL", 3), 3);
     out.texcoords = toVectors<Eigen::Vector2d>(readDracoAttribute("TEXCOORD_0", 2), 2);
     out.colors = toColors(readDracoAttribute("COLOR_0", 4), 4);
+    for (const auto& [name, accessor] : source.attributes) {
+        if (isCoreAttribute(name) || !member(attributes, name).IsInt()) continue;
+        const int components = vertexAttributeComponents(accessor, name, where);
+        if (components > 0) out.attributes.push_back({name, components, readDracoAttribute(name, components)});
+    }
     if (out.positions.empty()) fail(where + ": Draco mesh has no POSITION");
     indices.clear();
     for (draco::FaceIndex face(0); face < mesh->num_faces(); ++face)

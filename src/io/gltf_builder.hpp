@@ -24,7 +24,7 @@ inline std::string jsonText(const Json& json, int indent = -1) {
     return json.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
-constexpr int kFloat = 5126, kUnsignedShort = 5123, kUnsignedInt = 5125;
+constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 
 // The growing binary buffer and the JSON arrays that describe it.
@@ -43,6 +43,8 @@ public:
         root_["bufferViews"].push_back(view);
         return static_cast<int>(root_["bufferViews"].size()) - 1;
     }
+
+    void setByteStride(int view, std::size_t stride) { root_["bufferViews"][std::size_t(view)]["byteStride"] = stride; }
 
     int addAccessor(Json accessor) {
         root_["accessors"].push_back(std::move(accessor));

@@ -137,11 +137,6 @@ TextureRef GltfReader::readTextureUse(int gltfTexture, int texCoord, double scal
     use.texCoord = texCoord >= 0 ? texCoord : 0;
     use.scale = std::isfinite(scale) ? scale : 1;
     use.transform = readTextureTransform(extensionsJson, where);
-    // Only TEXCOORD_0 is carried through (issue 15): a texture on another set would read the wrong one.
-    if (use.texCoordSet() != 0) {
-        warnAbout(where + ": textures on TEXCOORD_1 or higher are not carried through");
-        return TextureRef{};
-    }
     return use;
 }
 

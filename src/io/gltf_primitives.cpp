@@ -8,12 +8,22 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 
 namespace symcompress {
 namespace fs = std::filesystem;
 namespace {
+
+bool isJoints(const std::string& name) { return name.rfind("JOINTS_", 0) == 0; }
+
+const char* accessorType(int components) {
+    static const char* types[] = {"SCALAR", "VEC2", "VEC3", "VEC4"};
+    return types[std::clamp(components, 1, 4) - 1];
+}
 
 // A float32 attribute in a Draco soup builder, one value per triangle corner.
 template <typename Vector>
@@ -30,6 +40,34 @@ void addDracoAttribute(draco::TriangleSoupMeshBuilder& builder, const Primitive&
         builder.SetAttributeValuesForFace(attributeId, draco::FaceIndex(static_cast<std::uint32_t>(f)), corner.data(),
                                           corner.data() + components, corner.data() + 2 * components);
     }
+}
+
+// One of Primitive::attributes in a Draco soup builder, as float32 (JOINTS as unsigned 16-bit indices),
+// GENERIC for Draco: it is not quantized, so that it comes back as it was read.
+int addDracoAttribute(draco::TriangleSoupMeshBuilder& builder, const Primitive& primitive,
+                      const VertexAttribute& attribute) {
+    const bool joints = isJoints(attribute.name);
+    const int components = attribute.components;
+    const int id = builder.AddAttribute(draco::GeometryAttribute::GENERIC, static_cast<std::int8_t>(components),
+                                        joints ? draco::DT_UINT16 : draco::DT_FLOAT32);
+    std::vector<float> corner(3 * components);
+    std::vector<std::uint16_t> jointCorner(3 * components);
+    for (std::size_t f = 0; f < primitive.triangles.size(); ++f) {
+        for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < components; ++c) {
+                const double value = attribute.values[primitive.triangles[f][k] * std::size_t(components) + c];
+                corner[k * components + c] = static_cast<float>(value);
+                jointCorner[k * components + c] = static_cast<std::uint16_t>(value);
+            }
+        const draco::FaceIndex face(static_cast<std::uint32_t>(f));
+        if (joints)
+            builder.SetAttributeValuesForFace(id, face, jointCorner.data(), jointCorner.data() + components,
+                                              jointCorner.data() + 2 * components);
+        else
+            builder.SetAttributeValuesForFace(id, face, corner.data(), corner.data() + components,
+                                              corner.data() + 2 * components);
+    }
+    return id;
 }
 
 // Draco quantizes each attribute in float32 over the span of its values, and dequantizes as min + q * span / qmax:
@@ -50,6 +88,7 @@ void refuseBeyondDracoRange(const Primitive& primitive, const std::vector<Vector
 
 struct DracoAttributeIds {
     int position = -1, normal = -1, texcoord = -1, color = -1;
+    std::vector<int> others;  // Primitive::attributes', in order
 };
 
 // The primitive's triangles split in two: those Draco's edgebreaker keeps, and those whose corners its
@@ -103,6 +142,8 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
     addDracoAttribute(soup, primitive, primitive.normals, draco::GeometryAttribute::NORMAL, 3, ids.normal);
     addDracoAttribute(soup, primitive, primitive.texcoords, draco::GeometryAttribute::TEX_COORD, 2, ids.texcoord);
     addDracoAttribute(soup, primitive, primitive.colors, draco::GeometryAttribute::COLOR, 4, ids.color);
+    for (const VertexAttribute& attribute : primitive.attributes)
+        ids.others.push_back(addDracoAttribute(soup, primitive, attribute));
     std::unique_ptr<draco::Mesh> mesh = soup.Finalize();
     if (!mesh) throw FileError(file, "Draco could not build a mesh from a primitive");
 
@@ -172,6 +213,15 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
     describe("NORMAL", ids.normal, draco::GeometryAttribute::NORMAL, 3, "VEC3");
     describe("TEXCOORD_0", ids.texcoord, draco::GeometryAttribute::TEX_COORD, 2, "VEC2");
     describe("COLOR_0", ids.color, draco::GeometryAttribute::COLOR, 4, "VEC4");
+    for (std::size_t a = 0; a < primitive.attributes.size(); ++a) {
+        const VertexAttribute& source = primitive.attributes[a];
+        const draco::PointAttribute* attribute = result->GetAttributeByUniqueId(mesh->attribute(ids.others[a])->unique_id());
+        if (!attribute) throw FileError(file, "Draco lost the attribute " + source.name + " of a primitive");
+        attributes[source.name] = builder.addAccessor({{"componentType", isJoints(source.name) ? kUnsignedShort : kFloat},
+                                                       {"count", result->num_points()},
+                                                       {"type", accessorType(source.components)}});
+        dracoAttributes[source.name] = attribute->unique_id();
+    }
     const int indexType = result->num_points() <= 65535 ? kUnsignedShort : kUnsignedInt;
     Json out = {
         {"attributes", attributes},
@@ -191,6 +241,44 @@ void refuseBeyondFloat(const std::vector<Vector>& values, const char* name, cons
                                       "stores them");
 }
 
+// One of Primitive::attributes (or of a morph target) as an accessor: JOINTS as unsigned bytes or shorts, glTF's
+// only types for them, the others as float32 (which every semantic allows), a POSITION with its bounds.
+int addAttribute(GltfBuilder& builder, const VertexAttribute& attribute) {
+    if (!isJoints(attribute.name)) {
+        const std::vector<float> flat(attribute.values.begin(), attribute.values.end());
+        return builder.addFloatAccessor(flat, attribute.components, accessorType(attribute.components),
+                                        attribute.name == "POSITION", kArrayBuffer);
+    }
+    const double largest =
+        attribute.values.empty() ? 0 : *std::max_element(attribute.values.begin(), attribute.values.end());
+    // Each element 4-byte aligned, as glTF asks of vertex attributes (JOINTS are VEC4: no padding in valid files).
+    const bool bytes = largest <= 255;
+    const std::size_t size = bytes ? 1 : 2, stride = (size * std::size_t(attribute.components) + 3) / 4 * 4;
+    std::vector<unsigned char> data(stride * attribute.count(), 0);
+    for (std::size_t v = 0; v < attribute.count(); ++v)
+        for (int c = 0; c < attribute.components; ++c) {
+            const auto value = static_cast<std::uint16_t>(attribute.values[v * std::size_t(attribute.components) + c]);
+            std::memcpy(&data[v * stride + std::size_t(c) * size], &value, size);  // little-endian, as glTF
+        }
+    const int view = builder.addBufferView(data.data(), data.size(), kArrayBuffer);
+    if (stride != size * std::size_t(attribute.components)) builder.setByteStride(view, stride);
+    return builder.addAccessor({{"bufferView", view},
+                                {"componentType", bytes ? kUnsignedByte : kUnsignedShort},
+                                {"count", attribute.count()},
+                                {"type", accessorType(attribute.components)}});
+}
+
+void refuseBeyondFloat(const VertexAttribute& attribute, const fs::path& file) {
+    for (double value : attribute.values)
+        if (!(std::abs(value) <= std::numeric_limits<float>::max()))
+            throw FileError(file, attribute.name + " holds values beyond float32's range (3.4e38), in which glTF " +
+                                      "stores them");
+    if (isJoints(attribute.name))
+        for (double value : attribute.values)
+            if (!(value >= 0 && value <= 65535 && value == std::floor(value)))
+                throw FileError(file, attribute.name + " holds a joint index that is no whole number from 0 to 65535");
+}
+
 Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     Json attributes = Json::object();
     attributes["POSITION"] = builder.addFloatAccessor(primitive.positions, 3, "VEC3", true);
@@ -199,6 +287,7 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     if (!primitive.texcoords.empty())
         attributes["TEXCOORD_0"] = builder.addFloatAccessor(primitive.texcoords, 2, "VEC2", false);
     if (!primitive.colors.empty()) attributes["COLOR_0"] = builder.addFloatAccessor(primitive.colors, 4, "VEC4", false);
+    for (const VertexAttribute& attribute : primitive.attributes) attributes[attribute.name] = addAttribute(builder, attribute);
     Json indices;
     if (primitive.positions.size() <= 65535) {
         std::vector<std::uint16_t> flat;
@@ -214,7 +303,13 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     }
     indices["count"] = primitive.triangles.size() * 3;
     indices["type"] = "SCALAR";
-    return {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
+    Json out = {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
+    for (const MorphTarget& target : primitive.targets) {
+        Json displaced = Json::object();
+        for (const VertexAttribute& attribute : target) displaced[attribute.name] = addAttribute(builder, attribute);
+        out["targets"].push_back(std::move(displaced));
+    }
+    return out;
 }
 
 }  // namespace
@@ -229,7 +324,11 @@ void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const Writ
     refuseBeyondFloat(primitive.normals, "NORMAL", file);
     refuseBeyondFloat(primitive.texcoords, "TEXCOORD_0", file);
     refuseBeyondFloat(primitive.colors, "COLOR_0", file);
-    if (!options.draco) {
+    for (const VertexAttribute& attribute : primitive.attributes) refuseBeyondFloat(attribute, file);
+    for (const MorphTarget& target : primitive.targets)
+        for (const VertexAttribute& attribute : target) refuseBeyondFloat(attribute, file);
+    // Morph targets stay plain accessors, which Draco's reordering of the vertices would no longer match.
+    if (!options.draco || !primitive.targets.empty()) {
         add(writePlainPrimitive(builder, primitive), primitive.material);
         return;
     }

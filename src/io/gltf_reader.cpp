@@ -33,7 +33,6 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
         ++skippedModes_[mode >= 0 && mode < 4 ? names[mode] : "primitives of unknown mode"];
         return;
     }
-    if (!source.targets.empty()) warnAbout("morph targets ignored (the base shape is kept)");
     Primitive out;
     std::vector<std::uint32_t> indices;
     auto draco = source.extensions.find("KHR_draco_mesh_compression");
@@ -57,6 +56,10 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
             if (components != 3 && components != 4) fail(where + ": COLOR_0 must be VEC3 or VEC4");
             out.colors = toColors(readAccessor(attribute("COLOR_0"), components, "COLOR_0"), components);
         }
+        for (const auto& [name, accessor] : source.attributes)
+            if (!isCoreAttribute(name))
+                if (const int components = vertexAttributeComponents(accessor, name, where); components > 0)
+                    out.attributes.push_back({name, components, readAccessor(accessor, components, name.c_str())});
         if (source.indices >= 0) {
             indices = readIndices(source.indices);
         } else {
@@ -79,6 +82,16 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
     dropIfNotFinite(out.normals, "NORMAL");
     dropIfNotFinite(out.texcoords, "TEXCOORD_0");
     dropIfNotFinite(out.colors, "COLOR_0");
+    auto finite = [](const VertexAttribute& attribute) {
+        return std::all_of(attribute.values.begin(), attribute.values.end(), [](double v) { return std::isfinite(v); });
+    };
+    for (auto attribute = out.attributes.begin(); attribute != out.attributes.end();)
+        if (finite(*attribute)) {
+            ++attribute;
+        } else {
+            warnAbout(attribute->name + " with NaN or infinite values dropped (" + where + ")");
+            attribute = out.attributes.erase(attribute);
+        }
     auto sameCount = [&](auto& attribute, const char* name) {
         if (!attribute.empty() && attribute.size() != vertexCount)
             fail(where + ": " + name + " has " + std::to_string(attribute.size()) + " elements for " +
@@ -87,6 +100,11 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
     sameCount(out.normals, "NORMAL");
     sameCount(out.texcoords, "TEXCOORD_0");
     sameCount(out.colors, "COLOR_0");
+    for (const VertexAttribute& attribute : out.attributes)
+        if (attribute.count() != vertexCount)
+            fail(where + ": " + attribute.name + " has " + std::to_string(attribute.count()) + " elements for " +
+                 std::to_string(vertexCount) + " positions");
+    out.targets = readMorphTargets(source, vertexCount, where);
     for (std::uint32_t index : indices)
         if (index >= vertexCount)
             fail(where + ": index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) +
@@ -94,10 +112,45 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
     out.triangles = trianglesFromIndices(indices, mode);
     out.material =
         source.material >= 0 && source.material < static_cast<int>(model_.materials.size()) ? source.material : -1;
-    for (const auto& [name, accessor] : source.attributes)
-        if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0" && name != "COLOR_0")
-            warnAbout("attribute " + name + " not carried through");
     mesh.primitives.push_back(std::move(out));
+}
+
+int GltfReader::vertexAttributeComponents(int accessor, const std::string& name, const std::string& where) {
+    if (accessor < 0 || accessor >= static_cast<int>(model_.accessors.size()))
+        fail(where + ": " + name + ": accessor " + std::to_string(accessor) + " does not exist");
+    const int components = componentCount(model_.accessors[std::size_t(accessor)].type);
+    if (components >= 1 && components <= 4) return components;
+    warnAbout("attribute " + name + " of a matrix or unknown type not carried through (" + where + ")");
+    return 0;
+}
+
+// Morph targets as read; when one has an attribute of another count than the base's vertices (a Draco
+// primitive whose encoder merged vertices) or with NaN or infinite values, all are left out with a warning
+// (a primitive's targets are numbered together, and match its mesh's weights).
+std::vector<MorphTarget> GltfReader::readMorphTargets(const tinygltf::Primitive& source, std::size_t vertices,
+                                                      const std::string& where) {
+    std::vector<MorphTarget> targets;
+    for (std::size_t t = 0; t < source.targets.size(); ++t) {
+        MorphTarget target;
+        for (const auto& [name, accessor] : source.targets[t]) {
+            const std::string what = where + " morph target " + std::to_string(t) + " " + name;
+            const int components = vertexAttributeComponents(accessor, name, what);
+            if (components == 0) continue;
+            VertexAttribute attribute{name, components, readAccessor(accessor, components, what.c_str())};
+            const bool finite = std::all_of(attribute.values.begin(), attribute.values.end(),
+                                            [](double v) { return std::isfinite(v); });
+            if (attribute.count() != vertices || !finite) {
+                warnAbout("morph targets left out (" + where + "): " + name + " of target " + std::to_string(t) +
+                          (finite ? " has " + std::to_string(attribute.count()) + " elements for " +
+                                        std::to_string(vertices) + " vertices"
+                                  : " has NaN or infinite values"));
+                return {};
+            }
+            target.push_back(std::move(attribute));
+        }
+        targets.push_back(std::move(target));
+    }
+    return targets;
 }
 
 Eigen::Matrix4d GltfReader::nodeTransform(const tinygltf::Node& node) const {
@@ -118,10 +171,73 @@ Eigen::Matrix4d GltfReader::nodeTransform(const tinygltf::Node& node) const {
     return transform;
 }
 
-// Node transform channels are kept; a channel the scene model cannot hold (morph weights, a target other
+// glTF asks every primitive of a mesh for the same number of morph targets, and as many weights: a mesh that
+// breaks it keeps none (with a warning), which its nodes' weights then lose too.
+void GltfReader::keepConsistentMorphTargets(Mesh& mesh, const std::string& where) {
+    const std::size_t targets = mesh.primitives.empty() ? 0 : mesh.primitives.front().targets.size();
+    bool consistent = mesh.weights.empty() || mesh.weights.size() == targets;
+    for (const Primitive& primitive : mesh.primitives) consistent = consistent && primitive.targets.size() == targets;
+    for (double weight : mesh.weights) consistent = consistent && std::isfinite(weight);
+    if (consistent) return;
+    warnAbout(where + ": morph targets ignored: its primitives have different numbers of them, or of weights");
+    for (Primitive& primitive : mesh.primitives) primitive.targets.clear();
+    mesh.weights.clear();
+}
+
+// Skins with their joints and inverse bind matrices; a broken one is left out with a warning (its meshes are
+// then drawn by their nodes, in the bind pose), as are node weights that do not match their mesh.
+void GltfReader::readSkins(Scene& scene) {
+    std::vector<int> skinIndex(model_.skins.size(), -1);
+    for (std::size_t k = 0; k < model_.skins.size(); ++k) {
+        const tinygltf::Skin& source = model_.skins[k];
+        const std::string where = "skin " + std::to_string(k);
+        Skin skin;
+        skin.name = source.name;
+        skin.joints = source.joints;
+        skin.skeleton = source.skeleton;
+        auto isNode = [&](int n) { return n >= 0 && n < static_cast<int>(model_.nodes.size()); };
+        if (skin.joints.empty() || !std::all_of(skin.joints.begin(), skin.joints.end(), isNode) ||
+            (skin.skeleton != -1 && !isNode(skin.skeleton))) {
+            warnAbout(where + " ignored: no joints, or a joint or skeleton that is no node of the file");
+            continue;
+        }
+        if (source.inverseBindMatrices >= 0) {
+            const std::vector<double> values = readAccessor(source.inverseBindMatrices, 16, "inverseBindMatrices");
+            if (values.size() < 16 * skin.joints.size() ||
+                !std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); })) {
+                warnAbout(where + " ignored: fewer inverse bind matrices than joints, or NaN or infinite ones");
+                continue;
+            }
+            for (std::size_t j = 0; j < skin.joints.size(); ++j)
+                skin.inverseBindMatrices.push_back(Eigen::Map<const Eigen::Matrix4d>(&values[16 * j]));
+        }
+        skinIndex[k] = int(scene.skins.size());
+        scene.skins.push_back(std::move(skin));
+    }
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+        Node& node = scene.nodes[n];
+        if (node.skin >= static_cast<int>(skinIndex.size()))
+            warnAbout("node " + std::to_string(n) + ": skin index out of range, ignored");
+        node.skin = node.skin >= 0 && node.skin < static_cast<int>(skinIndex.size()) ? skinIndex[node.skin] : -1;
+        if (node.skin >= 0 && node.mesh < 0) {  // glTF: a skin needs the node's mesh
+            warnAbout("node " + std::to_string(n) + ": a skin without a mesh ignored");
+            node.skin = -1;
+        }
+        const std::size_t targets = node.mesh < 0 || scene.meshes[std::size_t(node.mesh)].primitives.empty()
+                                        ? 0
+                                        : scene.meshes[std::size_t(node.mesh)].primitives.front().targets.size();
+        if (!node.weights.empty() &&
+            (node.weights.size() != targets ||
+             !std::all_of(node.weights.begin(), node.weights.end(), [](double v) { return std::isfinite(v); }))) {
+            warnAbout("node " + std::to_string(n) + ": morph weights that do not match its mesh's targets ignored");
+            node.weights.clear();
+        }
+    }
+}
+
+// Node transform and morph weight channels are kept; a channel the scene model cannot hold (a target other
 // than a node) or a broken one is left out with a warning.
 void GltfReader::readAnimations(Scene& scene) {
-    std::size_t weights = 0;
     for (std::size_t a = 0; a < model_.animations.size(); ++a) {
         const tinygltf::Animation& source = model_.animations[a];
         Animation animation;
@@ -129,10 +245,6 @@ void GltfReader::readAnimations(Scene& scene) {
         for (std::size_t c = 0; c < source.channels.size(); ++c) {
             const tinygltf::AnimationChannel& channel = source.channels[c];
             const std::string where = "animation " + std::to_string(a) + " channel " + std::to_string(c);
-            if (channel.target_path == "weights") {
-                ++weights;
-                continue;
-            }
             AnimationChannel out;
             out.node = channel.target_node;
             // The file's own nodes (the scene has the GPU instances' after them).
@@ -140,7 +252,17 @@ void GltfReader::readAnimations(Scene& scene) {
                 warnAbout(where + " ignored: it targets no node of the file");
                 continue;
             }
-            if (channel.target_path == "translation")
+            if (channel.target_path == "weights") {
+                out.path = AnimationChannel::Path::Weights;
+                const int mesh = scene.nodes[std::size_t(out.node)].mesh;
+                out.weights = mesh < 0 || scene.meshes[std::size_t(mesh)].primitives.empty()
+                                  ? 0
+                                  : int(scene.meshes[std::size_t(mesh)].primitives.front().targets.size());
+                if (out.weights == 0) {
+                    warnAbout(where + " ignored: it animates the morph weights of a node without morph targets");
+                    continue;
+                }
+            } else if (channel.target_path == "translation")
                 out.path = AnimationChannel::Path::Translation;
             else if (channel.target_path == "rotation")
                 out.path = AnimationChannel::Path::Rotation;
@@ -166,7 +288,9 @@ void GltfReader::readAnimations(Scene& scene) {
                 continue;
             }
             out.times = readAccessor(sampler.input, 1, "animation input");
-            out.values = readAccessor(sampler.output, int(out.components()), "animation output");
+            // Morph weights are scalars, one per target a key.
+            const bool weights = out.path == AnimationChannel::Path::Weights;
+            out.values = readAccessor(sampler.output, weights ? 1 : int(out.components()), "animation output");
             if (const std::string problem = animationChannelProblem(out, scene.nodes.size()); !problem.empty())
                 warnAbout(where + " ignored: " + problem);
             else
@@ -183,7 +307,6 @@ void GltfReader::readAnimations(Scene& scene) {
         }
         if (!animation.channels.empty()) scene.animations.push_back(std::move(animation));
     }
-    if (weights) warnAbout(std::to_string(weights) + " animation channels of morph target weights ignored");
 }
 
 // glTF's cameras and KHR_lights_punctual lights, with the nodes that carry them. One that breaks the
@@ -318,6 +441,8 @@ Scene GltfReader::read() {
         for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p)
             readPrimitive(model_.meshes[m].primitives[p], mesh,
                           "mesh " + std::to_string(m) + " primitive " + std::to_string(p));
+        mesh.weights = model_.meshes[m].weights;
+        keepConsistentMorphTargets(mesh, "mesh " + std::to_string(m));
         scene.meshes.push_back(std::move(mesh));
     }
     std::vector<int> parentCount(model_.nodes.size(), 0);
@@ -333,7 +458,8 @@ Scene GltfReader::read() {
             if (++parentCount[child] > 1) fail("node " + std::to_string(child) + " has more than one parent");
             node.children.push_back(child);
         }
-        if (source.skin >= 0) warnAbout("skins ignored: skinned meshes are drawn in their bind pose");
+        node.skin = source.skin;  // checked by readSkins
+        node.weights = source.weights;
         scene.nodes.push_back(std::move(node));
     }
     // Deep chains are refused here, level by level without recursion, before any code that walks the
@@ -362,8 +488,8 @@ Scene GltfReader::read() {
     }
     if (model_.scenes.size() > 1)
         warnAbout(std::to_string(model_.scenes.size() - 1) + " scenes besides the default one ignored");
+    readSkins(scene);
     readAnimations(scene);
-    if (!model_.skins.empty()) warnAbout(std::to_string(model_.skins.size()) + " skins ignored");
     for (const auto& [mode, count] : skippedModes_)
         warnAbout(std::to_string(count) + " " + mode + " skipped (only triangles are kept)");
     for (const std::string& warning : warnings_) scene.warnings.push_back(file_.filename().string() + ": " + warning);

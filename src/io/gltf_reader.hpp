@@ -77,7 +77,18 @@ private:
     std::vector<std::uint32_t> readIndices(int accessorIndex) const;
     void readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, const std::string& where);
     void decodeDracoPrimitive(const tinygltf::Primitive& source, const tinygltf::Value& extension, Primitive& out,
-                              std::vector<std::uint32_t>& indices, const std::string& where) const;
+                              std::vector<std::uint32_t>& indices, const std::string& where);
+    // The attributes the scene model has fields for (the others are Primitive::attributes).
+    static bool isCoreAttribute(const std::string& name) {
+        return name == "POSITION" || name == "NORMAL" || name == "TEXCOORD_0" || name == "COLOR_0";
+    }
+    // The components of the accessor an attribute `name` names, or 0 (with a warning) where that is no vertex
+    // attribute (a matrix, an unknown type; a missing accessor is refused when read).
+    int vertexAttributeComponents(int accessor, const std::string& name, const std::string& where);
+    std::vector<MorphTarget> readMorphTargets(const tinygltf::Primitive& source, std::size_t vertices,
+                                              const std::string& where);
+    void keepConsistentMorphTargets(Mesh& mesh, const std::string& where);
+    void readSkins(Scene& scene);
     Eigen::Matrix4d nodeTransform(const tinygltf::Node& node) const;
     void readMaterials(Scene& scene);
     int sceneTexture(int gltfTexture, Scene& scene, const std::string& where);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <set>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -67,6 +68,28 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
                              file.extension().string() + " lights fall off with the inverse square of the distance");
     }
     if (format == FileFormat::Glb || format == FileFormat::Gltf) return losses;
+    const std::string extension = file.extension().string();
+    std::set<std::string> attributes;
+    std::size_t morphed = 0, weightChannels = 0;
+    for (const Mesh& mesh : scene.meshes) {
+        for (const Primitive& primitive : mesh.primitives)
+            for (const VertexAttribute& attribute : primitive.attributes) attributes.insert(attribute.name);
+        morphed += morphTargetCount(mesh) > 0;
+    }
+    for (const Animation& animation : scene.animations)
+        for (const AnimationChannel& channel : animation.channels)
+            weightChannels += channel.path == AnimationChannel::Path::Weights;
+    if (!attributes.empty()) {
+        std::string list;
+        for (const std::string& name : attributes) list += (list.empty() ? "" : ", ") + name;
+        losses.push_back("vertex attributes " + list + " not written: " + extension + " output has no place for them");
+    }
+    if (morphed)
+        losses.push_back(std::to_string(morphed) + " meshes' morph targets not written (" + std::to_string(weightChannels) +
+                         " animation channels of their weights with them): " + extension + " output draws the base shape");
+    if (!scene.skins.empty())
+        losses.push_back(std::to_string(scene.skins.size()) + " skins not written: " + extension +
+                         " output draws skinned meshes where their nodes place them, unskinned");
     // X3D 3.3's Material, OBJ's and PLY's hold a colour and one texture (transformed into the coordinates).
     const std::size_t richer = std::count_if(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
         const auto refs = m.textureRefs();
@@ -79,7 +102,6 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
         losses.push_back(std::to_string(richer) + " materials written with their base colour only: their other " +
                          "textures, samplers and extensions have no place in " + file.extension().string() + " output");
     if (format != FileFormat::X3d) {
-        const std::string extension = file.extension().string();
         if (!scene.animations.empty())
             losses.push_back(std::to_string(scene.animations.size()) + " animations not written: " + extension +
                              " output is drawn at rest");

@@ -226,6 +226,7 @@ private:
         for (std::size_t c = 0; c < animation.channels.size(); ++c) {
             const AnimationChannel& channel = animation.channels[c];
             if (nodeDef_.at(channel.node).empty()) continue;  // a node no root reaches: nothing drawn to move
+            if (channel.path == AnimationChannel::Path::Weights) continue;  // no morph targets (formatLosses)
             const bool rotation = channel.path == AnimationChannel::Path::Rotation;
             // A cubic spline's key is in-tangent, value, out-tangent: the value is the middle one.
             const std::size_t stride = channel.valuesPerKey(), offset = stride > channel.components() ? channel.components() : 0;
@@ -427,7 +428,7 @@ std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options
     if (primitive.triangles.empty()) return 0;
     // The file with a node drawing the mesh, less the file with the node alone.
     Scene scene;
-    scene.meshes.push_back({"", {primitive}});
+    scene.meshes.push_back({"", {primitive}, "", {}});
     scene.meshes[0].primitives[0].material = -1;
     scene.nodes.resize(1);
     scene.nodes[0].mesh = 0;
@@ -445,7 +446,7 @@ std::size_t x3dNodeBytes(const Node& node) {
     Primitive triangle;
     triangle.positions = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()};
     triangle.triangles = {{0, 1, 2}};
-    scene.meshes.push_back({"", {triangle}});
+    scene.meshes.push_back({"", {triangle}, "", {}});
     scene.nodes.resize(2);
     scene.nodes[0].mesh = 0;
     scene.nodes[1] = node;

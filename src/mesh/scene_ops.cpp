@@ -32,6 +32,18 @@ void validatePrimitive(const Primitive& primitive, const std::string& where, std
     if (!allFinite(primitive.positions) || !allFinite(primitive.normals) || !allFinite(primitive.texcoords) ||
         !allFinite(primitive.colors))
         throw std::invalid_argument(where + ": a coordinate or attribute is NaN or infinite");
+    auto checkAttribute = [&](const VertexAttribute& attribute) {
+        if (attribute.components < 1 || attribute.components > 4 ||
+            attribute.values.size() != n * std::size_t(attribute.components))
+            throw std::invalid_argument(where + ": " + attribute.name + " has " +
+                                        std::to_string(attribute.values.size()) + " values for " + std::to_string(n) +
+                                        " vertices of " + std::to_string(attribute.components) + " components");
+        if (!std::all_of(attribute.values.begin(), attribute.values.end(), [](double v) { return std::isfinite(v); }))
+            throw std::invalid_argument(where + ": " + attribute.name + " is NaN or infinite");
+    };
+    for (const VertexAttribute& attribute : primitive.attributes) checkAttribute(attribute);
+    for (const MorphTarget& target : primitive.targets)
+        for (const VertexAttribute& attribute : target) checkAttribute(attribute);
     for (const Triangle& triangle : primitive.triangles)
         for (std::uint32_t index : triangle)
             if (index >= n)
@@ -40,6 +52,14 @@ void validatePrimitive(const Primitive& primitive, const std::string& where, std
     if (primitive.material < -1 || primitive.material >= static_cast<int>(materialCount))
         throw std::invalid_argument(where + ": material " + std::to_string(primitive.material) + " out of range");
 }
+
+}  // namespace
+
+std::size_t morphTargetCount(const Mesh& mesh) {
+    return mesh.primitives.empty() ? 0 : mesh.primitives.front().targets.size();
+}
+
+namespace {
 
 // Depth-first over the node forest; `visit(node, world)` is called for every reachable node.
 template <typename Visit>
@@ -65,6 +85,22 @@ void traverse(const Scene& scene, Visit&& visit) {
 
 }  // namespace
 
+// An attribute moved with its primitive: a TANGENT's direction turned with the surface (its handedness w kept: a
+// viewer builds the bitangent from the placed normal and tangent, so a mirrored placement and its baked copy
+// draw alike), a morph target's displacements of positions, normals and tangents turned (approximately, for a
+// transform that is not rigid); the others stay as they are.
+void transformAttribute(VertexAttribute& attribute, const Eigen::Matrix3d& linear, const Eigen::Matrix3d& normalMatrix,
+                        bool displacement) {
+    const bool normal = attribute.name == "NORMAL", direction = attribute.name == "TANGENT" || normal;
+    if (attribute.components < 3 || !(direction || (displacement && attribute.name == "POSITION"))) return;
+    const Eigen::Matrix3d& matrix = normal ? normalMatrix : linear;
+    for (std::size_t v = 0; v < attribute.count(); ++v) {
+        Eigen::Map<Eigen::Vector3d> value(&attribute.values[v * std::size_t(attribute.components)]);
+        value = matrix * value;
+        if (!displacement && value.norm() > 0) value.normalize();
+    }
+}
+
 Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& world) {
     Primitive out = local;
     const Eigen::Matrix3d linear = world.topLeftCorner<3, 3>();
@@ -77,6 +113,9 @@ Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& worl
         const double length = normal.norm();
         if (length > 0) normal /= length;
     }
+    for (VertexAttribute& attribute : out.attributes) transformAttribute(attribute, linear, normalMatrix, false);
+    for (MorphTarget& target : out.targets)
+        for (VertexAttribute& attribute : target) transformAttribute(attribute, linear, normalMatrix, true);
     // A mirroring transform turns counter-clockwise triangles clockwise: flip them back.
     if (linear.determinant() < 0)
         for (Triangle& triangle : out.triangles) std::swap(triangle[1], triangle[2]);
@@ -89,10 +128,26 @@ void validateScene(const Scene& scene) {
             if (use->texture < -1 || use->texture >= static_cast<int>(scene.textures.size()) || use->texCoord < 0)
                 throw std::invalid_argument("material " + std::to_string(m) + ": texture index out of range");
     }
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
-        for (std::size_t p = 0; p < scene.meshes[m].primitives.size(); ++p)
-            validatePrimitive(scene.meshes[m].primitives[p],
-                              "mesh " + std::to_string(m) + " primitive " + std::to_string(p), scene.materials.size());
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            validatePrimitive(mesh.primitives[p], "mesh " + std::to_string(m) + " primitive " + std::to_string(p),
+                              scene.materials.size());
+            if (mesh.primitives[p].targets.size() != morphTargetCount(mesh))
+                throw std::invalid_argument("mesh " + std::to_string(m) + ": primitives with different numbers of morph targets");
+        }
+        if (!mesh.weights.empty() && mesh.weights.size() != morphTargetCount(mesh))
+            throw std::invalid_argument("mesh " + std::to_string(m) + ": more or fewer weights than morph targets");
+    }
+    for (std::size_t k = 0; k < scene.skins.size(); ++k) {
+        const Skin& skin = scene.skins[k];
+        auto isNode = [&](int n) { return n >= 0 && std::size_t(n) < scene.nodes.size(); };
+        if (skin.joints.empty() || !std::all_of(skin.joints.begin(), skin.joints.end(), isNode) ||
+            (skin.skeleton != -1 && !isNode(skin.skeleton)))
+            throw std::invalid_argument("skin " + std::to_string(k) + ": no joints, or a joint or skeleton out of range");
+        if (!skin.inverseBindMatrices.empty() && skin.inverseBindMatrices.size() != skin.joints.size())
+            throw std::invalid_argument("skin " + std::to_string(k) + ": inverse bind matrices and joints differ in number");
+    }
     const int nodeCount = static_cast<int>(scene.nodes.size());
     std::vector<int> parents(scene.nodes.size(), 0);
     for (int n = 0; n < nodeCount; ++n) {
@@ -105,6 +160,10 @@ void validateScene(const Scene& scene) {
             throw std::invalid_argument("node " + std::to_string(n) + ": camera index out of range");
         if (node.light < -1 || node.light >= static_cast<int>(scene.lights.size()))
             throw std::invalid_argument("node " + std::to_string(n) + ": light index out of range");
+        if (node.skin < -1 || node.skin >= static_cast<int>(scene.skins.size()))
+            throw std::invalid_argument("node " + std::to_string(n) + ": skin index out of range");
+        if (!node.weights.empty() && (node.mesh < 0 || node.weights.size() != morphTargetCount(scene.meshes[node.mesh])))
+            throw std::invalid_argument("node " + std::to_string(n) + ": morph weights that its mesh has no targets for");
         for (int child : node.children) {
             if (child < 0 || child >= nodeCount)
                 throw std::invalid_argument("node " + std::to_string(n) + ": child index out of range");
@@ -130,9 +189,16 @@ void validateScene(const Scene& scene) {
     for (int n = 0; n < nodeCount; ++n)
         if (!reached[n]) throw std::invalid_argument("node " + std::to_string(n) + " is part of a cycle");
     for (std::size_t a = 0; a < scene.animations.size(); ++a)
-        for (std::size_t c = 0; c < scene.animations[a].channels.size(); ++c)
-            if (const std::string problem = animationChannelProblem(scene.animations[a].channels[c], scene.nodes.size()); !problem.empty())
-                throw std::invalid_argument("animation " + std::to_string(a) + " channel " + std::to_string(c) + ": " + problem);
+        for (std::size_t c = 0; c < scene.animations[a].channels.size(); ++c) {
+            const AnimationChannel& channel = scene.animations[a].channels[c];
+            const std::string where = "animation " + std::to_string(a) + " channel " + std::to_string(c) + ": ";
+            if (const std::string problem = animationChannelProblem(channel, scene.nodes.size()); !problem.empty())
+                throw std::invalid_argument(where + problem);
+            const int mesh = scene.nodes[std::size_t(channel.node)].mesh;
+            if (channel.path == AnimationChannel::Path::Weights &&
+                (mesh < 0 || std::size_t(channel.weights) != morphTargetCount(scene.meshes[std::size_t(mesh)])))
+                throw std::invalid_argument(where + "morph weights for another number of targets than its node's mesh has");
+        }
     for (std::size_t c = 0; c < scene.cameras.size(); ++c)
         if (const std::string problem = cameraProblem(scene.cameras[c]); !problem.empty())
             throw std::invalid_argument("camera " + std::to_string(c) + ": " + problem);
@@ -172,6 +238,7 @@ std::string lightProblem(const Light& light) {
 
 std::string animationChannelProblem(const AnimationChannel& channel, std::size_t nodes) {
     if (channel.node < 0 || std::size_t(channel.node) >= nodes) return "node index out of range";
+    if (channel.path == AnimationChannel::Path::Weights && channel.weights <= 0) return "morph weights of no targets";
     if (channel.times.empty() || channel.values.size() != channel.times.size() * channel.valuesPerKey())
         return std::to_string(channel.values.size()) + " values for " + std::to_string(channel.times.size()) + " keys";
     const auto finite = [](double v) { return std::isfinite(v); };
@@ -184,10 +251,14 @@ std::string animationChannelProblem(const AnimationChannel& channel, std::size_t
 }
 
 Eigen::Vector2d baseColorTexcoord(const Scene& scene, const Primitive& primitive, std::size_t v) {
-    const Eigen::Vector2d& t = primitive.texcoords[v];
-    if (primitive.material < 0) return t;
-    const std::optional<TextureTransform>& transform = scene.materials[std::size_t(primitive.material)].baseColorTexture.transform;
-    return transform ? Eigen::Vector2d(transform->matrix() * t.homogeneous()) : t;
+    if (primitive.material < 0) return primitive.texcoords[v];
+    const TextureRef& use = scene.materials[std::size_t(primitive.material)].baseColorTexture;
+    Eigen::Vector2d t = primitive.texcoords[v];
+    const std::string set = "TEXCOORD_" + std::to_string(use.texCoordSet());
+    for (const VertexAttribute& attribute : primitive.attributes)
+        if (attribute.name == set && attribute.components >= 2)
+            t = {attribute.values[v * std::size_t(attribute.components)], attribute.values[v * std::size_t(attribute.components) + 1]};
+    return use.transform ? Eigen::Vector2d(use.transform->matrix() * t.homogeneous()) : t;
 }
 
 void renumberTextures(Scene& scene, const std::vector<int>& newIndex) {
@@ -232,11 +303,12 @@ Scene expandInstances(const Scene& scene) {
     flat.textures = scene.textures;
     flat.materials = scene.materials;
     flat.warnings = scene.warnings;
-    if (!scene.animations.empty())
-        flat.warnings.push_back(std::to_string(scene.animations.size()) + " animations not kept: the flat mesh is drawn at rest");
+    std::vector<int> tops;
+    const std::vector<bool> animated = markAnimatedSubtrees(scene, tops);
     Mesh mesh;
     mesh.name = "expanded";
-    for (WorldPrimitive& world : flattenScene(scene)) mesh.primitives.push_back(std::move(world.primitive));
+    for (WorldPrimitive& world : flattenScene(scene))
+        if (!animated[std::size_t(world.node)]) mesh.primitives.push_back(std::move(world.primitive));
     flat.meshes.push_back(std::move(mesh));
     Node root;
     root.name = "expanded";
@@ -248,7 +320,7 @@ Scene expandInstances(const Scene& scene) {
     flat.x3dEnvironment = scene.x3dEnvironment;
     traverse(scene, [&](int node, const Eigen::Matrix4d& world) {
         const Node& from = scene.nodes[node];
-        if (from.camera < 0 && from.light < 0) return;
+        if ((from.camera < 0 && from.light < 0) || animated[std::size_t(node)]) return;
         Node placed;
         placed.name = from.name;
         placed.transform = world;
@@ -257,6 +329,8 @@ Scene expandInstances(const Scene& scene) {
         flat.roots.push_back(int(flat.nodes.size()));
         flat.nodes.push_back(std::move(placed));
     });
+    std::map<int, int> keptMesh;
+    keepAnimatedSubtrees(scene, tops, flat, keptMesh);
     return flat;
 }
 
@@ -297,7 +371,7 @@ TriangleMesh worldMesh(const Scene& scene) {
 
 Scene sceneOfOneMesh(const std::string& name, Primitive primitive) {
     Scene scene;
-    scene.meshes.push_back({name, {std::move(primitive)}});
+    scene.meshes.push_back({name, {std::move(primitive)}, "", {}});
     Node node;
     node.name = name;
     node.mesh = 0;

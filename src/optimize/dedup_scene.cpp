@@ -59,7 +59,7 @@ OptimizeReport optimizeScene(Scene& scene, const OptimizeOptions& options) {
     OptimizeReport report;
     if (options.dedup)
         std::tie(report.materialsMerged, report.texturesMerged) = mergeDuplicateMaterialsAndTextures(scene);
-    if (options.pruneAttributes) report.texcoordsDropped = dropUnreadTexcoords(scene);
+    if (options.pruneAttributes) report.unreadAttributesDropped = dropUnreadAttributes(scene);
     // Merged materials and textures are left unused, for pruning to remove (with --no-prune they stay).
     if (options.prune) std::tie(report.materialsRemoved, report.texturesRemoved) = pruneUnused(scene);
     return report;
@@ -72,8 +72,9 @@ std::vector<std::string> OptimizeReport::lines() const {
     };
     say(materialsMerged, "materials equal to another but for their names merged into it (--no-dedup keeps them)");
     say(texturesMerged, "textures showing the same image as another merged into it (--no-dedup keeps them)");
-    say(texcoordsDropped,
-        "primitives' texture coordinates dropped: no texture reads them (--keep-unused-attributes keeps them)");
+    say(unreadAttributesDropped,
+        "primitives' texture coordinates or tangents dropped: no material reads them (--keep-unused-attributes "
+        "keeps them)");
     say(materialsRemoved, "materials that no primitive uses (merged ones included) removed (--no-prune keeps them)");
     say(texturesRemoved, "textures that no material uses (merged ones included) removed (--no-prune keeps them)");
     return out;

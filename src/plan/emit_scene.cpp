@@ -23,69 +23,6 @@ int addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const No
     return out.roots.back();
 }
 
-// The animated subtrees as they are (SceneAnalysis::animatedSubtrees), each under a root node holding its
-// parent's world transform, and the input's animations retargeted to them. Meshes are shared with the
-// other kept meshes through `keptMesh` (input mesh -> output mesh).
-void keepAnimatedSubtrees(const Scene& input, const SceneAnalysis& analysis, Scene& out, std::map<int, int>& keptMesh,
-                          CompressionStats& stats) {
-    if (input.animations.empty()) return;
-    const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
-    std::vector<int> parent(input.nodes.size(), -1);
-    for (std::size_t n = 0; n < input.nodes.size(); ++n)
-        for (int child : input.nodes[n].children) parent[std::size_t(child)] = int(n);
-    std::map<int, int> nodeOf;  // input node -> output node
-    auto copy = [&](auto&& self, int node) -> int {
-        const Node& from = input.nodes[std::size_t(node)];
-        Node to;
-        to.name = from.name;
-        to.extrasJson = from.extrasJson;
-        to.transform = from.transform;
-        to.camera = from.camera;
-        to.light = from.light;
-        if (from.mesh >= 0) {
-            auto [entry, added] = keptMesh.emplace(from.mesh, int(out.meshes.size()));
-            if (added) out.meshes.push_back(input.meshes[std::size_t(from.mesh)]);
-            to.mesh = entry->second;
-        }
-        const int index = int(out.nodes.size());
-        out.nodes.push_back(std::move(to));
-        nodeOf[node] = index;
-        ++stats.animatedNodesKept;
-        for (int child : from.children) {
-            const int copied = self(self, child);
-            out.nodes[std::size_t(index)].children.push_back(copied);
-        }
-        return index;
-    };
-    for (int top : analysis.animatedSubtrees) {
-        // The parent's own world transform, not the node's times its inverse: an animated node may have a
-        // scale of 0 at rest (hidden until its animation shows it).
-        const int above = parent[std::size_t(top)];
-        const int holder =
-            addRootNode(out, -1, above < 0 ? Eigen::Matrix4d::Identity() : world[std::size_t(above)], nullptr);
-        const int copied = copy(copy, top);
-        out.nodes[std::size_t(holder)].children.push_back(copied);
-    }
-    std::size_t undrawn = 0;  // channels of nodes that no root reaches
-    for (Animation animation : input.animations) {
-        std::vector<AnimationChannel> kept;
-        for (AnimationChannel& channel : animation.channels) {
-            const auto copied = nodeOf.find(channel.node);
-            if (copied == nodeOf.end()) {
-                ++undrawn;
-                continue;
-            }
-            channel.node = copied->second;
-            kept.push_back(std::move(channel));
-        }
-        animation.channels = std::move(kept);
-        if (!animation.channels.empty()) out.animations.push_back(std::move(animation));
-    }
-    if (undrawn)
-        out.warnings.push_back(std::to_string(undrawn) +
-                               " animation channels of nodes the scene does not draw left out");
-}
-
 // Every node with a camera or a light, outside the animated subtrees (which keep theirs), as a root node at
 // its world placement: the tiles are rebuilt elsewhere, the viewpoints and lights stay where they were.
 void keepCamerasAndLights(const Scene& input, const SceneAnalysis& analysis, Scene& out, CompressionStats& stats) {
@@ -131,12 +68,21 @@ void count(const SharedPart& part, CompressionStats& stats) {
 }
 
 // Triangles with two corners at one point draw nothing; kept, they would cost Draco's edgebreaker (which
-// drops them) a sequential primitive (the subpass scene has 4100 of them).
+// drops them) a sequential primitive (the subpass scene has 4100 of them). Morphed and skinned primitives
+// keep theirs: their corners may part once they move.
 void dropPointLikeTriangles(Scene& out, CompressionStats& stats) {
     std::size_t pointLike = 0;
     for (Mesh& mesh : out.meshes)
         for (Primitive& p : mesh.primitives) {
             const std::size_t before = p.triangles.size();
+            const bool moves = !p.targets.empty() || std::any_of(p.attributes.begin(), p.attributes.end(),
+                                                                 [](const VertexAttribute& a) {
+                                                                     return a.name.rfind("JOINTS_", 0) == 0;
+                                                                 });
+            if (moves) {
+                stats.trianglesStored += before;
+                continue;
+            }
             p.triangles.erase(std::remove_if(p.triangles.begin(), p.triangles.end(),
                                              [&](const Triangle& t) {
                                                  return p.positions[t[0]] == p.positions[t[1]] ||
@@ -179,7 +125,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     std::set<std::string> merged;      // names of the input nodes whose parts are merged into `unique`
     const Node* mergedSource = nullptr;  // one of them
     for (const KeptInstance& kept : analysis.keptInstances) {
-        if (!plan.shareInputInstances) {
+        if (!plan.shareInputInstances && tilesCanCarry(input.meshes[std::size_t(kept.mesh)])) {
             for (const Primitive& primitive : input.meshes[std::size_t(kept.mesh)].primitives)
                 unique.add(transformPrimitive(primitive, kept.transform));
             if (kept.source && !kept.source->name.empty()) merged.insert(kept.source->name), mergedSource = kept.source;
@@ -191,7 +137,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         ++stats.inputInstancesKept;
         ++stats.instances;
     }
-    keepAnimatedSubtrees(input, analysis, out, keptMesh, stats);
+    stats.animatedNodesKept += keepAnimatedSubtrees(input, analysis.animatedSubtrees, out, keptMesh);
     keepCamerasAndLights(input, analysis, out, stats);
     for (const SharedPart& part : plan.shared) {
         const int mesh = int(out.meshes.size());

@@ -16,24 +16,21 @@ double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Which nodes are animated or under an animated node (reached from the roots); `tops` gets the animated
-// nodes with no animated ancestor, in increasing order.
-std::vector<bool> markAnimatedSubtrees(const Scene& input, std::vector<int>& tops) {
-    std::vector<bool> animated(input.nodes.size(), false), inSubtree(input.nodes.size(), false);
-    for (const Animation& animation : input.animations)
-        for (const AnimationChannel& channel : animation.channels) animated[std::size_t(channel.node)] = true;
-    std::vector<std::pair<int, bool>> stack;  // node, whether an ancestor is animated
-    for (int root : input.roots) stack.push_back({root, false});
-    while (!stack.empty()) {
-        const auto [node, under] = stack.back();
-        stack.pop_back();
-        if (animated[std::size_t(node)] && !under) tops.push_back(node);
-        inSubtree[std::size_t(node)] = under || animated[std::size_t(node)];
-        for (int child : input.nodes[std::size_t(node)].children)
-            stack.push_back({child, inSubtree[std::size_t(node)]});
-    }
-    std::sort(tops.begin(), tops.end());
-    return inSubtree;
+// Meshes with attributes that tiles do not carry (Primitive::attributes: tangents, more texture coordinate
+// sets...), kept as they are where their nodes draw them, and left out of the soup.
+void setAsideMeshesTilesCannotCarry(const Scene& input, SceneAnalysis& analysis) {
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+    std::set<std::pair<int, int>> kept;  // mesh, node
+    for (const WorldPrimitive& placed : analysis.soup)
+        if (placed.mesh >= 0 && !tilesCanCarry(input.meshes[std::size_t(placed.mesh)]) &&
+            kept.insert({placed.mesh, placed.node}).second)
+            analysis.keptInstances.push_back(
+                {placed.mesh, world[std::size_t(placed.node)], &input.nodes[std::size_t(placed.node)]});
+    analysis.soup.erase(std::remove_if(analysis.soup.begin(), analysis.soup.end(),
+                                       [&](const WorldPrimitive& placed) {
+                                           return kept.count({placed.mesh, placed.node}) > 0;
+                                       }),
+                        analysis.soup.end());
 }
 
 // A mesh drawn by two or more nodes, one of them scaling or shearing it, is the author's instancing of
@@ -68,6 +65,11 @@ double tilesDiagonal(const std::vector<Tile>& tiles) {
 
 }  // namespace
 
+bool tilesCanCarry(const Mesh& mesh) {
+    return std::all_of(mesh.primitives.begin(), mesh.primitives.end(),
+                       [](const Primitive& p) { return p.attributes.empty() && p.targets.empty(); });
+}
+
 SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
     SceneAnalysis analysis;
     analysis.options = options;
@@ -78,6 +80,7 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
         std::remove_if(analysis.soup.begin(), analysis.soup.end(),
                        [&](const WorldPrimitive& placed) { return animated[std::size_t(placed.node)]; }),
         analysis.soup.end());
+    setAsideMeshesTilesCannotCarry(input, analysis);
     if (options.keepInputInstances) setAsideScaledInstances(input, analysis);
     std::size_t triangles = 0;
     for (const WorldPrimitive& placed : analysis.soup) triangles += placed.primitive.triangles.size();

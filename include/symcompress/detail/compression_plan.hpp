@@ -24,8 +24,9 @@ struct AnalysisOptions {
     ProgressCallback progress;
 };
 
-// A node of the input that draws a mesh several nodes draw, one of them scaling or shearing it: the
-// author's own instancing of copies that are not congruent, kept as it is.
+// A node of the input that draws a mesh several nodes draw, one of them scaling or shearing it (the author's
+// own instancing of copies that are not congruent), or a mesh with attributes that tiles do not carry
+// (Primitive::attributes, morph targets): kept as it is.
 struct KeptInstance {
     int mesh = -1;                                            // in the input
     Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // world
@@ -41,7 +42,8 @@ struct SceneAnalysis {
     std::vector<KeptInstance> keptInstances;  // not in the soup: their meshes are stored as they are
     // The input's animated nodes that have no animated ancestor: kept with their subtrees as they are
     // (nodes, transforms, meshes) and their animations, so that the animations still drive them; what
-    // they draw is not in the soup.
+    // they draw is not in the soup. Animated: the target of an animation channel, a skin's joint, a node
+    // drawing a skinned mesh or one with morph targets.
     std::vector<int> animatedSubtrees;
     std::vector<WorldPrimitive> soup;
     std::vector<Tile> tiles;
@@ -51,6 +53,10 @@ struct SceneAnalysis {
 };
 
 SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options = {});
+
+// Whether tiles can carry everything the mesh's primitives hold (not Primitive::attributes or morph targets,
+// which the tiling, the classes and the regions do not handle yet).
+bool tilesCanCarry(const Mesh& mesh);
 
 // What storing parts costs in the output, in bytes: measured by the writer where it gives a measure
 // (meshBytes, nodeBytes), else the constants (a rough Draco glTF of bare positions).
