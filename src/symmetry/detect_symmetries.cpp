@@ -284,7 +284,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     group.seconds.moments = since(start);
     start = Clock::now();
     const auto principal = distinctPrincipalAxes(coefficients, options.tolerance);
-    const std::vector<Eigen::Vector3d> axes = principal ? *principal : findCandidateAxes(functions, std::max(1e-4, options.tolerance));
+    const std::vector<Eigen::Vector3d> axes = principal ? *principal : findCandidateAxes(functions, std::max(1e-4, options.tolerance), options.threads);
     group.seconds.axes = since(start);
     start = Clock::now();
     const ShapeVerifier verifier(mesh, group.centroid);
