@@ -369,23 +369,25 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                                                             SIZE_MAX, &hints) <= preliminary;
                 std::vector<int> plausible;
                 std::map<int, double> fit;  // deviation of the rotation by 2 pi / n, for the plausible n
-                if (!nearlyRound)
-                    for (int n : folds) {
-                        const double d =
-                            verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary, SIZE_MAX, &hints);
-                        if (d <= preliminary) plausible.push_back(n), fit[n] = d;
+                // Once more than kMaxRefinedFolds folds have passed the preliminary bound (or for a nearly
+                // round shape), only the folds within the tolerance count, with that deviation as their fit:
+                // the remaining folds are measured at the tolerance alone (a fold within it is within the
+                // preliminary bound), not measured in full at the preliminary bound first.
+                bool strict = nearlyRound;
+                auto fitsWithin = [&](int n, double bound) {
+                    const double d = verifier.deviation(rotationAbout(axis, 2 * kPi / n), bound, SIZE_MAX, &hints);
+                    fit[n] = d;
+                    return d <= bound;
+                };
+                for (int n : folds) {
+                    if (!fitsWithin(n, strict ? tolerance : preliminary)) continue;
+                    plausible.push_back(n);
+                    if (!strict && plausible.size() > kMaxRefinedFolds) {
+                        strict = true;
+                        plausible.erase(std::remove_if(plausible.begin(), plausible.end(),
+                                                       [&](int m) { return !fitsWithin(m, tolerance); }),
+                                        plausible.end());
                     }
-                if (nearlyRound || plausible.size() > kMaxRefinedFolds) {
-                    if (nearlyRound) plausible = folds;
-                    plausible.erase(std::remove_if(plausible.begin(), plausible.end(),
-                                                   [&](int n) {
-                                                       const double d =
-                                                           verifier.deviation(rotationAbout(axis, 2 * kPi / n),
-                                                                              tolerance, SIZE_MAX, &hints);
-                                                       fit[n] = d;
-                                                       return d > tolerance;
-                                                   }),
-                                    plausible.end());
                 }
                 // A 24-sided part is within a loose tolerance of 360-fold too: the folds that fit best
                 // (within a factor of the best fit) come first, the largest of them first.
