@@ -41,7 +41,10 @@ bool newtonCriticalPoint(const MomentFunction& f, Eigen::Vector3d start, Eigen::
         Eigen::Vector3d euclidean;
         const Eigen::Vector3d g = f.tangentialGradient(w, &euclidean);
         const double scale = std::abs(f.value(w)) * f.order();
-        if (g.norm() <= 1e-13 * scale) break;
+        if (g.norm() <= 1e-13 * scale) {  // converged, so within the test below: no need to evaluate it again
+            critical = w;
+            return true;
+        }
         Eigen::Vector3d e1, e2;
         tangentFrame(w, e1, e2);
         Eigen::Matrix<double, 3, 2> e;
@@ -57,6 +60,7 @@ bool newtonCriticalPoint(const MomentFunction& f, Eigen::Vector3d start, Eigen::
         if (delta.norm() > kMaxStep) delta *= kMaxStep / delta.norm();
         w = (w + delta).normalized();
     }
+    // Out of iterations: a critical point all the same if the gradient is small enough.
     const double scale = std::abs(f.value(w)) * f.order();
     if (!(f.tangentialGradient(w).norm() <= 1e-9 * scale)) return false;
     critical = w;
