@@ -187,12 +187,14 @@ public:
 
     // Whether w -> linear w changes every function by at most its tolerance at the comparison points.
     bool allows(const Eigen::Matrix3d& linear) const {
-        // A few points at a time (evaluated side by side), in order.
-        constexpr std::size_t kChunk = 8;
         Eigen::Vector3d mapped[kChunk];
         double after[kChunk];
         for (std::size_t k = 0; k < order_.size(); ++k) {
             const std::size_t i = order_[k];
+            if (changeValues_[i].empty() && changesBeyondBound(i, linear)) {
+                order_.decided(k);
+                return false;
+            }
             const std::vector<double>& before = changeValuesOf(i);
             for (std::size_t first = 0; first < changePoints_.size(); first += kChunk) {
                 const std::size_t count = std::min(kChunk, changePoints_.size() - first);
@@ -209,6 +211,25 @@ public:
     }
 
 private:
+    // A few points at a time (evaluated side by side), in order.
+    static constexpr std::size_t kChunk = 8;
+
+    // Whether the map changes function i, at one of the first comparison points, by more than its tolerance
+    // of the function's bound on the sphere: then by more than its tolerance of its largest value at the
+    // comparison points too (their scale, for which the function must be evaluated at every one of them).
+    bool changesBeyondBound(std::size_t i, const Eigen::Matrix3d& linear) const {
+        const std::size_t count = std::min(kChunk, changePoints_.size());
+        Eigen::Vector3d mapped[kChunk];
+        double before[kChunk], after[kChunk];
+        for (std::size_t j = 0; j < count; ++j) mapped[j] = linear * changePoints_[j];
+        functions_[i].polynomial().evaluate(changePoints_.data(), count, before);
+        functions_[i].polynomial().evaluate(mapped, count, after);
+        const double limit = tolerances_[i] * functions_[i].largestValue();
+        for (std::size_t j = 0; j < count; ++j)
+            if (std::abs(after[j] - before[j]) > limit) return true;
+        return false;
+    }
+
     // Function i at the comparison points, and its largest magnitude there: the same for every map tried.
     const std::vector<double>& changeValuesOf(std::size_t i) const {
         std::vector<double>& values = changeValues_[i];
