@@ -209,6 +209,30 @@ TEST_CASE("Moments from the coefficients equal brute-force integrals of |s x w|^
     }
 }
 
+TEST_CASE("A moment function's bound holds on the sphere, and is reached by a thin rod along its length",
+          "[moments]") {
+    auto largestSampled = [](const MomentFunction& f) {
+        std::mt19937_64 random(5);
+        double largest = 0;
+        for (int direction = 0; direction < 2000; ++direction) largest = std::max(largest, f.value(randomDirection(random)));
+        return largest;
+    };
+    MomentOptions options;
+    options.maxOrder = 16;
+    const MomentCoefficients shape = computeMomentCoefficients(asymmetricSurface(), options);
+    // A thin box along x: |s x w| = |s| for w across it, so the bound is nearly reached.
+    Polyhedron rod = makeCube();
+    for (Eigen::Vector3d& v : rod.vertices) v = v.cwiseProduct(Eigen::Vector3d(10, 1e-3, 1e-3));
+    const MomentCoefficients thin = computeMomentCoefficients(triangulateWithRandomFanPoints(rod, 3), options);
+    for (int order = 2; order <= 16; order += 2) {
+        INFO("order " << order);
+        const MomentFunction f(shape, order), g(thin, order);
+        CHECK(largestSampled(f) <= f.largestValue());
+        CHECK(largestSampled(g) <= g.largestValue());
+        CHECK(largestSampled(g) >= 0.99 * g.largestValue());
+    }
+}
+
 TEST_CASE("The coefficients do not depend on the tessellation", "[moments]") {
     MomentOptions options;
     options.maxOrder = 16;

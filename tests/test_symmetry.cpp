@@ -134,6 +134,15 @@ TEST_CASE("Point groups are named from their elements", "[symmetry]") {
     const auto c24v = group({rotation(z, 2 * kPi / 24), Eigen::Matrix3d(Eigen::Matrix3d::Identity() - 2 * x * x.transpose())});
     CHECK(pointGroupName(c24v) == "C24v");
     CHECK(c24v.size() == 48);
+    // An axis's fold is the count of its rotations: each rotation about z off by 3e-5 rad, as products of
+    // refined maps are, puts the powers of a 4-fold rotation 1.2e-4 rad from the identity (named D2h before).
+    std::vector<Eigen::Matrix3d> d44h = group({rotation(z, 2 * kPi / 44), rotation(x, kPi), mirrorZ});
+    for (Eigen::Matrix3d& g : d44h) {
+        const Symmetry s = describeOrthogonal(g);
+        if (s.kind == Symmetry::Kind::Rotation && std::abs(s.axis.z()) > 0.999) g = rotation(z, 3e-5) * g;
+    }
+    CHECK(d44h.size() == 176);
+    CHECK(pointGroupName(d44h) == "D44h");
 }
 
 TEST_CASE("Subgroups of point groups: the counts group theory gives", "[symmetry]") {

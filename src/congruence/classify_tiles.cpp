@@ -123,7 +123,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
                 !samePrincipalMoments(prototype, shape, epsilon))
                 continue;
             ++result.descriptorMatches;
-            if (!probe) probe = std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid);
+            if (!probe) probe = std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid, options.threads);
             const auto found = findIsometry(prototype, *prototypeProbes[it->second], shape, *probe, tolerance);
             if (!found) continue;
             ++result.verifiedMatches;
@@ -144,7 +144,8 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
         created.deviations.push_back(0);
         classByArea.emplace(area, result.classes.size());
         result.classes.push_back(std::move(created));
-        prototypeProbes.push_back(probe ? std::move(probe) : std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid));
+        prototypeProbes.push_back(probe ? std::move(probe)
+                                        : std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid, options.threads));
     }
 
     // The group of each prototype, in parallel; a member's group is its prototype's carried over by its

@@ -65,7 +65,7 @@ void criticalCandidates(const MomentFunction& f, const std::vector<Eigen::Vector
 
 const std::vector<Eigen::Vector3d>& TileProbe::criticalDirections(const MomentFunction& f, int order) {
     auto found = directions_.find(order);
-    if (found == directions_.end()) found = directions_.emplace(order, findCandidateAxes({f}, 1e-4)).first;
+    if (found == directions_.end()) found = directions_.emplace(order, findCandidateAxes({f}, 1e-4, threads_)).first;
     return found->second;
 }
 

@@ -18,15 +18,18 @@ struct FoundIsometry {
 };
 
 // What the search needs of one tile, kept across every pair the tile takes part in: its verifier, and the
-// critical directions of each order's moment function (Newton from many starts: found once per tile).
+// critical directions of each order's moment function (Newton from many starts: found once per tile, on
+// `threads` threads, 0: all cores).
 class TileProbe {
 public:
-    TileProbe(const TriangleMesh& mesh, const Eigen::Vector3d& centroid) : verifier_(mesh, centroid) {}
+    TileProbe(const TriangleMesh& mesh, const Eigen::Vector3d& centroid, int threads)
+        : verifier_(mesh, centroid), threads_(threads) {}
     const ShapeVerifier& verifier() const { return verifier_; }
     const std::vector<Eigen::Vector3d>& criticalDirections(const MomentFunction& f, int order);
 
 private:
     ShapeVerifier verifier_;
+    int threads_;
     std::map<int, std::vector<Eigen::Vector3d>> directions_;  // by order
 };
 

@@ -1,9 +1,13 @@
 #include "candidate_axes.hpp"
 
+#include "common/with_threads.hpp"
+
 #include <Eigen/Dense>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace symcompress {
 namespace {
@@ -37,7 +41,10 @@ bool newtonCriticalPoint(const MomentFunction& f, Eigen::Vector3d start, Eigen::
         Eigen::Vector3d euclidean;
         const Eigen::Vector3d g = f.tangentialGradient(w, &euclidean);
         const double scale = std::abs(f.value(w)) * f.order();
-        if (g.norm() <= 1e-13 * scale) break;
+        if (g.norm() <= 1e-13 * scale) {  // converged, so within the test below: no need to evaluate it again
+            critical = w;
+            return true;
+        }
         Eigen::Vector3d e1, e2;
         tangentFrame(w, e1, e2);
         Eigen::Matrix<double, 3, 2> e;
@@ -53,6 +60,7 @@ bool newtonCriticalPoint(const MomentFunction& f, Eigen::Vector3d start, Eigen::
         if (delta.norm() > kMaxStep) delta *= kMaxStep / delta.norm();
         w = (w + delta).normalized();
     }
+    // Out of iterations: a critical point all the same if the gradient is small enough.
     const double scale = std::abs(f.value(w)) * f.order();
     if (!(f.tangentialGradient(w).norm() <= 1e-9 * scale)) return false;
     critical = w;
@@ -61,19 +69,27 @@ bool newtonCriticalPoint(const MomentFunction& f, Eigen::Vector3d start, Eigen::
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> findCandidateAxes(const std::vector<MomentFunction>& functions, double mergeAngle) {
+std::vector<Eigen::Vector3d> findCandidateAxes(const std::vector<MomentFunction>& functions, double mergeAngle,
+                                               int threads) {
+    const auto starts = hemispherePoints(kStarts);
+    // Every start's search is independent: run them side by side, then merge in the order of one search after
+    // the other (function by function, start by start), so that the axes do not depend on the threads.
+    std::vector<std::optional<Eigen::Vector3d>> found(functions.size() * starts.size());
+    withThreads(threads, [&] {
+        tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t i) {
+            Eigen::Vector3d critical;
+            if (newtonCriticalPoint(functions[i / starts.size()], starts[i % starts.size()], critical)) found[i] = critical;
+        });
+    });
     std::vector<Eigen::Vector3d> axes;
     const double mergeCosine = std::cos(mergeAngle);
-    const auto starts = hemispherePoints(kStarts);
-    for (const MomentFunction& f : functions)
-        for (const Eigen::Vector3d& start : starts) {
-            Eigen::Vector3d critical;
-            if (!newtonCriticalPoint(f, start, critical)) continue;
-            const bool known = std::any_of(axes.begin(), axes.end(), [&](const Eigen::Vector3d& a) {
-                return std::abs(a.dot(critical)) >= mergeCosine;
-            });
-            if (!known) axes.push_back(critical.z() < 0 ? Eigen::Vector3d(-critical) : critical);
-        }
+    for (const std::optional<Eigen::Vector3d>& critical : found) {
+        if (!critical) continue;
+        const bool known = std::any_of(axes.begin(), axes.end(), [&](const Eigen::Vector3d& a) {
+            return std::abs(a.dot(*critical)) >= mergeCosine;
+        });
+        if (!known) axes.push_back(critical->z() < 0 ? Eigen::Vector3d(-*critical) : *critical);
+    }
     return axes;
 }
 

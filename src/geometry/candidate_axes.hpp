@@ -12,8 +12,10 @@ namespace symcompress {
 
 // Critical points of each function, from Newton's method on the tangential gradient started at points
 // spread over a hemisphere; one direction per axis (w and -w are the same), merged across functions
-// when closer than mergeAngle (radians).
-std::vector<Eigen::Vector3d> findCandidateAxes(const std::vector<MomentFunction>& functions, double mergeAngle);
+// when closer than mergeAngle (radians). The searches run on `threads` threads (0: all cores); the axes
+// are the same whatever their number.
+std::vector<Eigen::Vector3d> findCandidateAxes(const std::vector<MomentFunction>& functions, double mergeAngle,
+                                               int threads);
 
 // Whether principal second moments (ascending) are so far apart (relative to the largest, and in units of
 // the tolerance relative to the shape's size) that no asymmetry within the tolerance can make two equal:

@@ -2,6 +2,8 @@
 
 #include "symcompress/detail/moments.hpp"
 
+#include <cmath>
+
 namespace symcompress {
 
 MomentFunction::MomentFunction(const MomentCoefficients& coefficients, int order) : polynomial_(order) {
@@ -23,6 +25,14 @@ MomentFunction::MomentFunction(const MomentCoefficients& coefficients, int order
         gradient_[a] = polynomial_.derivative(a);
         for (int b = 0; b < 3; ++b) hessian_[a][b] = gradient_[a].derivative(b);
     }
+}
+
+double MomentFunction::largestValue() const {
+    constexpr double kPi = 3.14159265358979323846;
+    double meanToLargest = 1;  // (2p + 1)!! / (2p)!!
+    for (int k = 1; 2 * k <= order(); ++k) meanToLargest *= (2.0 * k + 1) / (2.0 * k);
+    const double mean = bandZeroNorm_ / std::sqrt(4 * kPi);  // C_0 Y_0^0
+    return (1 + 1e-6) * meanToLargest * mean;
 }
 
 Eigen::Vector3d MomentFunction::tangentialGradient(const Eigen::Vector3d& w, Eigen::Vector3d* euclidean) const {

@@ -10,6 +10,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -100,6 +101,27 @@ private:
     std::vector<std::complex<double>> twiddles_;
 };
 
+// The order in which axis views ask the moment functions: the one that decided the last question first. Any
+// order gives the same answers (a map is allowed when every function allows it; the modes' gcd is that of
+// every function's), but along a circle of critical points (M_2 of a box with a square section) the same
+// function rejects axis after axis, and asking it first spares evaluating the others. One per run of axes that
+// one thread examines in turn.
+class FunctionOrder {
+public:
+    explicit FunctionOrder(std::size_t count) : order_(count) {
+        std::iota(order_.begin(), order_.end(), std::size_t(0));
+    }
+    std::size_t size() const { return order_.size(); }
+    std::size_t operator[](std::size_t k) const { return order_[k]; }
+    // Function order_[k] decided: it is asked first from now on.
+    void decided(std::size_t k) {
+        std::rotate(order_.begin(), order_.begin() + std::ptrdiff_t(k), order_.begin() + std::ptrdiff_t(k) + 1);
+    }
+
+private:
+    std::vector<std::size_t> order_;
+};
+
 // The moment functions seen from one axis a: values on rings of constant angle to a, which tell which
 // rotations about a, mirrors with normal a and rotoreflections about a leave every function unchanged:
 // a cheap filter before the shape is asked. Changes are measured relative to each function's largest
@@ -109,11 +131,12 @@ private:
 class AxisView {
 public:
     AxisView(const std::vector<MomentFunction>& functions, const std::vector<double>& tolerances,
-             const Eigen::Vector3d& axis, const RingLayout& layout)
+             const Eigen::Vector3d& axis, const RingLayout& layout, FunctionOrder& order)
         : functions_(functions),
           tolerances_(tolerances),
           axis_(axis),
           layout_(layout),
+          order_(order),
           changeValues_(functions.size()),
           changeScales_(functions.size(), 0.0) {
         const Eigen::Vector3d helper = std::abs(axis.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
@@ -136,7 +159,8 @@ public:
         std::vector<char> present(std::size_t(azimuths / 2), 0);
         int modes = 0;
         std::vector<double> values(static_cast<std::size_t>(azimuths));
-        for (std::size_t i = 0; i < functions_.size(); ++i) {
+        for (std::size_t k = 0; k < order_.size(); ++k) {
+            const std::size_t i = order_[k];
             for (std::size_t first = 0; first < points.size(); first += std::size_t(azimuths)) {
                 functions_[i].polynomial().evaluate(&points[first], std::size_t(azimuths), values.data());
                 double energy = 0;
@@ -152,7 +176,10 @@ public:
                         modes = std::gcd(modes, m);
                     }
                 }
-                if (modes == 1) return 1;
+                if (modes == 1) {
+                    order_.decided(k);
+                    return 1;
+                }
             }
         }
         return modes;
@@ -160,24 +187,49 @@ public:
 
     // Whether w -> linear w changes every function by at most its tolerance at the comparison points.
     bool allows(const Eigen::Matrix3d& linear) const {
-        // A few points at a time (evaluated side by side), in order.
-        constexpr std::size_t kChunk = 8;
         Eigen::Vector3d mapped[kChunk];
         double after[kChunk];
-        for (std::size_t i = 0; i < functions_.size(); ++i) {
+        for (std::size_t k = 0; k < order_.size(); ++k) {
+            const std::size_t i = order_[k];
+            if (changeValues_[i].empty() && changesBeyondBound(i, linear)) {
+                order_.decided(k);
+                return false;
+            }
             const std::vector<double>& before = changeValuesOf(i);
             for (std::size_t first = 0; first < changePoints_.size(); first += kChunk) {
                 const std::size_t count = std::min(kChunk, changePoints_.size() - first);
                 for (std::size_t j = 0; j < count; ++j) mapped[j] = linear * changePoints_[first + j];
                 functions_[i].polynomial().evaluate(mapped, count, after);
                 for (std::size_t j = 0; j < count; ++j)
-                    if (std::abs(after[j] - before[first + j]) / changeScales_[i] / tolerances_[i] > 1) return false;
+                    if (std::abs(after[j] - before[first + j]) / changeScales_[i] / tolerances_[i] > 1) {
+                        order_.decided(k);
+                        return false;
+                    }
             }
         }
         return true;
     }
 
 private:
+    // A few points at a time (evaluated side by side), in order.
+    static constexpr std::size_t kChunk = 8;
+
+    // Whether the map changes function i, at one of the first comparison points, by more than its tolerance
+    // of the function's bound on the sphere: then by more than its tolerance of its largest value at the
+    // comparison points too (their scale, for which the function must be evaluated at every one of them).
+    bool changesBeyondBound(std::size_t i, const Eigen::Matrix3d& linear) const {
+        const std::size_t count = std::min(kChunk, changePoints_.size());
+        Eigen::Vector3d mapped[kChunk];
+        double before[kChunk], after[kChunk];
+        for (std::size_t j = 0; j < count; ++j) mapped[j] = linear * changePoints_[j];
+        functions_[i].polynomial().evaluate(changePoints_.data(), count, before);
+        functions_[i].polynomial().evaluate(mapped, count, after);
+        const double limit = tolerances_[i] * functions_[i].largestValue();
+        for (std::size_t j = 0; j < count; ++j)
+            if (std::abs(after[j] - before[j]) > limit) return true;
+        return false;
+    }
+
     // Function i at the comparison points, and its largest magnitude there: the same for every map tried.
     const std::vector<double>& changeValuesOf(std::size_t i) const {
         std::vector<double>& values = changeValues_[i];
@@ -195,6 +247,7 @@ private:
     const std::vector<double>& tolerances_;
     Eigen::Vector3d axis_, u_, v_;
     const RingLayout& layout_;
+    FunctionOrder& order_;
     std::vector<Eigen::Vector3d> changePoints_;
     mutable std::vector<std::vector<double>> changeValues_;  // per function, at changePoints_, when first asked
     mutable std::vector<double> changeScales_;               // per function, its largest magnitude there
@@ -284,7 +337,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     group.seconds.moments = since(start);
     start = Clock::now();
     const auto principal = distinctPrincipalAxes(coefficients, options.tolerance);
-    const std::vector<Eigen::Vector3d> axes = principal ? *principal : findCandidateAxes(functions, std::max(1e-4, options.tolerance));
+    const std::vector<Eigen::Vector3d> axes = principal ? *principal : findCandidateAxes(functions, std::max(1e-4, options.tolerance), options.threads);
     group.seconds.axes = since(start);
     start = Clock::now();
     const ShapeVerifier verifier(mesh, group.centroid);
@@ -341,9 +394,8 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     // Every map the moments allow about each axis, tested on the shape; the largest fold per axis.
     const RingLayout layout(2 * maxOrder + 2);
     withThreads(options.threads, [&] {
-        tbb::parallel_for(std::size_t(0), axes.size(), [&](std::size_t i) {
-            const Eigen::Vector3d& axis = axes[i];
-            const AxisView view(tests, momentTolerances, axis, layout);
+        auto examineAxis = [&](const Eigen::Vector3d& axis, FunctionOrder& order) {
+            const AxisView view(tests, momentTolerances, axis, layout, order);
             RejectingPoints hints;                  // decisions only: never for a distance that is reported
             const int modes = view.presentModes();  // the moments allow n-fold rotations for n dividing it
             std::vector<int> folds;
@@ -369,23 +421,25 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                                                             SIZE_MAX, &hints) <= preliminary;
                 std::vector<int> plausible;
                 std::map<int, double> fit;  // deviation of the rotation by 2 pi / n, for the plausible n
-                if (!nearlyRound)
-                    for (int n : folds) {
-                        const double d =
-                            verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary, SIZE_MAX, &hints);
-                        if (d <= preliminary) plausible.push_back(n), fit[n] = d;
+                // Once more than kMaxRefinedFolds folds have passed the preliminary bound (or for a nearly
+                // round shape), only the folds within the tolerance count, with that deviation as their fit:
+                // the remaining folds are measured at the tolerance alone (a fold within it is within the
+                // preliminary bound), not measured in full at the preliminary bound first.
+                bool strict = nearlyRound;
+                auto fitsWithin = [&](int n, double bound) {
+                    const double d = verifier.deviation(rotationAbout(axis, 2 * kPi / n), bound, SIZE_MAX, &hints);
+                    fit[n] = d;
+                    return d <= bound;
+                };
+                for (int n : folds) {
+                    if (!fitsWithin(n, strict ? tolerance : preliminary)) continue;
+                    plausible.push_back(n);
+                    if (!strict && plausible.size() > kMaxRefinedFolds) {
+                        strict = true;
+                        plausible.erase(std::remove_if(plausible.begin(), plausible.end(),
+                                                       [&](int m) { return !fitsWithin(m, tolerance); }),
+                                        plausible.end());
                     }
-                if (nearlyRound || plausible.size() > kMaxRefinedFolds) {
-                    if (nearlyRound) plausible = folds;
-                    plausible.erase(std::remove_if(plausible.begin(), plausible.end(),
-                                                   [&](int n) {
-                                                       const double d =
-                                                           verifier.deviation(rotationAbout(axis, 2 * kPi / n),
-                                                                              tolerance, SIZE_MAX, &hints);
-                                                       fit[n] = d;
-                                                       return d > tolerance;
-                                                   }),
-                                    plausible.end());
                 }
                 // A 24-sided part is within a loose tolerance of 360-fold too: the folds that fit best
                 // (within a factor of the best fit) come first, the largest of them first.
@@ -424,7 +478,12 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                     tryAccept(mirrorWithNormal(d), &hints);
                 }
             }
-        });
+        };
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, axes.size()),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              FunctionOrder order(tests.size());
+                              for (std::size_t i = range.begin(); i != range.end(); ++i) examineAxis(axes[i], order);
+                          });
     });
     tryAccept(-Eigen::Matrix3d::Identity(), nullptr);
     if (!revolutionAxes.empty())

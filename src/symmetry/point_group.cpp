@@ -46,16 +46,6 @@ double rotationAngle(const Eigen::Matrix3d& r) {
 
 bool sameAxis(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return 1 - std::abs(a.dot(b)) < kSameAxis; }
 
-// The smallest k >= 1 with m^k = I.
-int elementOrder(const Eigen::Matrix3d& m, int limit) {
-    Eigen::Matrix3d power = m;
-    for (int k = 1; k <= limit; ++k) {
-        if ((power - Eigen::Matrix3d::Identity()).norm() < 1e-4) return k;
-        power = power * m;
-    }
-    return 0;
-}
-
 }  // namespace
 
 const char* kindName(Symmetry::Kind kind) {
@@ -123,10 +113,13 @@ std::string pointGroupName(const std::vector<Eigen::Matrix3d>& group) {
         Eigen::Vector3d direction;
         int fold;
     };
-    std::vector<Axis> axes;  // proper rotation axes with their order
+    // Proper rotation axes with their order: in a finite group, the rotations about one axis and the identity
+    // are the cyclic group of the axis's order, so the rotations are counted. (The order of each element, its
+    // powers up to the identity, carries the error of products of refined maps: a 44-fold axis whose
+    // rotations come from products of mirrors was named 4-fold.)
+    std::vector<Axis> axes;
     std::vector<Eigen::Vector3d> mirrors, rotoreflectionAxes;
     bool inversion = false;
-    const int limit = int(group.size());
     for (const auto& m : group) {
         const Symmetry s = describeOrthogonal(m);
         switch (s.kind) {
@@ -135,10 +128,9 @@ std::string pointGroupName(const std::vector<Eigen::Matrix3d>& group) {
         case Symmetry::Kind::Mirror: mirrors.push_back(s.axis); break;
         case Symmetry::Kind::Rotoreflection: rotoreflectionAxes.push_back(s.axis); break;
         case Symmetry::Kind::Rotation: {
-            const int order = elementOrder(m, limit);
             auto found = std::find_if(axes.begin(), axes.end(), [&](const Axis& a) { return sameAxis(a.direction, s.axis); });
-            if (found == axes.end()) axes.push_back({s.axis, order});
-            else found->fold = std::max(found->fold, order);
+            if (found == axes.end()) axes.push_back({s.axis, 2});  // the identity and this rotation
+            else ++found->fold;
             break;
         }
         }

@@ -79,6 +79,11 @@ public:
     // order tells nothing about axes (e.g. M_2 of a cube).
     double relativeVariation() const { return otherBandsNorm_ / bandZeroNorm_; }
 
+    // A bound of the function on the sphere: M_2p(w) = ∫ |s x w|^2p ds <= ∫ |s|^2p ds, which is its mean over
+    // the sphere (the band-0 term) times (2p + 1)!! / (2p)!!, the mean of |s x w|^2p / |s|^2p. With room for
+    // the rounding of evaluating the polynomial.
+    double largestValue() const;
+
 private:
     HomogeneousPolynomial polynomial_;
     HomogeneousPolynomial gradient_[3];
