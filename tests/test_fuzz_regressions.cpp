@@ -212,6 +212,40 @@ TEST_CASE("X3D: a key before the cycle's start is left out, as glTF's times star
     CHECK(hasWarning(scene, "1 animation ROUTEs left out"));
 }
 
+// Found by fuzz_gltf on the first day vertex attributes came through: an attribute named "NOfalseRMAL" (no glTF
+// attribute), holding -1, which the Draco writer cast to a joint index's unsigned short (undefined) whatever its
+// name. Unknown names are now left out by the reader (the file written would be invalid with them); an
+// application's own attribute and a second UV set with negative values go through Draco as floats.
+TEST_CASE("glTF: an attribute glTF does not name is left out, and negative attribute values go through Draco",
+          "[io][fuzz]") {
+    const Scene read = readScene(regressionInput("gltf_attribute_name_unknown.gltf"));
+    CHECK(hasWarning(read, "attribute NOfalseRMAL not carried through: glTF has no such attribute"));
+    TemporaryFolder folder;
+    writeScene(read, folder / "read.glb");
+    CHECK_NOTHROW(readScene(folder / "read.glb"));
+
+    Primitive triangle;
+    triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    triangle.triangles = {{0, 1, 2}};
+    triangle.attributes = {{"TEXCOORD_1", 2, {-1, -2, 0.5, -0.25, 3, 4}}, {"_TEMPERATURE", 1, {-1, 0, 2.5}}};
+    writeScene(sceneOfOneMesh("hot", triangle), folder / "hot.glb");
+    const Scene back = readScene(folder / "hot.glb");
+    REQUIRE(back.meshes.size() == 1);
+    const Primitive& out = back.meshes[0].primitives.at(0);
+    REQUIRE(out.attributes.size() == 2);
+    // Draco may reorder the vertices: each vertex's values, found by its position.
+    for (std::size_t v = 0; v < out.positions.size(); ++v) {
+        const auto source = std::size_t(std::find(triangle.positions.begin(), triangle.positions.end(), out.positions[v]) -
+                                        triangle.positions.begin());
+        REQUIRE(source < 3);
+        CHECK(out.attributes[0].name == "TEXCOORD_1");
+        CHECK(out.attributes[0].values[2 * v] == triangle.attributes[0].values[2 * source]);
+        CHECK(out.attributes[0].values[2 * v + 1] == triangle.attributes[0].values[2 * source + 1]);
+        CHECK(out.attributes[1].name == "_TEMPERATURE");
+        CHECK(out.attributes[1].values[v] == triangle.attributes[1].values[source]);
+    }
+}
+
 TEST_CASE("glTF: negative key times are left out with a warning, where X3D output made keys of -inf", "[io][fuzz]") {
     const fs::path input = regressionInput("gltf_animation_times_negative.gltf");
     const Scene scene = readScene(input);

@@ -56,8 +56,11 @@ int addDracoAttribute(draco::TriangleSoupMeshBuilder& builder, const Primitive& 
         for (int k = 0; k < 3; ++k)
             for (int c = 0; c < components; ++c) {
                 const double value = attribute.values[primitive.triangles[f][k] * std::size_t(components) + c];
-                corner[k * components + c] = static_cast<float>(value);
-                jointCorner[k * components + c] = static_cast<std::uint16_t>(value);
+                // Joint indices are whole numbers from 0 to 65535 (refuseBeyondFloat checked them).
+                if (joints)
+                    jointCorner[k * components + c] = static_cast<std::uint16_t>(value);
+                else
+                    corner[k * components + c] = static_cast<float>(value);
             }
         const draco::FaceIndex face(static_cast<std::uint32_t>(f));
         if (joints)

@@ -115,7 +115,29 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
     mesh.primitives.push_back(std::move(out));
 }
 
+namespace {
+
+// Whether `name` is one of glTF's attribute semantics beyond the core ones (TANGENT, TEXCOORD_n, COLOR_n,
+// JOINTS_n, WEIGHTS_n) or an application's (_NAME); anything else would make the file written invalid.
+bool isGltfAttributeName(const std::string& name) {
+    if (name.size() > 1 && name[0] == '_') return true;
+    if (name == "TANGENT") return true;
+    for (const char* prefix : {"TEXCOORD_", "COLOR_", "JOINTS_", "WEIGHTS_"}) {
+        const std::string start(prefix);
+        if (name.size() > start.size() && name.compare(0, start.size(), start) == 0 &&
+            name.find_first_not_of("0123456789", start.size()) == std::string::npos)
+            return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 int GltfReader::vertexAttributeComponents(int accessor, const std::string& name, const std::string& where) {
+    if (!isGltfAttributeName(name) && !isCoreAttribute(name)) {
+        warnAbout("attribute " + name + " not carried through: glTF has no such attribute (" + where + ")");
+        return 0;
+    }
     if (accessor < 0 || accessor >= static_cast<int>(model_.accessors.size()))
         fail(where + ": " + name + ": accessor " + std::to_string(accessor) + " does not exist");
     const int components = componentCount(model_.accessors[std::size_t(accessor)].type);
