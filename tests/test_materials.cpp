@@ -93,6 +93,34 @@ std::map<std::string, std::set<std::vector<double>>> attributeValues(const Scene
     return out;
 }
 
+// Whether two attributeValues agree: the same attributes, and each tuple of either within the quantization of
+// Draco's output of a tuple of the other (tangents at 8 bits over at most [-1, 1], further UV sets and colours
+// at 12 bits or more over theirs; the others, stored as they are, exactly).
+bool sameValues(const std::map<std::string, std::set<std::vector<double>>>& a,
+                const std::map<std::string, std::set<std::vector<double>>>& b) {
+    auto keys = [](const auto& map) {
+        std::set<std::string> out;
+        for (const auto& [key, values] : map) out.insert(key);
+        return out;
+    };
+    if (keys(a) != keys(b)) return false;
+    auto covered = [](const std::set<std::vector<double>>& from, const std::set<std::vector<double>>& by, double step) {
+        return std::all_of(from.begin(), from.end(), [&](const std::vector<double>& x) {
+            return std::any_of(by.begin(), by.end(), [&](const std::vector<double>& y) {
+                for (std::size_t c = 0; c < x.size(); ++c)
+                    if (!(std::abs(x[c] - y[c]) <= step)) return false;
+                return x.size() == y.size();
+            });
+        });
+    };
+    for (const auto& [key, values] : a) {
+        const std::string name = key.substr(key.rfind(' ') + 1);
+        const double step = name == "TANGENT" ? 2.0 / 255 : name.rfind("TEXCOORD_", 0) == 0 ? 1e-3 : 0;
+        if (!covered(values, b.at(key), step) || !covered(b.at(key), values, step)) return false;
+    }
+    return true;
+}
+
 // The scene without the tangents of primitives whose material has no normal map (core or clear-coat's): no
 // viewer reads them (the validator's UNUSED_MESH_TANGENT), and symcompress prunes them by default (but on a
 // primitive with morph targets, whose targets may displace them).
@@ -202,7 +230,7 @@ TEST_CASE(
             const Scene before = readScene(input), after = readScene(output);
             // Materials equal but for their names are merged: each drawn look comes out, and no other.
             CHECK(distinct(drawnMaterials(after)) == distinct(drawnMaterials(before)));
-            CHECK(attributeValues(after) == attributeValues(withoutUnreadTangents(before)));
+            CHECK(sameValues(attributeValues(after), attributeValues(withoutUnreadTangents(before))));
             CHECK(skinsAndMorphs(after) == skinsAndMorphs(before));
             const nlohmann::json in = gltfJson(input), out = glbJson(output);
             for (const std::string& extension : listed(in, "extensionsUsed"))
@@ -350,7 +378,7 @@ TEST_CASE("A hand-built scene with every feature at once round trips through com
     CHECK(read.nodes.at(0).extrasJson == R"({"id":7})");
     const auto values = attributeValues(scene);
     const auto moves = skinsAndMorphs(scene);
-    CHECK(attributeValues(read) == values);
+    CHECK(sameValues(attributeValues(read), values));
     CHECK(skinsAndMorphs(read) == moves);
 
     compressFile(input, folder / "compressed.glb");
@@ -366,7 +394,7 @@ TEST_CASE("A hand-built scene with every feature at once round trips through com
         INFO(name);
         const Scene out = readScene(folder / name);
         CHECK(drawnMaterials(out) == std::multiset<std::string>{expected});
-        CHECK(attributeValues(out) == (std::string(name) == "compressed.glb" ? values : baked));
+        CHECK(sameValues(attributeValues(out), std::string(name) == "compressed.glb" ? values : baked));
         CHECK(skinsAndMorphs(out) == moves);
         const nlohmann::json root = gltfJson(folder / name);
         CHECK(listed(root, "extensionsUsed").count("KHR_materials_clearcoat"));
