@@ -164,6 +164,7 @@ struct VertexAttribute {
     int components = 0;
     std::vector<double> values;
     std::size_t count() const { return components > 0 ? values.size() / std::size_t(components) : 0; }
+    bool isJoints() const { return name.rfind("JOINTS_", 0) == 0; }  // skin joint indices, whole numbers
     bool operator==(const VertexAttribute& o) const {
         return name == o.name && components == o.components && values == o.values;
     }

@@ -19,8 +19,6 @@ namespace symcompress {
 namespace fs = std::filesystem;
 namespace {
 
-bool isJoints(const std::string& name) { return name.rfind("JOINTS_", 0) == 0; }
-
 const char* accessorType(int components) {
     static const char* types[] = {"SCALAR", "VEC2", "VEC3", "VEC4"};
     return types[std::clamp(components, 1, 4) - 1];
@@ -59,7 +57,7 @@ int quantizationBits(const std::string& name, const WriteOptions& options) {
 // GENERIC for Draco (quantizationBits says how it is quantized).
 int addDracoAttribute(draco::TriangleSoupMeshBuilder& builder, const Primitive& primitive,
                       const VertexAttribute& attribute) {
-    const bool joints = isJoints(attribute.name);
+    const bool joints = attribute.isJoints();
     const int components = attribute.components;
     const int id = builder.AddAttribute(draco::GeometryAttribute::GENERIC, static_cast<std::int8_t>(components),
                                         joints ? draco::DT_UINT16 : draco::DT_FLOAT32);
@@ -236,7 +234,7 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
         const VertexAttribute& source = primitive.attributes[a];
         const draco::PointAttribute* attribute = result->GetAttributeByUniqueId(mesh->attribute(ids.others[a])->unique_id());
         if (!attribute) throw FileError(file, "Draco lost the attribute " + source.name + " of a primitive");
-        attributes[source.name] = builder.addAccessor({{"componentType", isJoints(source.name) ? kUnsignedShort : kFloat},
+        attributes[source.name] = builder.addAccessor({{"componentType", source.isJoints() ? kUnsignedShort : kFloat},
                                                        {"count", result->num_points()},
                                                        {"type", accessorType(source.components)}});
         dracoAttributes[source.name] = attribute->unique_id();
@@ -263,7 +261,7 @@ void refuseBeyondFloat(const std::vector<Vector>& values, const char* name, cons
 // One of Primitive::attributes (or of a morph target) as an accessor: JOINTS as unsigned bytes or shorts, glTF's
 // only types for them, the others as float32 (which every semantic allows), a POSITION with its bounds.
 int addAttribute(GltfBuilder& builder, const VertexAttribute& attribute) {
-    if (!isJoints(attribute.name)) {
+    if (!attribute.isJoints()) {
         const std::vector<float> flat(attribute.values.begin(), attribute.values.end());
         return builder.addFloatAccessor(flat, attribute.components, accessorType(attribute.components),
                                         attribute.name == "POSITION", kArrayBuffer);
@@ -292,7 +290,7 @@ void refuseBeyondFloat(const VertexAttribute& attribute, const fs::path& file) {
         if (!(std::abs(value) <= std::numeric_limits<float>::max()))
             throw FileError(file, attribute.name + " holds values beyond float32's range (3.4e38), in which glTF " +
                                       "stores them");
-    if (isJoints(attribute.name))
+    if (attribute.isJoints())
         for (double value : attribute.values)
             if (!(value >= 0 && value <= 65535 && value == std::floor(value)))
                 throw FileError(file, attribute.name + " holds a joint index that is no whole number from 0 to 65535");

@@ -76,9 +76,7 @@ void dropPointLikeTriangles(Scene& out, CompressionStats& stats) {
         for (Primitive& p : mesh.primitives) {
             const std::size_t before = p.triangles.size();
             const bool moves = !p.targets.empty() || std::any_of(p.attributes.begin(), p.attributes.end(),
-                                                                 [](const VertexAttribute& a) {
-                                                                     return a.name.rfind("JOINTS_", 0) == 0;
-                                                                 });
+                                                                 [](const VertexAttribute& a) { return a.isJoints(); });
             if (moves) {
                 stats.trianglesStored += before;
                 continue;
