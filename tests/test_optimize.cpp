@@ -5,9 +5,13 @@
 #include "symcompress/io.hpp"
 #include "symcompress/optimize.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "symcompress/verify.hpp"
 #include "test_support.hpp"
 
+#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
+
+#include <cmath>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -140,4 +144,79 @@ TEST_CASE(
     CHECK(apart.optimizations.materialsMerged == 0);
     CHECK(readScene(folder / "apart.glb").materials.size() == 2);
     CHECK(merged.outputBytes < apart.outputBytes);
+}
+
+namespace {
+
+// A unit box split by face (24 vertices), each face's vertices with the face's normal, and a second
+// primitive: the same box with every normal turned `tilt` radians about x (no longer its faces' own).
+Scene boxesWithFaceNormals(double tilt, int material = -1) {
+    const TriangleMesh box = samples::boxMesh({0, 0, 0}, {1, 1, 1});
+    Primitive split;
+    for (const Triangle& t : box.triangles) {
+        const auto first = std::uint32_t(split.positions.size());
+        const Eigen::Vector3d normal =
+            (box.positions[t[1]] - box.positions[t[0]]).cross(box.positions[t[2]] - box.positions[t[0]]).normalized();
+        for (std::uint32_t v : t) {
+            split.positions.push_back(box.positions[v]);
+            split.normals.push_back(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()) * normal);
+        }
+        split.triangles.push_back({first, first + 1, first + 2});
+    }
+    split.material = material;
+    Scene scene;
+    scene.meshes.push_back({});
+    scene.meshes[0].primitives.push_back(split);
+    scene.nodes.push_back({});
+    scene.nodes[0].mesh = 0;
+    scene.roots = {0};
+    return scene;
+}
+
+}  // namespace
+
+TEST_CASE("Normals that are their triangles' own are dropped and the vertices they split merged", "[optimize]") {
+    Scene flat = boxesWithFaceNormals(0);
+    REQUIRE(flat.meshes[0].primitives[0].positions.size() == 36);
+    CHECK(dropFlatNormals(flat) == 1);
+    const Primitive& box = flat.meshes[0].primitives[0];
+    CHECK(box.normals.empty());
+    CHECK(box.positions.size() == 8);
+    CHECK(box.triangles.size() == 12);
+    CHECK_NOTHROW(validateScene(flat));
+    // The surface is the same, triangle by triangle.
+    const TriangleMesh before = worldMesh(boxesWithFaceNormals(0)), after = worldMesh(flat);
+    for (std::size_t t = 0; t < 12; ++t)
+        for (int k = 0; k < 3; ++k)
+            CHECK(before.positions[before.triangles[t][k]] == after.positions[after.triangles[t][k]]);
+
+    SECTION("normals a degree off their faces shade otherwise: kept") {
+        Scene tilted = boxesWithFaceNormals(M_PI / 180);
+        CHECK(dropFlatNormals(tilted) == 0);
+        CHECK(tilted.meshes[0].primitives[0].normals.size() == 36);
+    }
+    SECTION("a normal map reads the normals: kept") {
+        Scene mapped = boxesWithFaceNormals(0, 0);
+        mapped.materials.push_back({});
+        mapped.textures.push_back({});
+        mapped.textures[0].uri = "normal.png";
+        mapped.materials[0].normalTexture.texture = 0;
+        CHECK(dropFlatNormals(mapped) == 0);
+    }
+    SECTION("through symcompress: no NORMAL in the GLB, the report counts it, the surface verified") {
+        TemporaryFolder folder;
+        WriteOptions plain;
+        plain.draco = false;
+        writeScene(boxesWithFaceNormals(0), folder / "box.glb", plain);
+        const CompressionReport report = compressFile(folder / "box.glb", folder / "small.glb");
+        CHECK(report.optimizations.flatNormalsDropped == 1);
+        const nlohmann::json json = glbJson(folder / "small.glb");
+        for (const auto& mesh : json["meshes"])
+            for (const auto& primitive : mesh["primitives"]) CHECK_FALSE(primitive["attributes"].contains("NORMAL"));
+        CHECK(decompressFile(folder / "small.glb", folder / "flat.glb", folder / "box.glb").verified);
+        CompressOptions keep;
+        keep.optimize.dropFlatNormals = false;
+        CHECK(compressFile(folder / "box.glb", folder / "kept.glb", keep).optimizations.flatNormalsDropped == 0);
+        CHECK(std::filesystem::file_size(folder / "small.glb") < std::filesystem::file_size(folder / "kept.glb"));
+    }
 }

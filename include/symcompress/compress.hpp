@@ -19,7 +19,13 @@ namespace symcompress {
 using ProgressCallback = std::function<void(const char* stage, std::size_t count, const char* unit)>;
 
 struct CompressOptions {
-    double tolerance = 1e-5;           // congruence and symmetry, relative to the scene's bounding-box diagonal
+    // The error budget: how far the rebuilt surface may lie from the input's, relative to the scene's
+    // bounding-box diagonal (what symdecompress verifies). The congruence and symmetry tolerance takes
+    // `tolerance` of it (half when 0); each stored mesh's position quantization takes what the deviation of
+    // the copies it draws leaves (the bits chosen per mesh), unless fixedPositionBits.
+    double maxError = 8e-5;
+    double tolerance = 0;              // congruence and symmetry, relative to the diagonal; 0: maxError / 2
+    bool fixedPositionBits = false;    // write.positionBits for every mesh (--position-bits), not the budget
     bool instancing = true;            // false: every tile stored as it is (Draco alone)
     bool geometryOnly = false;         // instance members whose normals, texture coordinates or colours differ
     bool regions = true;               // store symmetric tiles as their fundamental regions where that pays
@@ -32,6 +38,8 @@ struct CompressOptions {
     // When set, compressToFile also writes the HTML report of the plan it kept there (html_report.hpp), once
     // the size report is complete.
     std::filesystem::path htmlReport;
+
+    double congruenceTolerance() const { return tolerance > 0 ? tolerance : maxError / 2; }
 };
 
 // What the plan did, counted from its decisions.
@@ -63,7 +71,8 @@ struct CompressionReport {
     std::uintmax_t outputBytes = 0;  // the output as kept, with a .gltf's .bin
     double ratio = 0;                // inputBytes / outputBytes
     std::string plan = "final";      // whose file is the output: final, instancing (no regions), draco_alone
-    double tolerance = 0;
+    double tolerance = 0;  // the congruence and symmetry tolerance used, relative to the diagonal
+    double maxError = 0;   // the error budget, relative; 0 with fixed position bits
     CompressionStats stats;                               // of the plan kept
     std::size_t animations = 0, cameras = 0, lights = 0;  // in the output
     // The bytes a node drawing a shared mesh costs in the output, on average over its instance nodes, by

@@ -35,7 +35,10 @@ Scene readStl(const std::filesystem::path& file);
 
 struct WriteOptions {
     bool draco = true;       // glTF: compress geometry with KHR_draco_mesh_compression
-    int positionBits = 14;   // Draco position quantization
+    int positionBits = 14;   // Draco position quantization, where no error bound is given
+    // > 0: each primitive's position bits are the fewest that keep its corners within this distance
+    // (Primitive::maxPositionError, where set, in its place; positionBitsFor).
+    double maxPositionError = 0;
     int normalBits = 10;
     int texcoordBits = 12;
     int colorBits = 8;
@@ -53,6 +56,11 @@ void writeScene(const Scene& scene, const std::filesystem::path& file, const Wri
 // environment nodes outside X3D; cubic splines and light intensities in X3D), one warning each, for the
 // caller to show before it writes.
 std::vector<std::string> formatLosses(const Scene& scene, const std::filesystem::path& file);
+
+// The position bits Draco quantizes `primitive` with: its grid's, else the fewest that keep every corner
+// within its error bound (Primitive::maxPositionError, else options.maxPositionError; Draco's quantization
+// simulated), else options.positionBits.
+int positionBitsFor(const Primitive& primitive, const WriteOptions& options);
 
 void writeGltf(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);  // .gltf/.glb
 // What storing `primitive` as a mesh of its own adds to a glTF file written with `options`: its data (Draco's

@@ -14,11 +14,13 @@ struct OptimizeOptions {
     bool pruneAttributes = true;  // texture coordinates that no texture reads, tangents no normal map reads
     bool prune = true;            // materials no primitive uses, textures no material uses
     bool dedup = true;            // materials equal but for their names, textures equal by content
+    bool dropFlatNormals = true;  // normals equal to their triangles' own (the viewer's flat shading)
 };
 
 // What the optimizations removed or merged, counted.
 struct OptimizeReport {
     std::size_t unreadAttributesDropped = 0;  // primitives that lost attributes no material reads
+    std::size_t flatNormalsDropped = 0;       // primitives whose normals were their triangles' own
     std::size_t materialsMerged = 0, texturesMerged = 0;
     std::size_t materialsRemoved = 0, texturesRemoved = 0;
     // One line for each optimization that did something, for the warnings a user reads.
@@ -35,6 +37,13 @@ OptimizeReport optimizeScene(Scene& scene, const OptimizeOptions& options = {});
 // read still reads its set: its reference is written, and the image may be put beside the file. A primitive
 // with morph targets keeps everything (its targets may displace what it has).
 std::size_t dropUnreadAttributes(Scene& scene);
+
+// Normals that say nothing dropped: where every corner's normal is its triangle's geometric normal (STL facet
+// normals, CAD exports split by face), glTF viewers shade flat without them, and the X3D writer asks for
+// normals per face. The vertices they had split are merged. Kept where morph targets, tangents or a normal map
+// (which reads tangents) need them. Returns how many primitives lost theirs. Not for OBJ or PLY output, whose
+// viewers smooth a mesh without normals.
+std::size_t dropFlatNormals(Scene& scene);
 
 // Materials equal in every field but their names drawn by the first of them (its name kept); textures
 // with the same image (bytes and type, or the same URI where the image could not be read) by the first.

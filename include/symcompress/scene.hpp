@@ -185,6 +185,9 @@ struct Primitive {
     // Where positions must be quantized on a given grid (the seams of a fundamental region's copies stay
     // closed on it; fundamental_region.hpp), else nothing: a compressing writer then fits its own grid.
     std::optional<QuantizationGrid> positionGrid;
+    // > 0: how far a quantizing writer may move a corner (a distance in the primitive's frame): the share of
+    // the error budget that the placements drawing it leave (positionBitsFor).
+    double maxPositionError = 0;
 };
 
 struct Mesh {

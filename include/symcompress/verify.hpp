@@ -19,6 +19,7 @@ struct SurfaceDigest {
     double area = 0;
     Eigen::AlignedBox3d bounds;
     double tolerance = 0;                                                  // relative to the bounds' diagonal
+    double maxError = 0;  // the error budget the file was written within (relative), 0 when it had none
     std::string json() const;                                              // {"symcompress_digest": {...}}
     static bool fromJson(const std::string& text, SurfaceDigest& digest);  // false when absent
 };
@@ -48,7 +49,9 @@ struct RebuildReport {
     double areaRatio = 0;
     bool sameBounds = false;      // Original only
     double flippedArea = 0;       // Original only
-    double allowedDeviation = 0;  // the stored tolerance plus half a 14-bit quantization step
+    // The stored error budget, else (a file written with fixed bits) the stored tolerance plus half a 14-bit
+    // quantization step.
+    double allowedDeviation = 0;
     bool verified = false;
     std::vector<std::string> warnings;  // what expanding and writing left out (the input's own are not repeated)
     std::string json() const;

@@ -83,12 +83,16 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     report.secondsRead = secondsRead;
     report.input = inputs.empty() ? fs::path() : inputs.front();
     report.output = output;
-    report.tolerance = options.tolerance;
+    report.tolerance = options.congruenceTolerance();
+    report.maxError = options.fixedPositionBits ? 0 : options.maxError;
     report.inputBytes = inputs.empty() ? 0 : inputBytesOf(scene, inputs.front());
     OptimizeOptions optimize = options.optimize;
     // X3D writes indices as text: two materials merged put their parts in one IndexedFaceSet with larger
     // indices, which costs more than the Material it saves (the cat: +2.2 KB, the house: +11 KB).
     if (formatFromExtension(output) == FileFormat::X3d) optimize.dedup = false;
+    // OBJ and PLY viewers smooth a mesh that has no normals.
+    if (formatFromExtension(output) == FileFormat::Obj || formatFromExtension(output) == FileFormat::Ply)
+        optimize.dropFlatNormals = false;
     report.optimizations = optimizeScene(scene, optimize);
     // What the output's format cannot hold, said before the writer leaves it out.
     for (std::string& loss : formatLosses(scene, output)) scene.warnings.push_back(std::move(loss));
@@ -101,14 +105,16 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         if (!htmlReportAvailable()) throw std::runtime_error("--html: symcompress was built without Node.js and npm");
     }
 
-    PlanOptions planOptions = planOptionsOf(options);
-    planOptions.costs = costModelFor(formatFromExtension(output), options.write);
     const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
+    WriteOptions write = options.write;
+    // Meshes the plan does not bound (the cost model's measures) are quantized within the whole budget.
+    if (!options.fixedPositionBits) write.maxPositionError = options.maxError * analysis.diagonal;
+    PlanOptions planOptions = planOptionsOf(options);
+    planOptions.costs = costModelFor(formatFromExtension(output), write);
     // The HTML report draws the plan's decisions: kept only when it is asked for.
     const bool keepPlans = !options.htmlReport.empty();
     CompressionPlan keptPlan;
     CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions, keepPlans ? &keptPlan : nullptr);
-    WriteOptions write = options.write;
     write.extrasJson = compressed.digest.json();
     const auto writeStart = std::chrono::steady_clock::now();
     if (options.progress) options.progress("writing", compressed.stats.trianglesStored, "triangles");

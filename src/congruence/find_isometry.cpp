@@ -76,18 +76,28 @@ std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& from
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> fromAxes(from.secondMoments), toAxes(to.secondMoments);
     const Eigen::Vector3d& values = fromAxes.eigenvalues();
     const double screening = std::max(2 * tolerance, tolerance + 2e-4 * from.diagonal);
-    // The first candidate that passes, refined: candidates come in stages, cheapest first.
+    // The first candidate that passes closely, refined: candidates come in stages, cheapest first. One that
+    // passes only loosely (a bolt turned by a sixth of its thread's pitch: its head matches, its thread is off)
+    // is kept while the stage's others are tried, and the closest of them returned: a placement the budget
+    // accepts at a looser tolerance still spends it.
     auto firstPassing = [&](const std::vector<Eigen::Matrix3d>& candidates) -> std::optional<FoundIsometry> {
+        const double close = tolerance / 16;
+        std::optional<FoundIsometry> best;
+        auto keep = [&](const Eigen::Matrix3d& map, double d) {
+            if (d <= tolerance && (!best || d < best->deviation)) best = FoundIsometry{map, d};
+        };
         for (const Eigen::Matrix3d& candidate : candidates) {
             if (fromVerifier.farthestOnto(toVerifier, candidate, screening, 2000) > screening) continue;
-            // Exact copies pass as they are; refine only what does not.
+            // Exact copies pass as they are; refine what does not.
             const double direct = deviationBetween(fromVerifier, toVerifier, candidate, tolerance);
-            if (direct <= tolerance) return FoundIsometry{candidate, direct};
+            if (direct <= close) return FoundIsometry{candidate, direct};
             const Eigen::Matrix3d refined = fromVerifier.refineOnto(toVerifier, candidate, 2 * screening);
             const double d = deviationBetween(fromVerifier, toVerifier, refined, tolerance);
-            if (d <= tolerance) return FoundIsometry{refined, d};
+            if (d <= close) return FoundIsometry{refined, d};
+            keep(candidate, direct);
+            keep(refined, d);
         }
-        return std::nullopt;
+        return best;
     };
     std::vector<Eigen::Matrix3d> candidates;
     const double gap = std::min(values[1] - values[0], values[2] - values[1]);

@@ -171,7 +171,7 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
             const float origin[3] = {float(grid->origin.x()), float(grid->origin.y()), float(grid->origin.z())};
             encoder.SetAttributeExplicitQuantization(ids.position, grid->bits, 3, origin, float(grid->range));
         } else {
-            encoder.SetAttributeQuantization(ids.position, options.positionBits);
+            encoder.SetAttributeQuantization(ids.position, positionBitsFor(primitive, options));
         }
         const std::pair<int, int> quantized[] = {
             {ids.normal, options.normalBits}, {ids.texcoord, options.texcoordBits}, {ids.color, options.colorBits}};
@@ -354,7 +354,7 @@ void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const Writ
         return;
     }
     // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
-    const auto [kept, collapsing] = splitCollapsingTriangles(primitive, options.positionBits);
+    const auto [kept, collapsing] = splitCollapsingTriangles(primitive, positionBitsFor(primitive, options));
     for (const auto& [part, method] :
          {std::pair{&kept, DracoMethod::EdgebreakerElseSequential}, std::pair{&collapsing, DracoMethod::Sequential}})
         if (!part->triangles.empty()) add(*writeDracoPrimitive(builder, *part, options, file, method), part->material);

@@ -60,6 +60,7 @@ OptimizeReport optimizeScene(Scene& scene, const OptimizeOptions& options) {
     if (options.dedup)
         std::tie(report.materialsMerged, report.texturesMerged) = mergeDuplicateMaterialsAndTextures(scene);
     if (options.pruneAttributes) report.unreadAttributesDropped = dropUnreadAttributes(scene);
+    if (options.dropFlatNormals) report.flatNormalsDropped = dropFlatNormals(scene);
     // Merged materials and textures are left unused, for pruning to remove (with --no-prune they stay).
     if (options.prune) std::tie(report.materialsRemoved, report.texturesRemoved) = pruneUnused(scene);
     return report;
@@ -75,6 +76,9 @@ std::vector<std::string> OptimizeReport::lines() const {
     say(unreadAttributesDropped,
         "primitives' texture coordinates or tangents dropped: no material reads them (--keep-unused-attributes "
         "keeps them)");
+    say(flatNormalsDropped,
+        "primitives' normals dropped: each was its triangle's own, as the viewer shades without them "
+        "(--keep-flat-normals keeps them)");
     say(materialsRemoved, "materials that no primitive uses (merged ones included) removed (--no-prune keeps them)");
     say(texturesRemoved, "textures that no material uses (merged ones included) removed (--no-prune keeps them)");
     return out;

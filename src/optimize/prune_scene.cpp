@@ -3,6 +3,7 @@
 #include "symcompress/scene_ops.hpp"
 
 #include <algorithm>
+#include <map>
 #include <numeric>
 
 namespace symcompress {
@@ -50,7 +51,88 @@ std::vector<int> keepUsed(std::vector<Item>& items, const std::vector<bool>& use
     return newIndex;
 }
 
+// Normals within this angle of their triangle's (0.8 degrees, a few steps of Draco's 10-bit normals) shade as
+// the viewer's own flat normals do.
+constexpr double kFlatNormalCosine = 0.9999;
+
+// Whether every corner's normal is its triangle's geometric normal: what a viewer computes where a mesh has
+// none (glTF: flat shading; the X3D writer asks for normals per face), so the normals say nothing. Triangles
+// too small to have a direction ask nothing.
+bool normalsAreFlat(const Primitive& primitive) {
+    for (const Triangle& t : primitive.triangles) {
+        const Eigen::Vector3d &a = primitive.positions[t[0]], &b = primitive.positions[t[1]],
+                              &c = primitive.positions[t[2]];
+        const Eigen::Vector3d cross = (b - a).cross(c - a);
+        const double length = cross.norm();
+        if (!(length > 1e-12 * std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), 1e-300}))) continue;
+        for (std::uint32_t v : t)
+            if (primitive.normals[v].dot(cross) < kFlatNormalCosine * length * primitive.normals[v].norm()) return false;
+    }
+    return true;
+}
+
+// Vertices equal in every attribute merged into the first of them (what splitting by face normals had
+// kept apart); triangles renumbered.
+void mergeEqualVertices(Primitive& primitive) {
+    std::map<std::vector<double>, std::uint32_t> first;
+    std::vector<std::uint32_t> newIndex(primitive.positions.size());
+    std::vector<std::uint32_t> kept;
+    for (std::uint32_t v = 0; v < primitive.positions.size(); ++v) {
+        std::vector<double> key(primitive.positions[v].data(), primitive.positions[v].data() + 3);
+        if (!primitive.texcoords.empty()) key.insert(key.end(), {primitive.texcoords[v].x(), primitive.texcoords[v].y()});
+        if (!primitive.colors.empty())
+            key.insert(key.end(), primitive.colors[v].data(), primitive.colors[v].data() + 4);
+        for (const VertexAttribute& attribute : primitive.attributes)
+            key.insert(key.end(), attribute.values.begin() + std::ptrdiff_t(v) * attribute.components,
+                       attribute.values.begin() + std::ptrdiff_t(v + 1) * attribute.components);
+        const auto [entry, added] = first.emplace(std::move(key), std::uint32_t(kept.size()));
+        if (added) kept.push_back(v);
+        newIndex[v] = entry->second;
+    }
+    if (kept.size() == primitive.positions.size()) return;
+    auto keep = [&](auto& values) {
+        if (values.empty()) return;
+        std::remove_reference_t<decltype(values)> out;
+        out.reserve(kept.size());
+        for (std::uint32_t v : kept) out.push_back(values[v]);
+        values = std::move(out);
+    };
+    keep(primitive.positions);
+    keep(primitive.texcoords);
+    keep(primitive.colors);
+    for (VertexAttribute& attribute : primitive.attributes) {
+        std::vector<double> out;
+        out.reserve(kept.size() * std::size_t(attribute.components));
+        for (std::uint32_t v : kept)
+            out.insert(out.end(), attribute.values.begin() + std::ptrdiff_t(v) * attribute.components,
+                       attribute.values.begin() + std::ptrdiff_t(v + 1) * attribute.components);
+        attribute.values = std::move(out);
+    }
+    for (Triangle& t : primitive.triangles)
+        for (std::uint32_t& v : t) v = newIndex[v];
+}
+
 }  // namespace
+
+std::size_t dropFlatNormals(Scene& scene) {
+    std::size_t dropped = 0;
+    for (Mesh& mesh : scene.meshes)
+        for (Primitive& primitive : mesh.primitives) {
+            // Morph targets may displace the normals; tangents, and the normal maps that read them, need them.
+            const Material* material =
+                primitive.material >= 0 ? &scene.materials[std::size_t(primitive.material)] : nullptr;
+            const bool needsNormals =
+                !primitive.targets.empty() || (material && readsTangents(*material)) ||
+                std::any_of(primitive.attributes.begin(), primitive.attributes.end(),
+                            [](const VertexAttribute& a) { return a.name == "TANGENT"; });
+            if (primitive.normals.empty() || needsNormals || !normalsAreFlat(primitive)) continue;
+            primitive.normals.clear();
+            primitive.normals.shrink_to_fit();
+            mergeEqualVertices(primitive);
+            ++dropped;
+        }
+    return dropped;
+}
 
 std::size_t dropUnreadAttributes(Scene& scene) {
     std::size_t dropped = 0;

@@ -5,7 +5,10 @@
 #include "plan/primitives_by_kind.hpp"
 #include "symcompress/detail/compression_plan.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -97,12 +100,43 @@ void dropPointLikeTriangles(Scene& out, CompressionStats& stats) {
             " stored triangles with two corners at one point (zero area, they draw nothing) left out");
 }
 
+// The largest factor by which `linear` stretches a length (its largest singular value).
+double largestStretch(const Eigen::Matrix4d& transform) {
+    const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
+    return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(linear.transpose() * linear)
+                                       .eigenvalues()
+                                       .maxCoeff()));
+}
+
+// Each stored mesh's share of the error budget (a distance): what the deviation of the copies it draws
+// leaves of it (`deviation`, by mesh), in the mesh's frame: divided by the largest stretch of a node that
+// draws it, since a corner moved by e in the mesh moves by s e in the world.
+void shareErrorBudget(Scene& out, double budget, const std::vector<double>& deviation) {
+    std::vector<double> stretch(out.meshes.size(), 0);
+    std::vector<std::pair<int, Eigen::Matrix4d>> stack;  // node, its parent's world transform
+    for (int root : out.roots) stack.push_back({root, Eigen::Matrix4d::Identity()});
+    while (!stack.empty()) {
+        const auto [n, parentWorld] = stack.back();
+        stack.pop_back();
+        const Node& node = out.nodes[std::size_t(n)];
+        const Eigen::Matrix4d world = parentWorld * node.transform;
+        if (node.mesh >= 0)
+            stretch[std::size_t(node.mesh)] = std::max(stretch[std::size_t(node.mesh)], largestStretch(world));
+        for (int child : node.children) stack.push_back({child, world});
+    }
+    for (std::size_t m = 0; m < out.meshes.size(); ++m) {
+        const double share = (budget - deviation[m]) / std::max(stretch[m], 1e-300);
+        for (Primitive& primitive : out.meshes[m].primitives) primitive.maxPositionError = std::max(share, 0.0);
+    }
+}
+
 }  // namespace
 
 CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, const CompressionPlan& plan) {
     CompressedScene result;
     CompressionStats& stats = result.stats;
     result.digest = analysis.digest;
+    if (analysis.diagonal > 0) result.digest.maxError = plan.maxError;
     stats.trianglesIn = analysis.digest.triangles;
     stats.tiles = analysis.tiles.size();
     stats.secondsTiles = analysis.secondsTiles;
@@ -137,9 +171,12 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     }
     stats.animatedNodesKept += keepAnimatedSubtrees(input, analysis.animatedSubtrees, out, keptMesh);
     keepCamerasAndLights(input, analysis, out, stats);
+    std::vector<double> deviation(out.meshes.size(), 0);  // of what each mesh draws, as a distance
     for (const SharedPart& part : plan.shared) {
         const int mesh = int(out.meshes.size());
         out.meshes.push_back(part.mesh);
+        deviation.resize(out.meshes.size(), 0);
+        deviation.back() = part.deviation * analysis.diagonal;
         for (const PlacedCopy& node : part.nodes)
             result.instanceNodes.push_back(addRootNode(out, mesh, node.transform, node.source));
         count(part, stats);
@@ -161,6 +198,8 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(),
                     merged.size() == 1 ? mergedSource : nullptr);
     }
+    deviation.resize(out.meshes.size(), 0);
+    if (plan.maxError > 0) shareErrorBudget(out, plan.maxError * analysis.diagonal, deviation);
     dropPointLikeTriangles(out, stats);
     return result;
 }

@@ -6,25 +6,38 @@
 #include "plan/region_choice.hpp"
 
 #include <limits>
+#include <memory>
 #include <tuple>
 
 namespace symcompress {
 namespace {
 
-// The placement of the prototype onto member i that the member check accepts, if any: every J g (g in the
-// prototype's group) places the geometry (paper property 4); the attributes and the faces' orientation pick
-// among them.
-std::optional<Isometry> acceptedPlacement(const PlanContext& context, const CongruenceClass& c, std::size_t i,
-                                          const Primitive& prototype, const Primitive& member) {
+// The placement of the prototype onto member i that the member check accepts, if any, and the member's
+// deviation under it (relative to the diagonal): every J g (g in the prototype's group) places the geometry
+// (paper property 4); the attributes and the faces' orientation pick among them. A member tessellated
+// otherwise is checked as a surface (surfaceDeviation), its deviation then measured.
+std::optional<std::pair<Isometry, double>> acceptedPlacement(const PlanContext& context, const CongruenceClass& c,
+                                                             std::size_t i, const Primitive& prototype,
+                                                             const Primitive& member,
+                                                             std::unique_ptr<TileSurface>& prototypeSurface) {
     const TileShape& shape = context.analysis.classification.shapes[c.prototype];
+    std::vector<Isometry> candidates;
     for (const Symmetry& g : shape.symmetry.elements) {
         Isometry candidate;
         candidate.linear = c.placements[i].linear * g.linear;
         candidate.translation = c.placements[i].linear * (shape.moments.centroid - g.linear * shape.moments.centroid) +
                                 c.placements[i].translation;
         if (reproduces(prototype, member, candidate, context.tolerance(), context.options.geometryOnly))
-            return candidate;
+            return std::pair{candidate, c.deviations[i]};
+        candidates.push_back(candidate);
     }
+    if (!prototypeSurface) prototypeSurface = std::make_unique<TileSurface>(prototype);
+    const TileSurface memberSurface(member);
+    const double diagonal = context.analysis.diagonal;
+    for (const Isometry& candidate : candidates)
+        if (const auto deviation = surfaceDeviation(*prototypeSurface, memberSurface, candidate, context.tolerance(),
+                                                    context.options.geometryOnly))
+            return std::pair{candidate, diagonal > 0 ? *deviation / diagonal : 0};
     return std::nullopt;
 }
 
@@ -57,11 +70,14 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
     std::vector<std::size_t> placed;
     if (!drawn[c.prototype]) placed.push_back(0);
     std::vector<Isometry> placements = c.placements;
+    std::vector<double> deviations = c.deviations;
+    std::unique_ptr<TileSurface> prototypeSurface;  // built for the first member tessellated otherwise
     for (std::size_t i = 1; i < c.members.size(); ++i) {
         if (drawn[c.members[i]]) continue;
-        if (const auto placement =
-                acceptedPlacement(context, c, i, prototype, tilePrimitive(tiles[c.members[i]], analysis.soup))) {
-            placements[i] = *placement;
+        if (const auto placement = acceptedPlacement(context, c, i, prototype,
+                                                     tilePrimitive(tiles[c.members[i]], analysis.soup),
+                                                     prototypeSurface)) {
+            std::tie(placements[i], deviations[i]) = *placement;
             placed.push_back(i);
         } else {
             ++plan.attributeMismatches;
@@ -98,10 +114,14 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
             return nodesCost(copiesInTile);
         };
         const double alone = costs.alone(c.prototype), perNode = (instanced - alone) / copies;
+        double placedDeviation = 0;
+        for (std::size_t i : placed) placedDeviation = std::max(placedDeviation, deviations[i]);
+        const double gridError =
+            options.maxError > 0 ? (options.maxError - placedDeviation) * analysis.diagonal : 0;
         if (group.size() > 1)
-            std::tie(region, regional) =
-                cheapestRegion({prototype, group, center, context.tolerance(), options.costs.seamGridBits}, costs,
-                               alone, perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
+            std::tie(region, regional) = cheapestRegion(
+                {prototype, group, center, context.tolerance(), options.costs.seamGridBits, gridError}, costs, alone,
+                perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
     }
     const bool single = placed.size() == 1 && !region;
     if (single || copies * costs.merged(c.prototype) <= std::min(instanced, regional)) {
@@ -130,8 +150,9 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
         for (const Eigen::Matrix4d& copy : copiesInTile)
             shared.nodes.push_back({placements[i].matrix() * copy, context.sourceOf(c.members[i])});
         shared.tiles.push_back(c.members[i]);
-        shared.deviation = std::max(shared.deviation, c.deviations[i]);
+        shared.deviation = std::max(shared.deviation, deviations[i]);
     }
+    if (useRegion && analysis.diagonal > 0) shared.deviation += region->deviation / analysis.diagonal;
     shared.copies = placed.size();
     plan.shared.push_back(std::move(shared));
 }

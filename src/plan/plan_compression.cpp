@@ -14,10 +14,12 @@ const Node* sourceNode(const Scene& input, const SceneAnalysis& analysis, std::s
     return node >= 0 && std::size_t(node) < input.nodes.size() ? &input.nodes[std::size_t(node)] : nullptr;
 }
 
-bool PlanContext::reproduces(std::size_t from, std::size_t to, const Isometry& map) const {
-    return symcompress::reproduces(tilePrimitive(analysis.tiles[from], analysis.soup),
-                                   tilePrimitive(analysis.tiles[to], analysis.soup), map, tolerance(),
-                                   options.geometryOnly);
+bool PlanContext::reproduces(std::size_t from, std::size_t to, const Isometry& map, double* deviation) const {
+    const bool reproduced = symcompress::reproduces(tilePrimitive(analysis.tiles[from], analysis.soup),
+                                                    tilePrimitive(analysis.tiles[to], analysis.soup), map,
+                                                    tolerance(), options.geometryOnly, deviation);
+    if (reproduced && deviation) *deviation = analysis.diagonal > 0 ? *deviation / analysis.diagonal : 0;
+    return reproduced;
 }
 
 Eigen::Matrix4d translationTo(const Eigen::Vector3d& center) {
@@ -28,6 +30,7 @@ Eigen::Matrix4d translationTo(const Eigen::Vector3d& center) {
 
 CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options) {
     CompressionPlan plan;
+    plan.maxError = options.maxError;
     if (!options.instancing || !analysis.options.classify) {
         // Every copy as it is, as Draco alone stores it, the author's shared meshes too: their sharing may
         // cost more than it saves (hundreds of small scaled copies), and this plan stores nothing shared.
@@ -69,7 +72,7 @@ CompressedScene compressAnalyzed(const Scene& input, const SceneAnalysis& analys
 
 AnalysisOptions analysisOptionsOf(const CompressOptions& options) {
     AnalysisOptions analysis;
-    analysis.tolerance = options.tolerance;
+    analysis.tolerance = options.congruenceTolerance();
     analysis.classify = options.instancing;
     analysis.keepInputInstances = options.keepInputInstances;
     analysis.threads = options.threads;
@@ -83,6 +86,7 @@ PlanOptions planOptionsOf(const CompressOptions& options) {
     plan.geometryOnly = options.geometryOnly;
     plan.regions = options.regions;
     plan.assemblies = options.assemblies;
+    plan.maxError = options.fixedPositionBits ? 0 : options.maxError;
     plan.progress = options.progress;
     return plan;
 }

@@ -31,7 +31,7 @@ std::optional<SharedPart> planSceneSymmetry(const PlanContext& context) {
 
     std::vector<bool> seen(tiles.size(), false);
     std::vector<std::size_t> part, orbitTiles;
-    double apart = 0;
+    double apart = 0, deviation = 0;  // deviation: of the verified copies, relative to the diagonal
     for (std::size_t t = 0; t < tiles.size(); ++t) {
         if (seen[t]) continue;
         std::set<std::size_t> orbit;
@@ -45,8 +45,11 @@ std::optional<SharedPart> planSceneSymmetry(const PlanContext& context) {
                        (classification.shapes[b].moments.centroid - generic).norm();
             });
         bool verified = true;
-        for (std::size_t e = 1; e < order && verified; ++e)
-            verified = context.reproduces(representative, images[e][representative], about(e));
+        for (std::size_t e = 1; e < order && verified; ++e) {
+            double copyDeviation = 0;
+            verified = context.reproduces(representative, images[e][representative], about(e), &copyDeviation);
+            deviation = std::max(deviation, copyDeviation);
+        }
         if (!verified) continue;
         part.push_back(representative);
         orbitTiles.insert(orbitTiles.end(), orbit.begin(), orbit.end());
@@ -77,7 +80,7 @@ std::optional<SharedPart> planSceneSymmetry(const PlanContext& context) {
     shared.tiles = std::move(orbitTiles);
     shared.copies = order;
     shared.group = group.name;
-    shared.deviation = analysis.options.tolerance;  // each copy verified vertex by vertex
+    shared.deviation = deviation;  // of a copy's vertices from their matches
     return shared;
 }
 

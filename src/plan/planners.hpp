@@ -22,8 +22,9 @@ struct PlanContext {
     StorageCosts& costs;
     double tolerance() const { return analysis.absoluteTolerance; }
     const Node* sourceOf(std::size_t t) const { return sourceNode(input, analysis, t); }
-    // Whether tile `from` placed by `map` reproduces tile `to` (the member check, as the options ask).
-    bool reproduces(std::size_t from, std::size_t to, const Isometry& map) const;
+    // Whether tile `from` placed by `map` reproduces tile `to` (the member check, as the options ask); with
+    // `deviation`, the largest distance of a vertex from its match, relative to the diagonal.
+    bool reproduces(std::size_t from, std::size_t to, const Isometry& map, double* deviation = nullptr) const;
 };
 
 // The scene's own symmetry (paper 6.3): one part of the scene stored once, drawn by a node per element of

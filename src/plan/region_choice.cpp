@@ -30,6 +30,7 @@ std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vect
         const SurfaceComparison check = compareSurfaces(a, b, 1e-6);
         const double diagonal = digestOf(b, 0).bounds.diagonal().norm();
         if (check.maxDeviation * diagonal > tolerance || std::abs(check.areaRatio - 1) > 1e-6) return std::nullopt;
+        region.deviation = check.maxDeviation * diagonal;
         return region;
     } catch (const std::invalid_argument&) {
         return std::nullopt;  // a group the region code does not take (e.g. not closed within its tolerance)
@@ -42,7 +43,12 @@ std::optional<FundamentalRegion> storableRegion(const RegionCandidate& candidate
                                                 const std::vector<Eigen::Matrix3d>& group) {
     std::optional<FundamentalRegion> region = regionOf(candidate.tile, group, candidate.center, candidate.tolerance);
     if (region && candidate.seamGridBits > 0 && region->signedPermutationFrame) {
-        RegionInGridSteps onGrid = inGridSteps(*region, seamPreservingGrid(*region, candidate.seamGridBits));
+        const double left = candidate.seamGridError - region->deviation;  // for the grid, of the budget
+
+        if (candidate.seamGridError > 0 && !(left > 0)) return std::nullopt;
+        RegionInGridSteps onGrid =
+            inGridSteps(*region, candidate.seamGridError > 0 ? seamPreservingGridWithin(*region, left)
+                                                             : seamPreservingGrid(*region, candidate.seamGridBits));
         region = std::move(onGrid.region);
         region->region.positionGrid = onGrid.grid;
     }
@@ -57,6 +63,13 @@ std::pair<std::optional<FundamentalRegion>, double> cheapestRegion(
     const std::vector<Eigen::Matrix3d>& group = candidate.group;
     auto cost = [&](const FundamentalRegion& r) { return costs.asMesh(r.region) + nodes(r); };
     std::optional<FundamentalRegion> best = storableRegion(candidate, group);
+    // Mirrors that hold only within the tolerance (a bolt's helical thread is near a mirror of itself) may
+    // leave no region of the whole group; its rotations alone may still rebuild the tile.
+    std::vector<Eigen::Matrix3d> rotations;
+    for (const Eigen::Matrix3d& g : group)
+        if (g.determinant() > 0) rotations.push_back(g);
+    if (!best && rotations.size() > 1 && rotations.size() < group.size())
+        best = storableRegion(candidate, rotations);
     double bestCost = best ? cost(*best) : std::numeric_limits<double>::infinity();
     auto estimate = [&](std::size_t order) { return tileBytes / double(order) + double(order) * nodeBytes; };
     std::vector<std::vector<std::size_t>> subgroups;

@@ -19,6 +19,10 @@ struct RegionCandidate {
     Eigen::Vector3d center;
     double tolerance = 0;  // a distance: the region's copies must rebuild the tile within it
     int seamGridBits = 0;  // StorageCostModel::seamGridBits
+    // > 0: the distance the region's own deviation and its grid's quantization share (what the budget
+    // leaves after the class's placements): the grid is then the coarsest within what is left, in place of
+    // seamGridBits.
+    double seamGridError = 0;
 };
 
 // The fundamental region that stores a class's copies in the fewest bytes, of G itself or of a subgroup H

@@ -99,6 +99,7 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
     } else {
         analysis.absoluteTolerance = options.tolerance * tilesDiagonal(analysis.tiles);
     }
+    analysis.diagonal = options.tolerance > 0 ? analysis.absoluteTolerance / options.tolerance : 0;
     analysis.secondsClasses = since(start);
     return analysis;
 }

@@ -127,11 +127,14 @@ AlignedFrame chooseAlignedFrame(const std::vector<Eigen::Matrix3d>& nonIdentity,
 namespace symcompress {
 
 QuantizationGrid seamPreservingGrid(const FundamentalRegion& region, int bits) {
-    if (bits < 1 || bits > 30) throw std::invalid_argument("seamPreservingGrid: bits must be in [1, 30]");
+    // One bit has a single step, which an aligned grid cannot stretch over a box across a grid point.
+    if (bits < 2 || bits > 30) throw std::invalid_argument("seamPreservingGrid: bits must be in [2, 30]");
     if (region.region.positions.empty()) throw std::invalid_argument("seamPreservingGrid: the region is empty");
     const Eigen::AlignedBox3d box = boundsOf(region.region.positions);
     const double levels = std::ldexp(1.0, bits) - 1;  // the largest quantized value
     const double extent = std::max(box.sizes().maxCoeff(), 1e-300);
+    if (!std::isfinite(extent) || !box.min().allFinite())
+        throw std::invalid_argument("seamPreservingGrid: the region's positions are not finite");
     // The smallest power-of-two step whose grid, aligned on multiples of the step, reaches over the box.
     int exponent = static_cast<int>(std::ceil(std::log2(extent / levels)));
     for (;; ++exponent) {
@@ -144,6 +147,19 @@ QuantizationGrid seamPreservingGrid(const FundamentalRegion& region, int bits) {
             grid.bits = bits;
             return grid;
         }
+    }
+}
+
+QuantizationGrid seamPreservingGridWithin(const FundamentalRegion& region, double maxError) {
+    constexpr int kMostBits = 24;  // a float32's mantissa
+    if (region.region.positions.empty()) throw std::invalid_argument("seamPreservingGrid: the region is empty");
+    // The grid's step is at least the box's extent over its levels: fewer bits than that bound cannot do.
+    const double extent = boundsOf(region.region.positions).sizes().maxCoeff();
+    const double fewest = std::floor(std::log2(std::max(std::sqrt(3.0) / 2 * extent / maxError, 1.0)));
+    for (int bits = std::clamp(int(fewest), 2, kMostBits);; ++bits) {
+        QuantizationGrid grid = seamPreservingGrid(region, bits);
+        const double step = grid.range / (std::ldexp(1.0, bits) - 1);
+        if (std::sqrt(3.0) / 2 * step <= maxError || bits == kMostBits) return grid;
     }
 }
 

@@ -23,7 +23,12 @@ std::string SurfaceDigest::json() const {
     // Nine digits: far below any tolerance the digest is checked with, and half the text of seventeen.
     auto number = [](double x) { return rounded(x, 9); };
     auto vector = [&](const Eigen::Vector3d& v) { return nlohmann::json{number(v.x()), number(v.y()), number(v.z())}; };
-    nlohmann::json digest{{"triangles", triangles}, {"area", number(area)}, {"tolerance", number(tolerance)}};
+    // The budget where there is one (what the decoder verifies against), else the tolerance.
+    nlohmann::json digest{{"triangles", triangles}, {"area", number(area)}};
+    if (maxError > 0)
+        digest["max_error"] = number(maxError);
+    else
+        digest["tolerance"] = number(tolerance);
     if (!bounds.isEmpty()) digest["bbox"] = {{"min", vector(bounds.min())}, {"max", vector(bounds.max())}};
     return nlohmann::json{{"symcompress_digest", digest}}.dump();
 }
@@ -35,7 +40,8 @@ bool SurfaceDigest::fromJson(const std::string& text, SurfaceDigest& digest) {
     try {
         digest.triangles = d.at("triangles").get<std::size_t>();
         digest.area = d.at("area").get<double>();
-        digest.tolerance = d.at("tolerance").get<double>();
+        digest.maxError = d.value("max_error", 0.0);
+        digest.tolerance = digest.maxError > 0 ? d.value("tolerance", 0.0) : d.at("tolerance").get<double>();
         if (d.contains("bbox")) {
             const auto& lo = d["bbox"].at("min");
             const auto& hi = d["bbox"].at("max");

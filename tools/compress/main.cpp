@@ -280,7 +280,11 @@ void printReport(const CompressionReport& report) {
     if (stats.notWorthInstancing)
         std::printf("  stored apart    %zu tiles of classes too small for a node per copy to pay\n",
                     stats.notWorthInstancing);
-    std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, report.tolerance);
+    if (report.maxError > 0)
+        std::printf("  max deviation   %.2e of the diagonal (budget %g: tolerance %g, the rest to quantization)\n",
+                    stats.maxDeviation, report.maxError, report.tolerance);
+    else
+        std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, report.tolerance);
     const auto& ablation = report.ablation;
     if (ablation.instancingAndRegions)
         std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju, with regions too %ju\n",
@@ -314,7 +318,9 @@ void addWriteOptions(CLI::App& command, WriteOptions& options) {
     command.add_flag(
         "--no-draco", [&options](std::int64_t) { options.draco = false; },
         "glTF: write plain accessors instead of KHR_draco_mesh_compression");
-    command.add_option("--position-bits", options.positionBits, "Draco position quantization bits")
+    command.add_option("--position-bits", options.positionBits,
+                       "Draco position quantization bits for every mesh (compress: in place of the bits the error "
+                       "budget gives each mesh)")
         ->check(CLI::Range(8, 30))
         ->capture_default_str();
 }
@@ -369,10 +375,15 @@ int main(int argc, char** argv) {
     compress->add_option("IN", compressRequest.input, "input scene file")->required();
     compress->add_option("-o,--output", compressRequest.output, "output file (.glb .gltf .x3d)")->required();
     compress
-        ->add_option("--tolerance", compressRequest.options.tolerance,
-                     "congruence and symmetry tolerance, relative to the scene's bounding-box diagonal")
+        ->add_option("--max-error", compressRequest.options.maxError,
+                     "how far the rebuilt surface may lie from the input, relative to the scene's bounding-box "
+                     "diagonal: shared by the tolerance and each mesh's position quantization")
         ->check(CLI::Range(1e-9, 0.5))
         ->capture_default_str();
+    compress
+        ->add_option("--tolerance", compressRequest.options.tolerance,
+                     "congruence and symmetry tolerance, relative to the diagonal (default: half of --max-error)")
+        ->check(CLI::Range(1e-9, 0.5));
     compress->add_flag(
         "--no-instancing", [&](std::int64_t) { compressRequest.options.instancing = false; },
         "store every tile as it is (Draco alone)");
@@ -383,6 +394,8 @@ int main(int argc, char** argv) {
                        "instance congruent tiles even when their normals, texture coordinates or colours differ");
     compress->add_flag("--keep-unused-attributes", [&](std::int64_t) { compressRequest.options.optimize.pruneAttributes = false; },
                        "keep texture coordinates that no texture reads (dropped by default)");
+    compress->add_flag("--keep-flat-normals", [&](std::int64_t) { compressRequest.options.optimize.dropFlatNormals = false; },
+                       "keep normals equal to their triangles' own (dropped by default: viewers shade flat without them)");
     compress->add_flag("--no-prune", [&](std::int64_t) { compressRequest.options.optimize.prune = false; },
                        "keep materials no primitive uses and textures no material uses");
     compress->add_flag("--no-dedup", [&](std::int64_t) { compressRequest.options.optimize.dedup = false; },
@@ -416,7 +429,11 @@ int main(int argc, char** argv) {
     try {
         if (*info) return runInfo(infoFile, json);
         if (*convert) return runConvert(input, output, writeOptions, quiet);
-        if (*compress) return runCompress(compressRequest);
+        if (*compress) {
+            // Bits given: every mesh quantized with them, as before the budget, and verified as then.
+            compressRequest.options.fixedPositionBits = compress->count("--position-bits") > 0;
+            return runCompress(compressRequest);
+        }
         if (*detect)
             return tiles ? runDetectTiles(detectFile, symmetryOptions, json)
                          : runDetect(detectFile, symmetryOptions, json, detectHtml);

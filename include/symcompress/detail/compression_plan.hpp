@@ -39,6 +39,7 @@ struct SceneAnalysis {
     AnalysisOptions options;  // those it was made with
     // options.tolerance as a distance (times the diagonal of the tiles' bounds): the one every stage uses.
     double absoluteTolerance = 0;
+    double diagonal = 0;  // of the tiles' bounding box: the unit of relative tolerances and error bounds
     std::vector<KeptInstance> keptInstances;  // not in the soup: their meshes are stored as they are
     // The input's animated nodes that have no animated ancestor: kept with their subtrees as they are
     // (nodes, transforms, meshes) and their animations, so that the animations still drive them; what
@@ -87,6 +88,9 @@ struct PlanOptions {
     bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
     bool regions = true;        // fundamental regions where they pay
     bool assemblies = true;     // the scene's symmetry and repeated assemblies
+    // > 0: the error budget (relative to the diagonal) that each stored mesh's quantization shares with the
+    // deviation of the copies it rebuilds (CompressOptions::maxError); 0: the writer's fixed bits.
+    double maxError = 0;
     StorageCostModel costs;
     ProgressCallback progress;
 };
@@ -116,6 +120,7 @@ struct CompressionPlan {
     std::vector<std::size_t> tilesAsTheyAre;  // in the order they are merged (one mesh per material)
     std::size_t classes = 0, symmetricClasses = 0, attributeMismatches = 0, notWorthInstancing = 0;
     std::string sceneGroup = "C1";
+    double maxError = 0;  // PlanOptions::maxError
 };
 
 // The three planners in turn: the scene's own symmetry, repeated assemblies, then every class.

@@ -94,6 +94,8 @@ struct FundamentalRegion {
     bool signedPermutationFrame = false;
     // Triangles of the tile that crossed a plane of F and were clipped.
     std::size_t trianglesCut = 0;
+    // The largest distance of the rebuilt tile from the tile, where the plan measured it (else 0).
+    double deviation = 0;
 };
 
 // Throws std::invalid_argument for an empty or malformed tile (scene.hpp invariants, non-finite
@@ -115,6 +117,9 @@ Primitive rebuildFromRegion(const FundamentalRegion& region);
 // seams between their copies survive quantization. The step is at most about twice that of the data's
 // own box. Throws std::invalid_argument for bits outside [1, 30] or an empty region.
 QuantizationGrid seamPreservingGrid(const FundamentalRegion& region, int bits);
+// The coarsest seamPreservingGrid on which no corner of the region moves farther than `maxError` (half a
+// step on each axis), of at most 24 bits.
+QuantizationGrid seamPreservingGridWithin(const FundamentalRegion& region, double maxError);
 
 // The region in units of the grid's step, with the grid in the same units (integer origin, range
 // 2^bits - 1); regionToTile takes the scale, so instanceTransform and rebuildFromRegion are unchanged.

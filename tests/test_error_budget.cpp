@@ -1,0 +1,241 @@
+// One error budget (--max-error): each mesh's position bits keep it within its share, symdecompress verifies
+// the rebuilt surface against it; copies tessellated each on its own are instanced when they agree as
+// surfaces, and a copy just beyond the budget, or scaled, stays apart.
+#include "symcompress/compress.hpp"
+#include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
+#include "symcompress/verify.hpp"
+#include "test_support.hpp"
+
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+
+using namespace symcompress;
+using namespace symcompress::testing;
+
+namespace {
+
+// The largest distance from a corner of `original` to the nearest position of `decoded` (Draco reorders the
+// vertices): a lower bound of how far the quantization moved a corner, exact while it stays below half the
+// distance between corners.
+double largestMove(const Primitive& original, const Primitive& decoded) {
+    double largest = 0;
+    for (const Eigen::Vector3d& p : original.positions) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const Eigen::Vector3d& q : decoded.positions) nearest = std::min(nearest, (p - q).squaredNorm());
+        largest = std::max(largest, nearest);
+    }
+    return std::sqrt(largest);
+}
+
+Scene sceneOf(Primitive primitive) {
+    Scene scene;
+    scene.meshes.push_back({});
+    scene.meshes[0].primitives.push_back(std::move(primitive));
+    scene.nodes.push_back({});
+    scene.nodes[0].mesh = 0;
+    scene.roots = {0};
+    return scene;
+}
+
+// A closed ellipsoid of revolution about z (radius `radius`, half as wide as tall), tessellated by
+// `segments` azimuths and 12 rings with every vertex slid along the surface at random by up to a fifth of
+// its spacing, each quad split along a random diagonal: the same surface as any other such part within the
+// chords' sagitta, tessellated otherwise. Normals are the surface's own at each vertex (smooth).
+Primitive tessellatedPart(double radius, int segments, std::mt19937& random) {
+    constexpr int kRings = 12;
+    std::uniform_real_distribution<double> slide(-0.2, 0.2);
+    Primitive part;
+    auto add = [&](double polar, double azimuth) {
+        const Eigen::Vector3d direction(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
+                                        std::cos(polar));
+        part.positions.push_back(radius * Eigen::Vector3d(direction.x(), direction.y(), 2 * direction.z()));
+        // The gradient of x^2 + y^2 + z^2 / 4 there.
+        part.normals.push_back(Eigen::Vector3d(direction.x(), direction.y(), direction.z() / 2).normalized());
+        return std::uint32_t(part.positions.size() - 1);
+    };
+    const std::uint32_t north = add(0, 0);
+    std::vector<std::vector<std::uint32_t>> rings;
+    const double start = 2 * M_PI * slide(random);
+    for (int r = 1; r < kRings; ++r) {
+        rings.emplace_back();
+        for (int s = 0; s < segments; ++s)
+            rings.back().push_back(
+                add(M_PI * (r + slide(random)) / kRings, start + 2 * M_PI * (s + slide(random)) / segments));
+    }
+    const std::uint32_t south = add(M_PI, 0);
+    std::bernoulli_distribution diagonal(0.5);
+    for (int s = 0; s < segments; ++s) {
+        const int t = (s + 1) % segments;
+        part.triangles.push_back({north, rings.front()[s], rings.front()[t]});
+        part.triangles.push_back({south, rings.back()[t], rings.back()[s]});
+        for (std::size_t r = 0; r + 1 < rings.size(); ++r) {
+            const std::uint32_t a = rings[r][s], b = rings[r + 1][s], c = rings[r + 1][t], d = rings[r][t];
+            if (diagonal(random)) {
+                part.triangles.push_back({a, b, c});
+                part.triangles.push_back({a, c, d});
+            } else {
+                part.triangles.push_back({a, b, d});
+                part.triangles.push_back({b, c, d});
+            }
+        }
+    }
+    return part;
+}
+
+// kCopies copies of the part, each tessellated on its own, turned and placed at random; then one copy 6%
+// larger (beyond the budget the test uses) and one half as large again. Each drawn by a node of
+// its own, as a modeller's export bakes them; mesh k is copy k.
+constexpr int kCopies = 12;
+Scene copiesTessellatedApart(bool withNormals) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> angle(0, 2 * M_PI);
+    Scene scene;
+    for (int k = 0; k < kCopies + 2; ++k) {
+        // 32 to 52 azimuths: no two copies have the same number of triangles.
+        Primitive part = tessellatedPart(k == kCopies ? 0.53 : k == kCopies + 1 ? 0.75 : 0.5, 32 + 4 * (k % 6), random);
+        if (!withNormals) part.normals.clear();
+        const Eigen::Matrix3d turn =
+            (Eigen::AngleAxisd(angle(random), Eigen::Vector3d(1, 2, 3).normalized()) *
+             Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitZ()))
+                .toRotationMatrix();
+        const Eigen::Vector3d at(3.0 * (k % 4), 3.0 * (k / 4), 0);
+        scene.meshes.push_back({});
+        scene.meshes.back().primitives.push_back(transformPrimitive(part, [&] {
+            Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+            m.topLeftCorner<3, 3>() = turn;
+            m.topRightCorner<3, 1>() = at;
+            return m;
+        }()));
+        Node node;
+        node.name = "part " + std::to_string(k);
+        node.mesh = int(scene.meshes.size()) - 1;
+        scene.roots.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(node);
+    }
+    return scene;
+}
+
+// The scene as an ASCII STL with its facet normals, as CAD tools export it.
+void writeStl(const Scene& scene, const std::filesystem::path& file) {
+    const TriangleMesh mesh = worldMesh(scene);
+    std::ofstream out(file);
+    out.precision(9);
+    out << "solid parts\n";
+    for (const Triangle& t : mesh.triangles) {
+        const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+        const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+        out << "facet normal " << n.x() << ' ' << n.y() << ' ' << n.z() << "\nouter loop\n";
+        for (const Eigen::Vector3d* p : {&a, &b, &c}) out << "vertex " << p->x() << ' ' << p->y() << ' ' << p->z() << '\n';
+        out << "endloop\nendfacet\n";
+    }
+    out << "endsolid parts\n";
+}
+
+}  // namespace
+
+TEST_CASE("Position bits from an error bound keep every corner within it, never more bits than the bound needs",
+          "[budget][writers]") {
+    std::mt19937 random(3);
+    std::normal_distribution<double> normal;
+    Primitive points;
+    for (int i = 0; i < 300; ++i)
+        points.positions.push_back(Eigen::Vector3d(10, -4, 2) +
+                                   3 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized());
+    for (std::uint32_t i = 0; i + 2 < 300; i += 3) points.triangles.push_back({i, i + 1, i + 2});
+    const double range = 6;  // about the sphere's box
+    TemporaryFolder folder;
+    int previous = 0;
+    for (const double bound : {3e-2, 1e-3, 3e-5}) {
+        WriteOptions options;
+        options.maxPositionError = bound;
+        const int bits = positionBitsFor(points, options);
+        INFO("bound " << bound << ", " << bits << " bits");
+        CHECK(bits > previous);  // a tighter bound takes more bits
+        CHECK(bits <= int(std::ceil(std::log2(std::sqrt(3.0) / 2 * range / bound + 1))));
+        previous = bits;
+        writeScene(sceneOf(points), folder / "points.glb", options);
+        const Scene decoded = readScene(folder / "points.glb");
+        CHECK(largestMove(points, decoded.meshes[0].primitives[0]) <= bound);
+        // The primitive's own bound takes the place of the writer's.
+        Primitive own = points;
+        own.maxPositionError = bound;
+        CHECK(positionBitsFor(own, WriteOptions{}) == bits);
+    }
+    WriteOptions fixed;
+    fixed.positionBits = 11;
+    CHECK(positionBitsFor(points, fixed) == 11);
+}
+
+TEST_CASE("The error budget bounds the rebuilt surface, and a tighter budget costs bytes", "[budget][compress]") {
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    const Scene scene = copiesTessellatedApart(true);
+    writeScene(scene, folder / "parts.glb", plain);
+    std::uintmax_t looser = 0;
+    for (const double budget : {2e-4, 1e-5}) {
+        INFO("budget " << budget);
+        CompressOptions options;
+        options.maxError = budget;
+        const CompressionReport report = compressFile(folder / "parts.glb", folder / "small.glb", options);
+        CHECK(report.maxError == budget);
+        CHECK(report.tolerance == budget / 2);
+        const RebuildReport rebuilt = decompressFile(folder / "small.glb", folder / "flat.glb", folder / "parts.glb");
+        CHECK(rebuilt.verified);
+        CHECK(rebuilt.maxDeviation <= budget * 1.01);
+        CHECK(rebuilt.allowedDeviation == Approx(budget).epsilon(0.02));
+        CHECK(decompressFile(folder / "small.glb", folder / "flat.glb").verified);  // against the stored digest
+        if (looser) CHECK(report.outputBytes > looser);
+        looser = report.outputBytes;
+    }
+    SECTION("fixed bits: verified as before, with no budget stored") {
+        CompressOptions options;
+        options.fixedPositionBits = true;
+        const CompressionReport report = compressFile(folder / "parts.glb", folder / "fixed.glb", options);
+        CHECK(report.maxError == 0);
+        CHECK(decompressFile(folder / "fixed.glb", folder / "flat.glb", folder / "parts.glb").verified);
+    }
+}
+
+TEST_CASE("Copies tessellated each on its own are one stored copy and a node each, and a near miss and a scaled copy "
+          "stay apart",
+          "[budget][compress][congruence]") {
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    const bool withNormals = GENERATE(true, false);
+    INFO(std::string(withNormals ? "glTF with smooth normals" : "STL with facet normals"));
+    const Scene scene = copiesTessellatedApart(withNormals);
+    const std::filesystem::path input = folder / (withNormals ? "parts.glb" : "parts.stl");
+    if (withNormals)
+        writeScene(scene, input, plain);
+    else
+        writeStl(scene, input);
+    CompressOptions options;
+    options.maxError = 2e-3;  // the tessellations differ by up to 8e-3 (7e-4 of the diagonal), the near miss by 3e-2
+    options.regions = false;  // one stored copy, a node per copy (regions would add nodes per copy)
+    const CompressionReport report = compressFile(input, folder / "small.glb", options);
+    auto triangles = [&](int k) { return scene.meshes[std::size_t(k)].primitives[0].triangles.size(); };
+    CHECK(report.stats.instancedClasses == 1);
+    CHECK(report.stats.instances == kCopies);
+    // One copy, the near miss and the scaled one.
+    const std::size_t apart = triangles(kCopies) + triangles(kCopies + 1);
+    bool oneCopy = false;
+    for (int k = 0; k < kCopies; ++k) oneCopy = oneCopy || report.stats.trianglesStored == apart + triangles(k);
+    CHECK(oneCopy);
+    CHECK(decompressFile(folder / "small.glb", folder / "flat.glb", input).verified);
+    CHECK(report.outputBytes < *report.ablation.dracoAlone / 2);
+
+    SECTION("with regions too: verified, no larger") {
+        CompressOptions full;
+        full.maxError = 2e-3;
+        const CompressionReport all = compressFile(input, folder / "all.glb", full);
+        CHECK(all.outputBytes <= report.outputBytes);
+        CHECK(decompressFile(folder / "all.glb", folder / "flat.glb", input).verified);
+    }
+}
