@@ -314,6 +314,9 @@ void addWriteOptions(CLI::App& command, WriteOptions& options) {
     command.add_flag(
         "--no-draco", [&options](std::int64_t) { options.draco = false; },
         "glTF: write plain accessors instead of KHR_draco_mesh_compression");
+    command.add_flag(
+        "--no-gpu-instancing", [&options](std::int64_t) { options.gpuInstancing = false; },
+        "glTF: a node per instance, never EXT_mesh_gpu_instancing (for viewers without the extension)");
     command.add_option("--position-bits", options.positionBits, "Draco position quantization bits")
         ->check(CLI::Range(8, 30))
         ->capture_default_str();
