@@ -42,6 +42,8 @@ std::string CompressionReport::json() const {
                                 {"animated_nodes_kept", stats.animatedNodesKept},
                                 {"cameras_and_lights_kept", stats.camerasAndLightsKept},
                                 {"bytes_per_instance", bytesPerInstance},
+                                {"gpu_instancing",
+                                 {{"batches", gpuInstancing.batches}, {"instances", gpuInstancing.instances}}},
                                 {"optimizations",
                                  {{"unread_attributes_dropped", optimizations.unreadAttributesDropped},
                                   {"materials_merged", optimizations.materialsMerged},

@@ -272,6 +272,9 @@ void printReport(const CompressionReport& report) {
                     stats.camerasAndLightsKept, report.cameras, report.lights);
     for (const std::string& line : report.optimizations.lines()) std::printf("  optimized       %s\n", line.c_str());
     if (stats.instances) std::printf("  per instance    %.0f bytes\n", report.bytesPerInstance);
+    if (report.gpuInstancing.batches)
+        std::printf("  GPU instancing  %zu instances in %zu batches (EXT_mesh_gpu_instancing)\n",
+                    report.gpuInstancing.instances, report.gpuInstancing.batches);
     if (stats.attributeMismatches)
         std::printf(
             "  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
