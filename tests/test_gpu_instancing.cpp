@@ -166,9 +166,19 @@ TEST_CASE("Rigid and mirrored copies are GPU-instanced, a sheared one stays a no
     for (const Node& node : back.nodes) CHECK(node.extrasJson.empty());
 
     if (interopAvailable()) CHECK(validatorErrors(file).empty());
+
+    // Without Draco the file is float throughout: the rotations too.
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(scene, folder / "plain.glb", plain);
+    const nlohmann::json plainRoot = glbJson(folder / "plain.glb");
+    for (const nlohmann::json* batch : batchNodes(plainRoot)) {
+        const auto& attributes = (*batch)["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+        CHECK(plainRoot["accessors"][attributes["ROTATION"].get<std::size_t>()]["componentType"] == 5126);
+    }
 }
 
-TEST_CASE("Scaled instances carry a SCALE accessor; unnamed ones no names", "[io][gpu]") {
+TEST_CASE("Scaled instances carry a SCALE accessor, and unnamed ones no names", "[io][gpu]") {
     TemporaryFolder folder;
     Scene scene = copiesScene(20, 0, false);
     for (std::size_t n = 0; n < scene.nodes.size(); ++n) {

@@ -217,7 +217,8 @@ GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& 
         }
         double& r = radius[std::size_t(batch.mesh)];
         if (r < 0) r = meshRadius(scene.meshes[std::size_t(batch.mesh)]);
-        batch.shortRotation = shortRotationsHold(batch.instances, r, allowed);
+        // Without Draco the file is float throughout, as exact as its reader: the rotations too.
+        batch.shortRotation = options.draco && shortRotationsHold(batch.instances, r, allowed);
         const double batched =
             batchBytes(batch.instances, namesOf(scene, batch.nodes), batch.mirrored, batch.shortRotation) +
             (plan.batches.empty() ? fileBytesOfFirstBatch() : 0);

@@ -25,7 +25,8 @@ struct InstanceBatch {
     int parent = -1;  // the scene node whose children they are, -1 for roots
     int mesh = -1;    // into Scene::meshes
     bool mirrored = false;
-    bool shortRotation = true;           // rotations as normalized SHORT where their rounding moves no vertex too far
+    // Rotations as normalized SHORT (with Draco) where their rounding moves no vertex too far.
+    bool shortRotation = true;
     std::vector<int> nodes;              // the scene nodes, in the order their parent lists them
     std::vector<InstanceTrs> instances;  // one per node
 };
