@@ -78,6 +78,9 @@ struct CompressionReport {
     // The bytes a node drawing a shared mesh costs in the output, on average over its instance nodes, by
     // the writer's measure (its transform and name); 0 without instances.
     double bytesPerInstance = 0;
+    // glTF: the EXT_mesh_gpu_instancing batches of the output and the instances they draw (each would be a node
+    // without them, as with --no-gpu-instancing).
+    GpuInstancingCount gpuInstancing;
     OptimizeReport optimizations;               // what was pruned and merged before tiling
     double secondsRead = 0, secondsWrite = 0;  // the other stages' are in stats
     // The file of each plan tried (empty where a plan was not tried, as with --no-instancing).

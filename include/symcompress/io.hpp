@@ -43,6 +43,13 @@ struct WriteOptions {
     int texcoordBits = 12;
     int colorBits = 8;
     int compressionLevel = 10;  // Draco speed 0 (best compression)
+    // glTF: leaves drawing one mesh written as one node with EXT_mesh_gpu_instancing where that is smaller
+    // (--no-gpu-instancing: a node each, for viewers without the extension).
+    bool gpuInstancing = true;
+    // How far, relative to the scene's bounding-box diagonal, the rounding of an instance's rotation to
+    // normalized SHORT may move a vertex (else the batch keeps FLOAT rotations): a 16th of the quantization
+    // allowance symdecompress verifies with (2^-13).
+    double instanceRotationDeviation = 1.0 / (1 << 17);
     // Written as glTF asset.extras / X3D MetadataSet, e.g. the digest of the original scene.
     std::string extrasJson;
 };
@@ -70,6 +77,15 @@ std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& option
 // What a node drawing a mesh stored already adds to a glTF file: its transform, name and index (children
 // not counted). The measure a plan weighs each instance with (CompressOptions::nodeBytes).
 std::size_t gltfNodeBytes(const Node& node);
+// What `nodes`, drawing one mesh stored already side by side under one parent, add to a glTF file written
+// with `options`: batched through EXT_mesh_gpu_instancing where the writer would batch them (mirrored and
+// unmirrored ones apart), else gltfNodeBytes each. The measure a plan weighs a mesh's instances with.
+double gltfNodesBytes(const std::vector<Node>& nodes, const WriteOptions& options);
+// The EXT_mesh_gpu_instancing batches writeGltf writes for `scene`, and the instances they hold.
+struct GpuInstancingCount {
+    std::size_t batches = 0, instances = 0;
+};
+GpuInstancingCount gltfGpuInstancing(const Scene& scene, const WriteOptions& options);
 void writeX3d(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 // gltfMeshBytes for X3D: the text of a Group holding `primitive`'s Shape (uncompressed, as in .x3d).
 std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options);

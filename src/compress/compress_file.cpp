@@ -9,11 +9,15 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <map>
 #include <fstream>
 
 namespace symcompress {
 namespace fs = std::filesystem;
 namespace {
+
+// The share of the error budget left for the rounding of GPU-instanced rotations to normalized shorts.
+constexpr double kRotationShare = 1.0 / 64;
 
 double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -65,13 +69,20 @@ std::uintmax_t measuredBytes(const CompressedScene& plan, const fs::path& output
     return size;
 }
 
-// The mean of the writer's measure over the nodes that draw a shared mesh.
+// The mean of the writer's measure over the nodes that draw a shared mesh, the nodes of each mesh measured
+// together (GPU-instanced batches cost a few bytes an instance).
 double bytesPerInstance(const CompressedScene& compressed, const StorageCostModel& costs) {
     if (compressed.instanceNodes.empty()) return 0;
+    std::map<int, std::vector<Node>> byMesh;  // instance nodes are roots
+    for (int node : compressed.instanceNodes)
+        byMesh[compressed.scene.nodes[std::size_t(node)].mesh].push_back(compressed.scene.nodes[std::size_t(node)]);
     double total = 0;
-    for (int node : compressed.instanceNodes) {
-        const Node& drawing = compressed.scene.nodes[std::size_t(node)];
-        total += costs.nodeBytes ? costs.nodeBytes(drawing) : costs.bytesPerInstance;
+    for (const auto& [mesh, nodes] : byMesh) {
+        if (costs.nodesBytes) {
+            total += costs.nodesBytes(nodes);
+            continue;
+        }
+        for (const Node& drawing : nodes) total += costs.nodeBytes ? costs.nodeBytes(drawing) : costs.bytesPerInstance;
     }
     return total / double(compressed.instanceNodes.size());
 }
@@ -108,13 +119,20 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
     WriteOptions write = options.write;
     // Meshes the plan does not bound (the cost model's measures) are quantized within the whole budget.
-    if (!options.fixedPositionBits) write.maxPositionError = options.maxError * analysis.diagonal;
     PlanOptions planOptions = planOptionsOf(options);
+    if (!options.fixedPositionBits) {
+        // Of the budget, a share for the rounding of GPU-instanced rotations; the rest for the placements and
+        // each mesh's quantization (the meshes the plan does not bound take all of that).
+        planOptions.maxError = options.maxError * (1 - kRotationShare);
+        write.instanceRotationDeviation = options.maxError * kRotationShare;
+        write.maxPositionError = planOptions.maxError * analysis.diagonal;
+    }
     planOptions.costs = costModelFor(formatFromExtension(output), write);
     // The HTML report draws the plan's decisions: kept only when it is asked for.
     const bool keepPlans = !options.htmlReport.empty();
     CompressionPlan keptPlan;
     CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions, keepPlans ? &keptPlan : nullptr);
+    if (compressed.digest.maxError > 0) compressed.digest.maxError = options.maxError;  // the whole budget
     write.extrasJson = compressed.digest.json();
     const auto writeStart = std::chrono::steady_clock::now();
     if (options.progress) options.progress("writing", compressed.stats.trianglesStored, "triangles");
@@ -173,6 +191,8 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     report.cameras = compressed.scene.cameras.size();
     report.lights = compressed.scene.lights.size();
     report.bytesPerInstance = bytesPerInstance(compressed, planOptions.costs);
+    if (const FileFormat format = formatFromExtension(output); format == FileFormat::Glb || format == FileFormat::Gltf)
+        report.gpuInstancing = gltfGpuInstancing(compressed.scene, write);
     report.ratio = report.outputBytes ? double(report.inputBytes) / double(report.outputBytes) : 0;
     if (keepPlans) {
         if (options.progress) options.progress("writing the HTML report", 0, "");

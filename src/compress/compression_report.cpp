@@ -43,6 +43,8 @@ std::string CompressionReport::json() const {
                                 {"animated_nodes_kept", stats.animatedNodesKept},
                                 {"cameras_and_lights_kept", stats.camerasAndLightsKept},
                                 {"bytes_per_instance", bytesPerInstance},
+                                {"gpu_instancing",
+                                 {{"batches", gpuInstancing.batches}, {"instances", gpuInstancing.instances}}},
                                 {"optimizations",
                                  {{"unread_attributes_dropped", optimizations.unreadAttributesDropped},
                                   {"flat_normals_dropped", optimizations.flatNormalsDropped},

@@ -15,6 +15,7 @@ StorageCostModel costModelFor(FileFormat format, const WriteOptions& write) {
         model.seamGridBits = write.draco ? write.positionBits : 0;
         model.meshBytes = [write](const Primitive& part) { return double(gltfMeshBytes(part, write)); };
         model.nodeBytes = [](const Node& node) { return double(gltfNodeBytes(node)); };
+        model.nodesBytes = [write](const std::vector<Node>& nodes) { return gltfNodesBytes(nodes, write); };
     }
     return model;
 }

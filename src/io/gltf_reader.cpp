@@ -402,6 +402,25 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
     }
 }
 
+namespace {
+
+// The names symcompress keeps for a batch's instances (extras {"instanceNames": [...]}, one string per
+// instance), taken out of the batch node's extras; none where the extras hold no such list of `count` strings.
+std::vector<std::string> takeInstanceNames(Node& batch, std::size_t count) {
+    nlohmann::json extras = nlohmann::json::parse(batch.extrasJson, nullptr, false);
+    if (!extras.is_object() || !extras.contains("instanceNames")) return {};
+    const nlohmann::json& list = extras["instanceNames"];
+    if (!list.is_array() || list.size() != count ||
+        !std::all_of(list.begin(), list.end(), [](const nlohmann::json& name) { return name.is_string(); }))
+        return {};
+    std::vector<std::string> names = list.get<std::vector<std::string>>();
+    extras.erase("instanceNames");
+    batch.extrasJson = extras.empty() ? std::string() : extras.dump();
+    return names;
+}
+
+}  // namespace
+
 // EXT_mesh_gpu_instancing (gltfpack -mi, glTF-Transform instance): each instance of a node's mesh becomes
 // a child node of its own with the instance's translation, rotation and scale, which apply before the
 // node's transform, as the extension says. The new nodes come after the file's, whose indices stay.
@@ -431,6 +450,7 @@ void GltfReader::expandGpuInstances(Scene& scene) {
                        ? fallback
                        : list->second[i * (std::strcmp(name, "ROTATION") == 0 ? 4 : 3) + std::size_t(c)];
         };
+        const std::vector<std::string> names = takeInstanceNames(scene.nodes[n], count);
         for (std::size_t i = 0; i < count; ++i) {
             Eigen::Affine3d trs = Eigen::Affine3d::Identity();
             trs.translate(Eigen::Vector3d(component("TRANSLATION", i, 0, 0), component("TRANSLATION", i, 1, 0),
@@ -444,6 +464,7 @@ void GltfReader::expandGpuInstances(Scene& scene) {
             if (!trs.matrix().allFinite())
                 fail(where + ": instance " + std::to_string(i) + " has NaN or infinite values");
             Node instance;
+            if (!names.empty()) instance.name = names[i];
             instance.transform = trs.matrix();
             instance.mesh = scene.nodes[n].mesh;
             scene.nodes[n].children.push_back(int(scene.nodes.size()));

@@ -1,10 +1,12 @@
 // glTF 2.0 writer: .glb (one binary chunk) or .gltf (JSON plus a sibling .bin). Meshes shared by several
 // nodes stay shared (instancing, mirrors included: a negative-determinant node matrix is valid glTF and
-// renderers flip the winding for it). Geometry is compressed with KHR_draco_mesh_compression unless
-// WriteOptions::draco is false.
+// renderers flip the winding for it); where many plain leaves draw one mesh, they are one node with
+// EXT_mesh_gpu_instancing (gltf_gpu_instancing.cpp) unless WriteOptions::gpuInstancing is false. Geometry is
+// compressed with KHR_draco_mesh_compression unless WriteOptions::draco is false.
 #include "common/image_size.hpp"
 #include "common/number_text.hpp"
 #include "gltf_builder.hpp"
+#include "gltf_gpu_instancing.hpp"
 #include "image_reference.hpp"
 #include "rotation_and_scale.hpp"
 #include "symcompress/detail/atomic_file.hpp"
@@ -273,6 +275,33 @@ Json writeMaterial(const Material& material, TextureWriter& textures, Extensions
     return out;
 }
 
+// Where each scene node goes in the file once batches stand for their instances: the other nodes in the
+// scene's order, then a node per batch, then the nodes writeNode adds for shears.
+struct NodeNumbering {
+    std::vector<int> index;   // per scene node: its index in the file (a batched node: its batch's)
+    std::vector<int> batchOf;  // per scene node: its batch, -1
+    std::size_t written = 0;  // nodes before the shears' extra nodes
+
+    NodeNumbering(const Scene& scene, const GpuInstancingPlan& plan)
+        : index(scene.nodes.size()), batchOf(plan.batchOf) {
+        for (std::size_t n = 0; n < scene.nodes.size(); ++n)
+            if (batchOf[n] < 0) index[n] = int(written++);
+        for (std::size_t n = 0; n < scene.nodes.size(); ++n)
+            if (batchOf[n] >= 0) index[n] = int(written) + batchOf[n];
+        written += plan.batches.size();
+    }
+
+    // A list of scene nodes (children, roots) as the file lists them: a batch once, where its first node was.
+    std::vector<int> list(const std::vector<int>& nodes) const {
+        std::vector<int> out;
+        std::set<int> batches;
+        for (int n : nodes)
+            if (batchOf[std::size_t(n)] < 0 || batches.insert(batchOf[std::size_t(n)]).second)
+                out.push_back(index[std::size_t(n)]);
+        return out;
+    }
+};
+
 std::string glbFile(const Json& root, std::vector<unsigned char> binary) {
     std::string json = jsonText(root);
     while (json.size() % 4) json.push_back(' ');
@@ -417,15 +446,30 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         root["meshes"].push_back(mesh);
         meshIndex[m] = static_cast<int>(root["meshes"].size()) - 1;
     }
+    const GpuInstancingPlan gpu = planGpuInstancing(scene, meshIndex, options);
+    const NodeNumbering numbering(scene, gpu);
     std::vector<Json> extraNodes;
-    for (const Node& node : scene.nodes)
-        root["nodes"].push_back(writeNode(node, meshIndex, scene.nodes.size(), extraNodes));
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        if (gpu.batchOf[n] >= 0) continue;
+        Node node = scene.nodes[n];
+        node.children = numbering.list(node.children);
+        root["nodes"].push_back(writeNode(node, meshIndex, numbering.written, extraNodes));
+    }
+    writeGpuBatches(gpu, scene, meshIndex, builder, root);
+    if (!gpu.batches.empty()) extensions.add("EXT_mesh_gpu_instancing", true);
     for (Json& node : extraNodes) root["nodes"].push_back(std::move(node));
-    root["scenes"] = {{{"nodes", scene.roots}}};
+    root["scenes"] = {{{"nodes", numbering.list(scene.roots)}}};
     root["scene"] = 0;
-    for (const Animation& animation : scene.animations)
+    // Animations and skins name nodes that are never batched, renumbered as the nodes are.
+    for (Animation animation : scene.animations) {
+        for (AnimationChannel& channel : animation.channels) channel.node = numbering.index[std::size_t(channel.node)];
         root["animations"].push_back(writeAnimation(animation, builder));
-    for (const Skin& skin : scene.skins) root["skins"].push_back(writeSkin(skin, builder));
+    }
+    for (Skin skin : scene.skins) {
+        for (int& joint : skin.joints) joint = numbering.index[std::size_t(joint)];
+        if (skin.skeleton >= 0) skin.skeleton = numbering.index[std::size_t(skin.skeleton)];
+        root["skins"].push_back(writeSkin(skin, builder));
+    }
     for (const Camera& camera : scene.cameras) root["cameras"].push_back(writeCamera(camera));
     for (const Light& light : scene.lights)
         root["extensions"]["KHR_lights_punctual"]["lights"].push_back(writeLight(light));

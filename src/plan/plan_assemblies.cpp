@@ -36,13 +36,13 @@ std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<b
         const Eigen::Vector3d center = classification.shapes[assembly.copies[0][0]].moments.centroid;
         SharedPart shared;
         shared.mechanism = SharedPart::Mechanism::Assembly;
-        double apart = 0, nodes = 0;
+        double apart = 0;
         for (std::size_t j = 0; j < assembly.copies.size(); ++j) {
             for (std::size_t t : assembly.copies[j]) apart += context.costs.apart(t);
             shared.nodes.push_back(
                 {assembly.placements[j].matrix() * translationTo(center), context.sourceOf(assembly.copies[j][0])});
-            nodes += context.costs.node(shared.nodes.back().transform, shared.nodes.back().source);
         }
+        const double nodes = context.costs.nodes(shared.nodes);
         if (context.costs.meshOf(assembly.copies[0]) + nodes >= apart) continue;
         PrimitivesByKind parts;
         for (std::size_t t : assembly.copies[0]) {

@@ -88,11 +88,11 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
 
     // The nodes drawing the class's mesh: one per placed member and copy in its tile.
     auto nodesCost = [&](const std::vector<Eigen::Matrix4d>& copiesInTile) {
-        double bytes = 0;
+        std::vector<PlacedCopy> nodes;
         for (std::size_t i : placed)
             for (const Eigen::Matrix4d& copy : copiesInTile)
-                bytes += costs.node(placements[i].matrix() * copy, context.sourceOf(c.members[i]));
-        return bytes;
+                nodes.push_back({placements[i].matrix() * copy, context.sourceOf(c.members[i])});
+        return costs.nodes(nodes);
     };
     const Eigen::Vector3d center = shape.moments.centroid;
     const Eigen::Matrix4d atCenter = translationTo(center);

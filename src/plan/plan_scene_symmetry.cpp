@@ -65,8 +65,7 @@ std::optional<SharedPart> planSceneSymmetry(const PlanContext& context) {
         node.transform.topRightCorner<3, 1>() = center;
         shared.nodes.push_back(std::move(node));
     }
-    double nodes = 0;
-    for (const PlacedCopy& node : shared.nodes) nodes += context.costs.node(node.transform, node.source);
+    const double nodes = context.costs.nodes(shared.nodes);
     if (part.empty() || context.costs.meshOf(part, orbitTiles.size() < tiles.size()) + nodes >= apart)
         return std::nullopt;
     PrimitivesByKind parts;

@@ -33,6 +33,20 @@ double StorageCosts::node(const Eigen::Matrix4d& transform, const Node* source) 
     return node(drawing);
 }
 
+double StorageCosts::nodes(const std::vector<PlacedCopy>& copies) const {
+    std::vector<Node> drawing(copies.size());
+    for (std::size_t i = 0; i < copies.size(); ++i) {
+        drawing[i].transform = copies[i].transform;
+        if (!copies[i].source) continue;
+        drawing[i].name = copies[i].source->name;
+        drawing[i].extrasJson = copies[i].source->extrasJson;
+    }
+    if (model_.nodesBytes) return model_.nodesBytes(drawing);
+    double bytes = 0;
+    for (const Node& one : drawing) bytes += node(one);
+    return bytes;
+}
+
 double StorageCosts::alone(std::size_t t) {
     const std::size_t k = classOf_[t];
     if (k == kNone) return asMesh(tilePrimitive(analysis_.tiles[t], analysis_.soup));

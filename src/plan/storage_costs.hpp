@@ -24,6 +24,8 @@ public:
     // writer measures it.
     double node(const Eigen::Matrix4d& transform, const Node* source) const;
     double node(const Node& node) const;
+    // The nodes drawing one shared mesh, together: a batch of instances costs less than its nodes apart.
+    double nodes(const std::vector<PlacedCopy>& copies) const;
     // Tile t's triangles in a mesh with other parts.
     double merged(std::size_t t) { return double(analysis_.tiles[t].mesh.triangles.size()) * kindOf(t).perTriangle; }
     // Tile t as a mesh of its own (its class's prototype).

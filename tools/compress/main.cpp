@@ -272,6 +272,9 @@ void printReport(const CompressionReport& report) {
                     stats.camerasAndLightsKept, report.cameras, report.lights);
     for (const std::string& line : report.optimizations.lines()) std::printf("  optimized       %s\n", line.c_str());
     if (stats.instances) std::printf("  per instance    %.0f bytes\n", report.bytesPerInstance);
+    if (report.gpuInstancing.batches)
+        std::printf("  GPU instancing  %zu instances in %zu batches (EXT_mesh_gpu_instancing)\n",
+                    report.gpuInstancing.instances, report.gpuInstancing.batches);
     if (stats.attributeMismatches)
         std::printf(
             "  kept apart      %zu congruent tiles whose normals, texture coordinates or colours differ "
@@ -318,6 +321,9 @@ void addWriteOptions(CLI::App& command, WriteOptions& options) {
     command.add_flag(
         "--no-draco", [&options](std::int64_t) { options.draco = false; },
         "glTF: write plain accessors instead of KHR_draco_mesh_compression");
+    command.add_flag(
+        "--no-gpu-instancing", [&options](std::int64_t) { options.gpuInstancing = false; },
+        "glTF: a node per instance, never EXT_mesh_gpu_instancing (for viewers without the extension)");
     command.add_option("--position-bits", options.positionBits,
                        "Draco position quantization bits for every mesh (compress: in place of the bits the error "
                        "budget gives each mesh)")

@@ -73,6 +73,9 @@ struct StorageCostModel {
     // What a node drawing a shared mesh costs (its transform and name): a rigid placement costs less than
     // a mirrored or scaled one. Else bytesPerInstance.
     std::function<double(const Node&)> nodeBytes;
+    // What nodes drawing one shared mesh cost together (glTF: batched through EXT_mesh_gpu_instancing where the
+    // writer would batch them, a few bytes an instance). Else nodeBytes each.
+    std::function<double(const std::vector<Node>&)> nodesBytes;
     // Draco's position bits when the output is quantized, else 0. A fundamental region whose instances are
     // signed permutations in its frame is then stored on a power-of-two grid through its centre
     // (seamPreservingGrid), in units of the grid's step, so that its seams stay closed.

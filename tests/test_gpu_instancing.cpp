@@ -1,0 +1,301 @@
+// EXT_mesh_gpu_instancing in the glTF writer: plain leaves drawing one mesh written as one node where that is
+// smaller, mirrored instances in a batch of their own under a mirroring node, a shear left a node; the reader
+// expands the batches back into nodes with their names. Checked by the Khronos validator and, where the
+// render check is installed, drawn by three.js as the same scene written a node per instance.
+#include "symcompress/compress.hpp"
+#include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
+#include "symcompress/verify.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <map>
+
+using namespace symcompress;
+using namespace symcompress::testing;
+
+namespace {
+
+// A closed tetrahedron with no symmetry, wound outwards: drawn inside out, its lit faces would be the far ones.
+Primitive tetrahedron() {
+    Primitive p;
+    p.positions = {{0, 0, 0}, {0.1, 0, 0}, {0, 0.2, 0}, {0, 0, 0.3}};
+    p.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    return p;
+}
+
+// A bumpy sphere with no symmetry, 352 triangles: a part worth a node per copy.
+Primitive blob() {
+    constexpr int rings = 12, sectors = 16;
+    constexpr double pi = 3.14159265358979323846;
+    Primitive p;
+    p.positions.push_back({0, 0, 0.2});
+    for (int i = 1; i < rings; ++i)
+        for (int j = 0; j < sectors; ++j) {
+            const double theta = pi * i / rings, phi = 2 * pi * j / sectors;
+            const double r = 0.2 * (1 + 0.15 * std::sin(2 * theta + 0.3) * std::cos(phi - 0.7) +
+                                    0.1 * std::cos(3 * phi + 0.2) * std::sin(theta));
+            p.positions.push_back(
+                r * Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+        }
+    p.positions.push_back({0, 0, -0.2});
+    auto at = [](int i, int j) { return std::uint32_t(1 + (i - 1) * sectors + (j % sectors)); };
+    const auto south = std::uint32_t(p.positions.size() - 1);
+    for (int j = 0; j < sectors; ++j) {
+        p.triangles.push_back({0, at(1, j), at(1, j + 1)});
+        for (int i = 1; i + 1 < rings; ++i) {
+            p.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            p.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+        p.triangles.push_back({at(rings - 1, j), south, at(rings - 1, j + 1)});
+    }
+    return p;
+}
+
+Eigen::Matrix4d placed(double angle, const Eigen::Vector3d& axis, const Eigen::Vector3d& at, double mirror = 1) {
+    Eigen::Affine3d t = Eigen::Affine3d::Identity();
+    t.translate(at);
+    t.rotate(Eigen::AngleAxisd(angle, axis.normalized()));
+    t.scale(Eigen::Vector3d(mirror, 1, 1));
+    return t.matrix();
+}
+
+// `rigid` turned copies, `mirrored` mirrored ones and one sheared copy of the tetrahedron, each a named root.
+Scene copiesScene(int rigid, int mirrored, bool sheared, const Primitive& part = tetrahedron()) {
+    Scene scene;
+    scene.meshes.push_back({"part", {part}, "", {}});
+    auto add = [&](const std::string& name, const Eigen::Matrix4d& transform) {
+        Node node;
+        node.name = name;
+        node.mesh = 0;
+        node.transform = transform;
+        scene.roots.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(node);
+    };
+    for (int i = 0; i < rigid; ++i)
+        add("rigid " + std::to_string(i), placed(0.7 * i, {1, 2, 3.0 + i}, {0.5 * (i % 5), 0.5 * (i / 5), 0}));
+    for (int i = 0; i < mirrored; ++i)
+        add("mirrored " + std::to_string(i), placed(0.9 * i, {3, 1, 2}, {0.5 * i, -1, 0.2}, -1));
+    if (sheared) {
+        Eigen::Matrix4d shear = Eigen::Matrix4d::Identity();
+        shear(0, 1) = 0.5;
+        shear.topRightCorner<3, 1>() = Eigen::Vector3d(-1, 0, 0);
+        add("sheared", shear);
+    }
+    return scene;
+}
+
+// The world transform of every node drawing a mesh, by its name or, where it has none (the child a shear is
+// split into), its parent's.
+std::map<std::string, Eigen::Matrix4d> worldByName(const Scene& scene) {
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(scene);
+    std::vector<int> parent(scene.nodes.size(), -1);
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n)
+        for (int child : scene.nodes[n].children) parent[std::size_t(child)] = int(n);
+    std::map<std::string, Eigen::Matrix4d> out;
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n)
+        if (scene.nodes[n].mesh >= 0)
+            out[scene.nodes[n].name.empty() && parent[n] >= 0 ? scene.nodes[std::size_t(parent[n])].name
+                                                              : scene.nodes[n].name] = world[n];
+    return out;
+}
+
+std::vector<const nlohmann::json*> batchNodes(const nlohmann::json& root) {
+    std::vector<const nlohmann::json*> batches;
+    for (const auto& node : root["nodes"])
+        if (node.contains("extensions") && node["extensions"].contains("EXT_mesh_gpu_instancing"))
+            batches.push_back(&node);
+    return batches;
+}
+
+std::size_t instanceCount(const nlohmann::json& root, const nlohmann::json& batch) {
+    const auto& attributes = batch["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    return root["accessors"][attributes.begin().value().get<std::size_t>()]["count"];
+}
+
+bool renderAvailable() {
+    return interopAvailable() && std::filesystem::exists(sharedDir() / "bench/render/node_modules") &&
+           runCommand("command -v chromium").status == 0;
+}
+
+}  // namespace
+
+TEST_CASE("Rigid and mirrored copies are GPU-instanced, a sheared one stays a node, and all read back", "[io][gpu]") {
+    TemporaryFolder folder;
+    const Scene scene = copiesScene(12, 4, true);
+    const auto file = folder / "copies.glb";
+    writeScene(scene, file);
+    const nlohmann::json root = glbJson(file);
+
+    // Two batches (mirrored apart, under a node that mirrors) and the sheared node as TRS nodes of its own.
+    const auto batches = batchNodes(root);
+    REQUIRE(batches.size() == 2);
+    std::size_t mirroredBatches = 0, instances = 0;
+    for (const nlohmann::json* batch : batches) {
+        const bool mirrors = batch->contains("scale") && (*batch)["scale"] == nlohmann::json({-1, 1, 1});
+        mirroredBatches += mirrors;
+        CHECK(instanceCount(root, *batch) == (mirrors ? 4u : 12u));
+        instances += instanceCount(root, *batch);
+        const auto& attributes = (*batch)["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+        CHECK(root["accessors"][attributes["ROTATION"].get<std::size_t>()]["componentType"] == 5122);  // SHORT
+        CHECK_FALSE(attributes.contains("SCALE"));  // rigid: every scale 1
+        CHECK((*batch)["extras"]["instanceNames"].size() == instanceCount(root, *batch));
+    }
+    CHECK(mirroredBatches == 1);
+    CHECK(instances == 16);
+    CHECK(root["extensionsRequired"] == nlohmann::json({"EXT_mesh_gpu_instancing", "KHR_draco_mesh_compression"}));
+    CHECK(root["nodes"].size() == 2 + 2);  // the batches, and the shear's two TRS nodes
+    CHECK(root["scenes"][0]["nodes"].size() == 3);
+
+    // Read back: every copy a node again, with its name, at its world transform within the SHORT rotations.
+    const Scene back = readScene(file);
+    CHECK(back.warnings.empty());
+    const auto expected = worldByName(scene), got = worldByName(back);
+    REQUIRE(got.size() == expected.size());
+    for (const auto& [name, world] : expected) {
+        INFO(name);
+        REQUIRE(got.count(name));
+        CHECK((got.at(name) - world).cwiseAbs().maxCoeff() < 1e-4);
+    }
+    // The batch nodes keep no extras of their own once their names are given back.
+    for (const Node& node : back.nodes) CHECK(node.extrasJson.empty());
+
+    if (interopAvailable()) CHECK(validatorErrors(file).empty());
+
+    // Without Draco the file is float throughout: the rotations too.
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(scene, folder / "plain.glb", plain);
+    const nlohmann::json plainRoot = glbJson(folder / "plain.glb");
+    for (const nlohmann::json* batch : batchNodes(plainRoot)) {
+        const auto& attributes = (*batch)["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+        CHECK(plainRoot["accessors"][attributes["ROTATION"].get<std::size_t>()]["componentType"] == 5126);
+    }
+}
+
+TEST_CASE("Scaled instances carry a SCALE accessor, and unnamed ones no names", "[io][gpu]") {
+    TemporaryFolder folder;
+    Scene scene = copiesScene(20, 0, false);
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        scene.nodes[n].name.clear();
+        scene.nodes[n].transform.topLeftCorner<3, 3>() *= 1.0 + 0.25 * double(n);
+    }
+    const auto file = folder / "scaled.glb";
+    writeScene(scene, file);
+    const nlohmann::json root = glbJson(file);
+    const auto batches = batchNodes(root);
+    REQUIRE(batches.size() == 1);
+    CHECK((*batches[0])["extensions"]["EXT_mesh_gpu_instancing"]["attributes"].contains("SCALE"));
+    CHECK_FALSE(batches[0]->contains("extras"));
+    const Scene back = readScene(file);
+    std::vector<Eigen::Matrix4d> expected, got;
+    const auto world = worldTransforms(back);
+    for (std::size_t n = 0; n < back.nodes.size(); ++n)
+        if (back.nodes[n].mesh >= 0) got.push_back(world[n]);
+    REQUIRE(got.size() == scene.nodes.size());
+    for (std::size_t i = 0; i < got.size(); ++i)  // the reader appends the instances in the batch's order
+        CHECK((got[i] - scene.nodes[i].transform).cwiseAbs().maxCoeff() < 3e-4);
+    if (interopAvailable()) CHECK(validatorErrors(file).empty());
+}
+
+TEST_CASE("GPU instancing leaves alone what must stay a node", "[io][gpu]") {
+    TemporaryFolder folder;
+    const auto file = folder / "out.glb";
+    auto batchesOf = [&](const Scene& scene, const WriteOptions& options = {}) {
+        writeScene(scene, file, options);
+        return batchNodes(glbJson(file)).size();
+    };
+    SECTION("a single instance, and two, whose batch would cost more than their nodes") {
+        CHECK(batchesOf(copiesScene(1, 0, false)) == 0);
+        CHECK(batchesOf(copiesScene(2, 0, false)) == 0);
+    }
+    SECTION("--no-gpu-instancing") {
+        WriteOptions options;
+        options.gpuInstancing = false;
+        CHECK(batchesOf(copiesScene(12, 4, false), options) == 0);
+        CHECK(glbJson(file)["nodes"].size() == 16);
+        CHECK(glbJson(file)["extensionsRequired"] == nlohmann::json({"KHR_draco_mesh_compression"}));
+    }
+    SECTION("a node with children, one with extras and an animated one stay nodes, the others are batched") {
+        Scene scene = copiesScene(12, 0, false);
+        Node child;
+        child.name = "child";
+        child.transform = placed(0, {0, 0, 1}, {0, 0, 1});
+        scene.nodes[0].children.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(child);
+        scene.nodes[1].extrasJson = R"({"part":"A-1"})";
+        Animation animation;
+        AnimationChannel channel;
+        channel.node = 2;
+        channel.times = {0, 1};
+        channel.values = {0, 0, 0, 1, 0, 0};
+        animation.channels.push_back(channel);
+        scene.animations.push_back(animation);
+        validateScene(scene);
+        REQUIRE(batchesOf(scene) == 1);
+        const nlohmann::json root = glbJson(file);
+        CHECK(instanceCount(root, *batchNodes(root)[0]) == 9);
+        CHECK(root["nodes"].size() == 3 + 1 + 1);                            // the three kept, the child, the batch
+        CHECK(root["animations"][0]["channels"][0]["target"]["node"] == 2);  // renumbered: the third node kept
+        CHECK(root["nodes"][2]["name"] == "rigid 2");
+        const Scene back = readScene(file);
+        const auto expected = worldByName(scene), got = worldByName(back);
+        CHECK(got.size() == expected.size());
+        for (const Node& node : back.nodes)
+            if (node.name == "rigid 1") CHECK(node.extrasJson == R"({"part":"A-1"})");
+        if (interopAvailable()) CHECK(validatorErrors(file).empty());
+    }
+}
+
+TEST_CASE("gltfNodesBytes: a batch of rigid instances costs a few bytes each, as written", "[io][gpu]") {
+    const Scene scene = copiesScene(40, 0, false);
+    WriteOptions options;
+    const double batched = gltfNodesBytes(scene.nodes, options);
+    options.gpuInstancing = false;
+    const double apart = gltfNodesBytes(scene.nodes, options);
+    CHECK(batched < apart / 2);
+    CHECK(batched / 40 < 45);  // 20 bytes of data, the name's and a share of the accessors' JSON
+    // The measure against the file: the batched file is smaller than the other by about their difference.
+    TemporaryFolder folder;
+    writeScene(scene, folder / "batched.glb");
+    writeScene(scene, folder / "apart.glb", options);
+    const double saved = double(std::filesystem::file_size(folder / "apart.glb")) -
+                         double(std::filesystem::file_size(folder / "batched.glb"));
+    CHECK(saved == Approx(apart - batched).margin(300));
+}
+
+TEST_CASE("Compressed copies come out GPU-instanced, smaller, verified, and counted in the report",
+          "[io][gpu][compress]") {
+    TemporaryFolder folder;
+    const auto input = folder / "copies.glb";
+    WriteOptions asNodes;
+    asNodes.gpuInstancing = false;
+    writeScene(copiesScene(30, 6, false, blob()), input, asNodes);
+    CompressOptions options;
+    const CompressionReport batched = compressFile(input, folder / "batched.glb", options);
+    options.write.gpuInstancing = false;
+    const CompressionReport apart = compressFile(input, folder / "apart.glb", options);
+    CHECK(batched.gpuInstancing.batches == 2);
+    CHECK(batched.gpuInstancing.instances == 36);
+    CHECK(apart.gpuInstancing.batches == 0);
+    CHECK(batched.outputBytes < apart.outputBytes);
+    CHECK(batched.bytesPerInstance < apart.bytesPerInstance / 2);
+    CHECK(nlohmann::json::parse(batched.json())["gpu_instancing"]["instances"] == 36);
+    CHECK(decompressFile(folder / "batched.glb", folder / "flat.glb", input).verified);
+    if (interopAvailable()) CHECK(validatorErrors(folder / "batched.glb").empty());
+    if (renderAvailable()) {
+        // Mirrored instances drawn the right way out: as the same scene written a node per instance.
+        for (const char* mode : {"lit", "normals"}) {
+            const CommandResult result = runCommand(
+                "PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") + " --mode " + mode +
+                " " + quoted(folder / "apart.glb") + " " + quoted(folder / "batched.glb"));
+            INFO(mode << ": " << result.output);
+            CHECK(result.status == 0);
+        }
+    }
+}
