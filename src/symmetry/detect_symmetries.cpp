@@ -372,17 +372,23 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     const std::size_t limit = 4 * std::size_t(options.maxFold) + 8;
     std::atomic<bool> overflow{false};  // the accepted maps make no finite group: stop looking
     // Near misses tend to fail at the same sample points: each axis's work remembers them (`hints`).
-    auto tryAccept = [&](const Eigen::Matrix3d& map, RejectingPoints* hints) {
+    // `refinementsLeft`, where given, counts down the refinements that may still fail about one axis: once
+    // none is left, maps pass only as they are. A shape within the tolerance of a surface of revolution takes
+    // a fold of hundreds, and with it hundreds of directions across the axis, each passing the screening and
+    // failing only once refined (an unevenly tessellated roller: 1600 refinements, 15 s).
+    auto tryAccept = [&](const Eigen::Matrix3d& map, RejectingPoints* hints, int* refinementsLeft = nullptr) {
         if (overflow) return false;
         if (isKnown(map)) return true;
         if (verifier.deviation(map, preliminary, kScreeningPoints, hints) > preliminary) return false;
-        Eigen::Matrix3d best = refined(map);
+        const bool refine = !refinementsLeft || *refinementsLeft > 0;
+        Eigen::Matrix3d best = refine ? refined(map) : map;
         double deviation = verifier.deviation(best, tolerance, SIZE_MAX, hints);
-        if (deviation > tolerance) {
+        if (deviation > tolerance && refine) {
             deviation = verifier.deviation(map, tolerance, SIZE_MAX, hints);
-            if (deviation > tolerance) return false;
+            if (deviation > tolerance && refinementsLeft) --*refinementsLeft;
             best = map;
         }
+        if (deviation > tolerance) return false;
         std::lock_guard<std::mutex> lock(generatorsMutex);
         generators.push_back(best);
         generatorDeviations.push_back(deviation);
@@ -426,8 +432,12 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 // the remaining folds are measured at the tolerance alone (a fold within it is within the
                 // preliminary bound), not measured in full at the preliminary bound first.
                 bool strict = nearlyRound;
+                // Screened on the spread-out first sample points, then measured on all: most folds of a nearly
+                // round shape fail, and a few points tell.
                 auto fitsWithin = [&](int n, double bound) {
-                    const double d = verifier.deviation(rotationAbout(axis, 2 * kPi / n), bound, SIZE_MAX, &hints);
+                    const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi / n);
+                    double d = verifier.deviation(rotation, bound, kScreeningPoints, &hints);
+                    if (d <= bound) d = verifier.deviation(rotation, bound, SIZE_MAX, &hints);
                     fit[n] = d;
                     return d <= bound;
                 };
@@ -453,29 +463,40 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 folds = plausible;
             }
             int fold = 1;
+            // An n-fold rotation's powers are symmetries too: about an axis the moments cannot tell, the power
+            // nearest a half turn must fit as well. A shape near a surface of revolution fits small turns
+            // (a degree moves its points less than the tolerance) and not large ones: no fold, not C360.
+            auto powersFit = [&](int n) {
+                return modes != 0 || n / 2 <= 1 ||
+                       verifier.deviation(rotationAbout(axis, 2 * kPi * (n / 2) / n), tolerance, SIZE_MAX, &hints) <=
+                           tolerance;
+            };
             for (int n : folds) {
                 const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi / n);
-                if ((modes == 0 || view.allows(rotation)) && tryAccept(rotation, &hints)) {
+                if ((modes == 0 || view.allows(rotation)) && powersFit(n) && tryAccept(rotation, &hints)) {
                     fold = n;
                     break;
                 }
             }
             const Eigen::Matrix3d mirror = mirrorWithNormal(axis);
-            if (view.allows(mirror)) tryAccept(mirror, &hints);
+            int refinementsLeft = int(kMaxRefinedFolds);  // of the maps below that may fail
+            if (view.allows(mirror)) tryAccept(mirror, &hints, &refinementsLeft);
             // A rotoreflection by pi / k squares to the rotation by 2 pi / k: k divides the fold.
             for (int k : divisorsDescending(fold)) {
                 const Eigen::Matrix3d rotoreflection = rotationAbout(axis, kPi / k) * mirror;
-                if (view.allows(rotoreflection) && tryAccept(rotoreflection, &hints)) break;
+                if (view.allows(rotoreflection) && tryAccept(rotoreflection, &hints, &refinementsLeft)) break;
             }
             // Moments invariant about the axis cannot point at the 2-fold axes and mirror normals across
             // it (all directions across are alike to them): try the directions through the farthest
             // point from the axis, and between them, at steps of pi / (2 fold).
             if (modes == 0 && fold > 1) {
                 const Eigen::Vector3d across = verifier.farthestFromAxis(axis);
-                for (int k = 0; k < 2 * fold; ++k) {
+                // Once the refinements are spent on near misses, the directions left (hundreds for a fold of
+                // hundreds) would only be near misses too.
+                for (int k = 0; k < 2 * fold && refinementsLeft > 0; ++k) {
                     const Eigen::Vector3d d = rotationAbout(axis, k * kPi / (2 * fold)) * across;
-                    tryAccept(rotationAbout(d, kPi), &hints);
-                    tryAccept(mirrorWithNormal(d), &hints);
+                    tryAccept(rotationAbout(d, kPi), &hints, &refinementsLeft);
+                    tryAccept(mirrorWithNormal(d), &hints, &refinementsLeft);
                 }
             }
         };
