@@ -176,48 +176,6 @@ TriangleMesh roller() {
     return mesh;
 }
 
-// An ellipsoid of revolution (twice as tall as wide) on 24 rings of 68 azimuths, every vertex slid along the
-// surface by up to a fifth of its spacing and each quad split along a random diagonal, randomly turned,
-// float32: a shape within a loose tolerance of a surface of revolution whose tessellation has no symmetry
-// (a roller a modeller tessellated unevenly).
-TriangleMesh unevenEllipsoid() {
-    constexpr int kRings = 24, kAzimuths = 68;
-    std::mt19937_64 random(64);
-    std::uniform_real_distribution<double> slide(-0.2, 0.2);
-    std::bernoulli_distribution diagonal(0.5);
-    TriangleMesh mesh;
-    auto add = [&](double polar, double azimuth) {
-        mesh.positions.emplace_back(0.5 * std::sin(polar) * std::cos(azimuth), 0.5 * std::sin(polar) * std::sin(azimuth),
-                                    std::cos(polar));
-        return std::uint32_t(mesh.positions.size() - 1);
-    };
-    const std::uint32_t north = add(0, 0);
-    std::vector<std::vector<std::uint32_t>> rings(kRings - 1);
-    for (int r = 1; r < kRings; ++r)
-        for (int s = 0; s < kAzimuths; ++s)
-            rings[std::size_t(r - 1)].push_back(
-                add(kPi * (r + slide(random)) / kRings, 2 * kPi * (s + slide(random)) / kAzimuths));
-    const std::uint32_t south = add(kPi, 0);
-    for (int s = 0; s < kAzimuths; ++s) {
-        const std::size_t t = std::size_t((s + 1) % kAzimuths), u = std::size_t(s);
-        mesh.triangles.push_back({north, rings.front()[u], rings.front()[t]});
-        mesh.triangles.push_back({south, rings.back()[t], rings.back()[u]});
-        for (std::size_t r = 0; r + 1 < rings.size(); ++r) {
-            const std::uint32_t a = rings[r][u], b = rings[r + 1][u], c = rings[r + 1][t], d = rings[r][t];
-            if (diagonal(random))
-                mesh.triangles.insert(mesh.triangles.end(), {{a, b, c}, {a, c, d}});
-            else
-                mesh.triangles.insert(mesh.triangles.end(), {{a, b, d}, {b, c, d}});
-        }
-    }
-    std::normal_distribution<double> normal;
-    const Eigen::Matrix3d turn = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
-                                     .normalized()
-                                     .toRotationMatrix();
-    for (Eigen::Vector3d& p : mesh.positions) p = (turn * p).cast<float>().cast<double>();
-    return mesh;
-}
-
 void printGroupRow(const char* name, const TriangleMesh& mesh, double tolerance, const SymmetryGroup& group,
                    double seconds) {
     std::printf("| %s | %zu | %g | %s (%d) | %.4f | %.4f | %.4f | %.4f |\n", name, mesh.triangles.size(), tolerance,
@@ -274,7 +232,7 @@ int main(int argc, char** argv) {
             for (double tolerance : {1e-5, 3e-5, 1e-4}) detectRow("roller", mesh, tolerance);
             return 0;
         }
-        if (which == "uneven") return detectRow("uneven", unevenEllipsoid(), argc > 2 ? std::stod(argv[2]) : 2.5e-4);
+        if (which == "uneven") return detectRow("uneven", samples::unevenEllipsoid(68, 64), argc > 2 ? std::stod(argv[2]) : 2.5e-4);
         return detectRow("mirror", mirrorShape(argc > 2 ? std::stoul(argv[2]) : 232000), 1e-5);
     }
     std::fprintf(stderr,

@@ -1,9 +1,11 @@
 // Building blocks of the sample generators: meshes appended into one primitive, boxes and lathes.
 #include "sample_scenes.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include <cmath>
+#include <random>
 
 namespace symcompress::samples {
 
@@ -51,6 +53,44 @@ TriangleMesh latheMesh(const std::vector<Eigen::Vector2d>& profile, int segments
         }
     }
     return lathe;
+}
+
+TriangleMesh unevenEllipsoid(int azimuths, std::uint64_t seed) {
+    constexpr int kRings = 24;
+    std::mt19937_64 random(seed);
+    std::uniform_real_distribution<double> slide(-0.2, 0.2);
+    std::bernoulli_distribution diagonal(0.5);
+    TriangleMesh mesh;
+    auto add = [&](double polar, double azimuth) {
+        mesh.positions.emplace_back(0.5 * std::sin(polar) * std::cos(azimuth), 0.5 * std::sin(polar) * std::sin(azimuth),
+                                    std::cos(polar));
+        return std::uint32_t(mesh.positions.size() - 1);
+    };
+    const std::uint32_t north = add(0, 0);
+    std::vector<std::vector<std::uint32_t>> rings(kRings - 1);
+    for (int r = 1; r < kRings; ++r)
+        for (int s = 0; s < azimuths; ++s)
+            rings[std::size_t(r - 1)].push_back(
+                add(M_PI * (r + slide(random)) / kRings, 2 * M_PI * (s + slide(random)) / azimuths));
+    const std::uint32_t south = add(M_PI, 0);
+    for (std::size_t s = 0; s < std::size_t(azimuths); ++s) {
+        const std::size_t t = (s + 1) % std::size_t(azimuths);
+        mesh.triangles.push_back({north, rings.front()[s], rings.front()[t]});
+        mesh.triangles.push_back({south, rings.back()[t], rings.back()[s]});
+        for (std::size_t r = 0; r + 1 < rings.size(); ++r) {
+            const std::uint32_t a = rings[r][s], b = rings[r + 1][s], c = rings[r + 1][t], d = rings[r][t];
+            if (diagonal(random))
+                mesh.triangles.insert(mesh.triangles.end(), {{a, b, c}, {a, c, d}});
+            else
+                mesh.triangles.insert(mesh.triangles.end(), {{a, b, d}, {b, c, d}});
+        }
+    }
+    std::normal_distribution<double> normal;
+    const Eigen::Matrix3d turn = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
+                                     .normalized()
+                                     .toRotationMatrix();
+    for (Eigen::Vector3d& p : mesh.positions) p = (turn * p).cast<float>().cast<double>();
+    return mesh;
 }
 
 TriangleMesh transformed(TriangleMesh mesh, const Eigen::Matrix3d& linear, const Eigen::Vector3d& translation) {

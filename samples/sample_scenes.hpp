@@ -16,6 +16,11 @@ TriangleMesh boxMesh(const Eigen::Vector3d& centre, const Eigen::Vector3d& size)
 // A closed surface of revolution about the z axis through `base`: profile points (radius, z), the first
 // and last on the axis; `segments` equal sectors, so group C_nv with n = segments.
 TriangleMesh latheMesh(const std::vector<Eigen::Vector2d>& profile, int segments, const Eigen::Vector3d& base);
+// An ellipsoid of revolution (radius 0.5, height 2) on 24 rings of `azimuths`, every vertex slid along the
+// surface by up to a fifth of its spacing and each quad split along a random diagonal, randomly turned and
+// rounded to float32: within a loose tolerance of round, with no symmetry of its tessellation (a roller a
+// modeller tessellated on its own).
+TriangleMesh unevenEllipsoid(int azimuths, std::uint64_t seed);
 // x -> linear x + translation; a mirroring map also reverses the triangles, keeping them outward.
 TriangleMesh transformed(TriangleMesh mesh, const Eigen::Matrix3d& linear, const Eigen::Vector3d& translation);
 

@@ -1,5 +1,6 @@
 // The single-shape detector against solids whose groups are known, in random orientations, tessellated so
 // that the mesh itself is not symmetric, with float32 coordinates; the shared models; bad input.
+#include "sample_scenes.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "symcompress/detail/solids.hpp"
@@ -190,43 +191,11 @@ TEST_CASE("Orders larger than the moment degree are found on the shape (a 24-fol
     CHECK(group.order() == 96);
 }
 
-// An ellipsoid of revolution on 24 rings of 68 azimuths, every vertex slid along the surface by up to a fifth of
-// its spacing, randomly turned: within a loose tolerance of round, with no symmetry of its tessellation.
-TriangleMesh unevenEllipsoid(std::mt19937_64& random) {
-    constexpr int kRings = 24, kAzimuths = 68;
-    std::uniform_real_distribution<double> slide(-0.2, 0.2);
-    TriangleMesh mesh;
-    auto add = [&](double polar, double azimuth) {
-        mesh.positions.emplace_back(0.5 * std::sin(polar) * std::cos(azimuth), 0.5 * std::sin(polar) * std::sin(azimuth),
-                                    std::cos(polar));
-        return std::uint32_t(mesh.positions.size() - 1);
-    };
-    const std::uint32_t north = add(0, 0);
-    std::vector<std::vector<std::uint32_t>> rings(kRings - 1);
-    for (int r = 1; r < kRings; ++r)
-        for (int s = 0; s < kAzimuths; ++s)
-            rings[std::size_t(r - 1)].push_back(add(M_PI * (r + slide(random)) / kRings, 2 * M_PI * (s + slide(random)) / kAzimuths));
-    const std::uint32_t south = add(M_PI, 0);
-    for (std::size_t s = 0; s < kAzimuths; ++s) {
-        const std::size_t t = (s + 1) % kAzimuths;
-        mesh.triangles.push_back({north, rings.front()[s], rings.front()[t]});
-        mesh.triangles.push_back({south, rings.back()[t], rings.back()[s]});
-        for (std::size_t r = 0; r + 1 < rings.size(); ++r) {
-            mesh.triangles.push_back({rings[r][s], rings[r + 1][s], rings[r + 1][t]});
-            mesh.triangles.push_back({rings[r][s], rings[r + 1][t], rings[r][t]});
-        }
-    }
-    const Eigen::Matrix3d q = randomRotation(random);
-    for (auto& p : mesh.positions) p = (q * p).cast<float>().cast<double>();
-    return mesh;
-}
-
 TEST_CASE("A shape near a surface of revolution is given only elements that fit it, not a fold of hundreds",
           "[symmetry]") {
     // Small turns move its points less than the tolerance, large ones do not: a fold n is a symmetry only if
     // its powers are (once it was C360, and 1440 directions across its axis were refined, 48 s).
-    std::mt19937_64 random(68);
-    const TriangleMesh mesh = unevenEllipsoid(random);
+    const TriangleMesh mesh = samples::unevenEllipsoid(68, 64);
     SymmetryOptions options;
     options.tolerance = 8e-4;
     const SymmetryGroup group = detectSymmetries(mesh, options);
