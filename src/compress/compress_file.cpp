@@ -118,7 +118,6 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
 
     const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
     WriteOptions write = options.write;
-    // Meshes the plan does not bound (the cost model's measures) are quantized within the whole budget.
     PlanOptions planOptions = planOptionsOf(options);
     if (!options.fixedPositionBits) {
         // Of the budget, a share for the rounding of GPU-instanced rotations; the rest for the placements and
@@ -132,7 +131,8 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     const bool keepPlans = !options.htmlReport.empty();
     CompressionPlan keptPlan;
     CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions, keepPlans ? &keptPlan : nullptr);
-    if (compressed.digest.maxError > 0) compressed.digest.maxError = options.maxError;  // the whole budget
+    // The decoder verifies against the whole budget (without tiles, there is no diagonal to scale it by).
+    if (!options.fixedPositionBits && analysis.diagonal > 0) compressed.digest.maxError = options.maxError;
     write.extrasJson = compressed.digest.json();
     const auto writeStart = std::chrono::steady_clock::now();
     if (options.progress) options.progress("writing", compressed.stats.trianglesStored, "triangles");

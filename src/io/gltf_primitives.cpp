@@ -1,5 +1,6 @@
 // glTF primitives: Draco-compressed (KHR_draco_mesh_compression; the triangles edgebreaker would drop in a
 // sequential primitive of their own) or plain accessors.
+#include "draco_grid.hpp"
 #include "gltf_builder.hpp"
 
 #include "geometry/bounds.hpp"
@@ -111,25 +112,12 @@ struct DracoAttributeIds {
 // cost a whole mesh its edgebreaker compression (vertex arrays are shared; Draco takes only the corners
 // its triangles use).
 std::pair<Primitive, Primitive> splitCollapsingTriangles(const Primitive& primitive, int bits) {
-    QuantizationGrid grid;
-    if (primitive.positionGrid) {
-        grid = *primitive.positionGrid;
-    } else {
-        const Eigen::AlignedBox3d box = boundsOfCorners(primitive.positions, primitive.triangles);
-        grid = {box.min(), box.sizes().maxCoeff(), bits};
-    }
-    const double scale = grid.range > 0 ? double((1u << grid.bits) - 1) / grid.range : 0;
+    const DracoGrid grid(primitive, bits);
     std::pair<Primitive, Primitive> parts{primitive, primitive};
     parts.first.triangles.clear();
     parts.second.triangles.clear();
-    for (const Triangle& t : primitive.triangles) {
-        auto onGrid = [&](std::uint32_t v) -> Eigen::Array3d {
-            return (((primitive.positions[v] - grid.origin) * scale).array() + 0.5).floor();
-        };
-        const Eigen::Array3d qa = onGrid(t[0]), qb = onGrid(t[1]), qc = onGrid(t[2]);
-        const bool collapses = (qa == qb).all() || (qb == qc).all() || (qa == qc).all();
-        (collapses ? parts.second : parts.first).triangles.push_back(t);
-    }
+    for (const Triangle& t : primitive.triangles)
+        (grid.collapses(primitive, t) ? parts.second : parts.first).triangles.push_back(t);
     return parts;
 }
 

@@ -136,7 +136,6 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     CompressedScene result;
     CompressionStats& stats = result.stats;
     result.digest = analysis.digest;
-    if (analysis.diagonal > 0) result.digest.maxError = plan.maxError;
     stats.trianglesIn = analysis.digest.triangles;
     stats.tiles = analysis.tiles.size();
     stats.secondsTiles = analysis.secondsTiles;

@@ -1,6 +1,7 @@
 // The member check: whether a stored part, placed by an isometry, may stand for a tile. The classes are
 // congruent as surfaces; a node may draw a member where the prototype reproduces it vertex for vertex,
-// attributes included, facing the same way, or, tessellated otherwise, as a surface with the same attributes (docs/compression-plan.md, "The member check").
+// attributes included, facing the same way, or, tessellated otherwise, as a surface with the same attributes
+// (docs/compression-plan.md, "The member check").
 #pragma once
 
 #include "geometry/triangle_bvh.hpp"

@@ -44,7 +44,6 @@ std::optional<FundamentalRegion> storableRegion(const RegionCandidate& candidate
     std::optional<FundamentalRegion> region = regionOf(candidate.tile, group, candidate.center, candidate.tolerance);
     if (region && candidate.seamGridBits > 0 && region->signedPermutationFrame) {
         const double left = candidate.seamGridError - region->deviation;  // for the grid, of the budget
-
         if (candidate.seamGridError > 0 && !(left > 0)) return std::nullopt;
         RegionInGridSteps onGrid =
             inGridSteps(*region, candidate.seamGridError > 0 ? seamPreservingGridWithin(*region, left)

@@ -1,0 +1,36 @@
+// Draco's quantization grid of a primitive's positions (draco_grid.hpp).
+#include "draco_grid.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace symcompress {
+
+DracoGrid::DracoGrid(const Primitive& primitive, int bits) {
+    if (const auto& grid = primitive.positionGrid) {
+        for (int c = 0; c < 3; ++c) minimum_[c] = float(grid->origin[c]);
+        range_ = float(grid->range);
+        levels_ = float((1u << grid->bits) - 1);
+        return;
+    }
+    levels_ = float((1u << bits) - 1);
+    float maximum[3];
+    for (int c = 0; c < 3; ++c) minimum_[c] = std::numeric_limits<float>::max(), maximum[c] = -minimum_[c];
+    for (const Triangle& t : primitive.triangles)
+        for (std::uint32_t v : t)
+            for (int c = 0; c < 3; ++c) {
+                const float value = float(primitive.positions[v][c]);
+                minimum_[c] = std::min(minimum_[c], value);
+                maximum[c] = std::max(maximum[c], value);
+            }
+    range_ = 0;
+    for (int c = 0; c < 3; ++c) range_ = std::max(range_, maximum[c] - minimum_[c]);
+    if (range_ == 0) range_ = 1;
+}
+
+bool DracoGrid::collapses(const Primitive& primitive, const Triangle& t) const {
+    const auto& p = primitive.positions;
+    return sameCell(p[t[0]], p[t[1]]) || sameCell(p[t[1]], p[t[2]]) || sameCell(p[t[0]], p[t[2]]);
+}
+
+}  // namespace symcompress

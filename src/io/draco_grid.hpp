@@ -1,0 +1,35 @@
+// Draco's quantization grid of a primitive's positions, in float32 as Draco computes it: the primitive's own
+// grid where it has one (Primitive::positionGrid), else the box of its triangles' corners with its largest
+// side cut into 2^bits - 1 steps. The writer asks it which bits keep the corners within a bound and which
+// triangles edgebreaker would drop.
+#pragma once
+
+#include "symcompress/scene.hpp"
+
+#include <cmath>
+
+namespace symcompress {
+
+class DracoGrid {
+public:
+    DracoGrid(const Primitive& primitive, int bits);
+
+    // The cell of p on `axis` (a float32 integer), and where Draco's decoder puts it back.
+    float cell(const Eigen::Vector3d& p, int axis) const {
+        return std::floor((float(p[axis]) - minimum_[axis]) * (levels_ / range_) + 0.5f);
+    }
+    double dequantized(const Eigen::Vector3d& p, int axis) const {
+        return double(cell(p, axis) * (range_ / levels_) + minimum_[axis]);
+    }
+    // Whether two of the triangle's corners fall in one cell: edgebreaker drops such a triangle.
+    bool collapses(const Primitive& primitive, const Triangle& t) const;
+
+private:
+    bool sameCell(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
+        return cell(a, 0) == cell(b, 0) && cell(a, 1) == cell(b, 1) && cell(a, 2) == cell(b, 2);
+    }
+    float minimum_[3] = {0, 0, 0};
+    float range_ = 1, levels_ = 1;
+};
+
+}  // namespace symcompress
