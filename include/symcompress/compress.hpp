@@ -23,7 +23,7 @@ struct CompressOptions {
     // bounding-box diagonal (what symdecompress verifies). The congruence and symmetry tolerance takes
     // `tolerance` of it (half when 0); each stored mesh's position quantization takes what the deviation of
     // the copies it draws leaves (the bits chosen per mesh), unless fixedPositionBits.
-    double maxError = 8e-5;
+    double maxError = 5e-5;
     double tolerance = 0;              // congruence and symmetry, relative to the diagonal; 0: maxError / 2
     bool fixedPositionBits = false;    // write.positionBits for every mesh (--position-bits), not the budget
     bool instancing = true;            // false: every tile stored as it is (Draco alone)
