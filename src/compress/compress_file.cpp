@@ -120,11 +120,12 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     WriteOptions write = options.write;
     PlanOptions planOptions = planOptionsOf(options);
     if (!options.fixedPositionBits) {
-        // Of the budget, a share for the rounding of GPU-instanced rotations; the rest for the placements and
-        // each mesh's quantization (the meshes the plan does not bound take all of that).
-        planOptions.maxError = options.maxError * (1 - kRotationShare);
-        write.instanceRotationDeviation = options.maxError * kRotationShare;
-        write.maxPositionError = planOptions.maxError * analysis.diagonal;
+        // Of the budget, a share for the rounding of GPU-instanced rotations, kept by the meshes that several
+        // nodes draw; the rest for the placements and each mesh's quantization (the meshes the plan does not
+        // bound take all of that).
+        planOptions.instanceRotationShare = options.maxError * kRotationShare;
+        write.instanceRotationDeviation = planOptions.instanceRotationShare;
+        write.maxPositionError = (options.maxError - planOptions.instanceRotationShare) * analysis.diagonal;
     }
     planOptions.costs = costModelFor(formatFromExtension(output), write);
     // The HTML report draws the plan's decisions: kept only when it is asked for.

@@ -109,10 +109,12 @@ double largestStretch(const Eigen::Matrix4d& transform) {
 }
 
 // Each stored mesh's share of the error budget (a distance): what the deviation of the copies it draws
-// leaves of it (`deviation`, by mesh), in the mesh's frame: divided by the largest stretch of a node that
-// draws it, since a corner moved by e in the mesh moves by s e in the world.
-void shareErrorBudget(Scene& out, double budget, const std::vector<double>& deviation) {
+// leaves of it (`deviation`, by mesh), less `rotationShare` where several nodes draw it (a GPU batch may round
+// their rotations), in the mesh's frame: divided by the largest stretch of a node that draws it, since a
+// corner moved by e in the mesh moves by s e in the world.
+void shareErrorBudget(Scene& out, double budget, double rotationShare, const std::vector<double>& deviation) {
     std::vector<double> stretch(out.meshes.size(), 0);
+    std::vector<int> drawers(out.meshes.size(), 0);
     std::vector<std::pair<int, Eigen::Matrix4d>> stack;  // node, its parent's world transform
     for (int root : out.roots) stack.push_back({root, Eigen::Matrix4d::Identity()});
     while (!stack.empty()) {
@@ -120,12 +122,15 @@ void shareErrorBudget(Scene& out, double budget, const std::vector<double>& devi
         stack.pop_back();
         const Node& node = out.nodes[std::size_t(n)];
         const Eigen::Matrix4d world = parentWorld * node.transform;
-        if (node.mesh >= 0)
+        if (node.mesh >= 0) {
             stretch[std::size_t(node.mesh)] = std::max(stretch[std::size_t(node.mesh)], largestStretch(world));
+            ++drawers[std::size_t(node.mesh)];
+        }
         for (int child : node.children) stack.push_back({child, world});
     }
     for (std::size_t m = 0; m < out.meshes.size(); ++m) {
-        const double share = (budget - deviation[m]) / std::max(stretch[m], 1e-300);
+        const double share =
+            (budget - deviation[m] - (drawers[m] > 1 ? rotationShare : 0)) / std::max(stretch[m], 1e-300);
         for (Primitive& primitive : out.meshes[m].primitives) primitive.maxPositionError = std::max(share, 0.0);
     }
 }
@@ -198,7 +203,9 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
                     merged.size() == 1 ? mergedSource : nullptr);
     }
     deviation.resize(out.meshes.size(), 0);
-    if (plan.maxError > 0) shareErrorBudget(out, plan.maxError * analysis.diagonal, deviation);
+    if (plan.maxError > 0)
+        shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceRotationShare * analysis.diagonal,
+                         deviation);
     dropPointLikeTriangles(out, stats);
     return result;
 }

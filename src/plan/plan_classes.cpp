@@ -117,7 +117,9 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
         double placedDeviation = 0;
         for (std::size_t i : placed) placedDeviation = std::max(placedDeviation, deviations[i]);
         const double gridError =
-            options.maxError > 0 ? (options.maxError - placedDeviation) * analysis.diagonal : 0;
+            options.maxError > 0
+                ? (options.maxError - options.instanceRotationShare - placedDeviation) * analysis.diagonal
+                : 0;
         if (group.size() > 1)
             std::tie(region, regional) = cheapestRegion(
                 {prototype, group, center, context.tolerance(), options.costs.seamGridBits, gridError}, costs, alone,
