@@ -569,7 +569,8 @@ TEST_CASE("Symmetric parts are stored as their fundamental regions where that pa
     CHECK(fromDigest["against"] == "digest");  // read back from the X3D head's meta
     CHECK(fromDigest["verified"] == true);
     if (x3dInteropAvailable()) {
-        // X_ITE draws 48 shapes enclosing the volume of the original (converted to X3D as it is).
+        // X_ITE draws 48 shapes enclosing the volume of the original (converted to X3D as it is), within what
+        // the positions' rounding to the error budget changes (a copy drawn inside out would take 2/48 of it).
         const auto plain = folder / "plain.x3d";
         REQUIRE(runCommand(kSymcompress + " convert -q " + quoted(input) + " -o " + quoted(plain)).status == 0);
         auto count = [&](const std::filesystem::path& file) {
@@ -577,7 +578,7 @@ TEST_CASE("Symmetric parts are stored as their fundamental regions where that pa
         };
         const nlohmann::json loaded = count(output), reference = count(plain);
         CHECK(loaded["shapes"] == copies);
-        CHECK(loaded["volume"].get<double>() == Approx(reference["volume"].get<double>()).epsilon(1e-6));
+        CHECK(loaded["volume"].get<double>() == Approx(reference["volume"].get<double>()).epsilon(1e-3));
     }
 }
 

@@ -172,6 +172,44 @@ TEST_CASE("Position bits from an error bound keep every corner within it, never 
     CHECK(positionBitsFor(points, fixed) == 11);
 }
 
+TEST_CASE("X3D positions are written to the fewest places that keep every corner within the error bound",
+          "[budget][writers][x3d]") {
+    std::mt19937 random(5);
+    std::normal_distribution<double> normal;
+    Primitive points;
+    for (int i = 0; i < 300; ++i)
+        points.positions.push_back(Eigen::Vector3d(10, -4, 2) +
+                                   3 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized());
+    for (std::uint32_t i = 0; i + 2 < 300; i += 3) points.triangles.push_back({i, i + 1, i + 2});
+    TemporaryFolder folder;
+    const Scene scene = sceneOf(points);
+    writeScene(scene, folder / "exact.x3d", WriteOptions{});
+    CHECK(largestMove(points, readScene(folder / "exact.x3d").meshes[0].primitives[0]) < 1e-12);
+    std::uintmax_t previous = std::filesystem::file_size(folder / "exact.x3d");
+    for (const double bound : {1e-4, 1e-3, 3e-2}) {
+        INFO("bound " << bound);
+        WriteOptions options;
+        options.maxPositionError = bound;
+        writeScene(scene, folder / "rounded.x3d", options);
+        const double moved = largestMove(points, readScene(folder / "rounded.x3d").meshes[0].primitives[0]);
+        CHECK(moved <= bound);
+        CHECK(moved > bound / 20);  // no more places than the bound needs
+        const std::uintmax_t bytes = std::filesystem::file_size(folder / "rounded.x3d");
+        CHECK(bytes < previous);
+        previous = bytes;
+    }
+    // A sliver whose two corners the bound's places would put at one point: written with more places.
+    Primitive sliver;
+    sliver.positions = {{0, 0, 0}, {4e-4, 0, 0}, {0, 1, 0}};
+    sliver.triangles = {{0, 1, 2}};
+    WriteOptions options;
+    options.maxPositionError = 1e-2;
+    writeScene(sceneOf(sliver), folder / "sliver.x3d", options);
+    const Primitive read = readScene(folder / "sliver.x3d").meshes[0].primitives[0];
+    CHECK(read.triangles.size() == 1);
+    CHECK(largestMove(sliver, read) <= 1e-2);
+}
+
 TEST_CASE("The error budget bounds the rebuilt surface, and a tighter budget costs bytes", "[budget][compress]") {
     TemporaryFolder folder;
     WriteOptions plain;

@@ -112,7 +112,8 @@ void checkDrawnByOthers(const std::vector<std::filesystem::path>& inputs) {
             } else {
                 const auto drawn = x3dCount(output);
                 CHECK(drawn["tris"] == expanded.triangles);
-                CHECK(drawn["volume"].get<double>() == Approx(referenceVolume).epsilon(1e-4));
+                // Positions written to the places the budget needs: as the GLB's quantization, a little volume.
+                CHECK(drawn["volume"].get<double>() == Approx(referenceVolume).epsilon(2e-3));
             }
         }
     }

@@ -17,6 +17,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <optional>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -35,6 +36,33 @@ void appendVector(std::string& out, const Vector& v, int components, Round round
         if (c) out += ' ';
         appendShortestFloat(out, round(v[c]));
     }
+}
+
+// Whether rounding to `decimals` puts two corners of a triangle with three distinct corners at one point: a
+// reader would drop the triangle (symcompress's does) where a browser draws it.
+bool roundingCollapses(const Primitive& primitive, int decimals) {
+    auto round = [&](std::uint32_t v) {
+        return primitive.positions[v].unaryExpr([&](double x) { return roundedDecimals(x, decimals); }).eval();
+    };
+    const auto& p = primitive.positions;
+    return std::any_of(primitive.triangles.begin(), primitive.triangles.end(), [&](const Triangle& t) {
+        if (p[t[0]] == p[t[1]] || p[t[1]] == p[t[2]] || p[t[0]] == p[t[2]]) return false;
+        const Eigen::Vector3d a = round(t[0]), b = round(t[1]), c = round(t[2]);
+        return a == b || b == c || a == c;
+    });
+}
+
+// The places after the point that keep every corner of `primitive` within its error bound
+// (Primitive::maxPositionError, else the writer's) and collapse no triangle: the text's quantization, as
+// Draco's bits are a GLB's. A corner moves by at most sqrt(3)/2 of a unit in the last place. Nothing
+// (positions as they are) without a bound, or on a seam's grid, whose points the copies of a region share.
+std::optional<int> positionDecimals(const Primitive& primitive, const WriteOptions& options) {
+    constexpr int kMostDecimals = 12;
+    const double bound = primitive.maxPositionError > 0 ? primitive.maxPositionError : options.maxPositionError;
+    if (!(bound > 0) || primitive.positionGrid) return std::nullopt;
+    int decimals = std::clamp(int(std::ceil(-std::log10(2 * bound / std::sqrt(3.0)))), -9, kMostDecimals);
+    while (decimals < kMostDecimals && roundingCollapses(primitive, decimals)) ++decimals;
+    return decimals;
 }
 
 std::string base64(const std::vector<std::uint8_t>& bytes) {
@@ -374,7 +402,10 @@ private:
             out_ += "'/>\n";
         };
         auto same = [](const auto& v) { return v; };
-        writeValues("Coordinate", "point", primitive.positions, 3, same);
+        const std::optional<int> decimals = positionDecimals(primitive, options_);
+        writeValues("Coordinate", "point", primitive.positions, 3, [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+            return decimals ? p.unaryExpr([&](double x) { return roundedDecimals(x, *decimals); }) : p;
+        });
         // Unit normals to 4 decimals (within 0.01 degree; GLB output keeps 10 bits, about 0.1 degree): the text of
         // the normals the reader makes for a creaseAngle is then not much longer than the coordinates'.
         if (!primitive.normals.empty())
