@@ -459,3 +459,32 @@ TEST_CASE("An X3D or OBJ texture that is not found keeps its reference, relative
     writeScene(scene, folder / "out" / "scene.gltf");
     CHECK(gltfJson(folder / "out" / "scene.gltf")["images"][0]["uri"] == "../maps/missing.png");
 }
+
+TEST_CASE("X3D output refers to an image file where it was read, and embeds an image that came embedded",
+          "[materials][x3d]") {
+    TemporaryFolder folder;
+    fs::create_directories(folder / "maps");
+    fs::copy_file(modelPath("pbr/texture_transform/Arrow.png"), folder / "maps" / "arrow.png");
+    writeTextFile(folder / "scene.x3d", R"(<X3D version="3.3"><Scene><Shape><Appearance><Material/>
+        <ImageTexture url='"maps/arrow.png"'/></Appearance><Box/></Shape></Scene></X3D>)");
+    const Scene scene = readScene(folder / "scene.x3d");
+    REQUIRE(scene.textures.size() == 1);
+    REQUIRE_FALSE(scene.textures[0].bytes.empty());
+    CHECK(x3dReferencedImageBytes(scene) == fs::file_size(folder / "maps" / "arrow.png"));
+    fs::create_directories(folder / "out");
+    writeScene(scene, folder / "out" / "scene.x3d");
+    const std::string text = readTextFile(folder / "out" / "scene.x3d");
+    CHECK_THAT(text, Catch::Contains("url='\"../maps/arrow.png\"'"));
+    CHECK_THAT(text, !Catch::Contains("data:"));
+    CHECK(readScene(folder / "out" / "scene.x3d").textures[0].bytes == scene.textures[0].bytes);
+    writeScene(scene, folder / "out" / "scene.obj");
+    CHECK_THAT(readTextFile(folder / "out" / "scene.mtl"), Catch::Contains("map_Kd ../maps/arrow.png"));
+
+    // From a GLB, which holds the image's bytes: embedded in the X3D as they came.
+    writeScene(scene, folder / "scene.glb");
+    const Scene fromGlb = readScene(folder / "scene.glb");
+    CHECK(x3dReferencedImageBytes(fromGlb) == 0);
+    writeScene(fromGlb, folder / "out" / "embedded.x3d");
+    CHECK_THAT(readTextFile(folder / "out" / "embedded.x3d"), Catch::Contains("url='\"data:image/png;base64,"));
+    CHECK(readScene(folder / "out" / "embedded.x3d").textures[0].bytes == scene.textures[0].bytes);
+}

@@ -56,12 +56,19 @@ std::uintmax_t inputBytesOf(const Scene& scene, const fs::path& input) {
     return bytes;
 }
 
+// The output's bytes: the file, and the image files it refers to (a .gltf's names; X3D's, which the input's
+// size counts as well).
+std::uintmax_t outputBytesOf(const Scene& scene, const fs::path& output) {
+    const FileFormat format = formatFromExtension(output);
+    return sceneBytes(output) + (format == FileFormat::X3d ? x3dReferencedImageBytes(scene) : 0);
+}
+
 // A plan written to a file beside the output, measured, and removed.
 std::uintmax_t measuredBytes(const CompressedScene& plan, const fs::path& output, const WriteOptions& write,
                              const std::vector<fs::path>& inputs) {
     const fs::path temporary = output.parent_path() / (".symcompress-ablation-" + output.filename().string());
     writeScene(plan.scene, temporary, write, inputs);
-    const std::uintmax_t size = sceneBytes(temporary);  // with a .gltf's .bin
+    const std::uintmax_t size = outputBytesOf(plan.scene, temporary);  // with a .gltf's .bin
     std::error_code error;
     fs::remove(temporary, error);
     if (formatFromExtension(temporary) == FileFormat::Gltf)
@@ -158,7 +165,7 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         variants.push_back({name, std::move(plan), bytes, std::move(decisions)});
     };
     if (options.progress) options.progress("measuring the ablation", 0, "");
-    const std::uintmax_t fullPlanBytes = sceneBytes(output);
+    const std::uintmax_t fullPlanBytes = outputBytesOf(compressed.scene, output);
     if (options.instancing) {
         PlanOptions dracoAlone = planOptions;
         dracoAlone.instancing = false;
@@ -183,7 +190,7 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
             compressed = std::move(variant.plan);
             keptPlan = std::move(variant.decisions);
             report.plan = variant.name;
-            report.outputBytes = sceneBytes(output);
+            report.outputBytes = outputBytesOf(compressed.scene, output);
         }
 
     report.stats = compressed.stats;

@@ -97,12 +97,11 @@ int GltfReader::sceneTexture(int gltfTexture, Scene& scene, const std::string& w
     Texture out;
     out.name = !source.name.empty() ? source.name : image.name;
     const bool embedded = image.uri.empty() || image.uri.rfind("data:", 0) == 0;
-    out.uri = embedded ? "" : image.uri;
+    // Where the file is (or should be): the writers refer to it from there, relative to their output.
+    out.uri = embedded ? "" : (file_.parent_path() / image.uri).lexically_normal().string();
     out.bytes = image.image;
     out.mimeType = !image.mimeType.empty() ? image.mimeType : imageMimeType(image.uri);
     if (out.bytes.empty()) {
-        // The reference is kept: the writers point at the file where it should be, relative to their output.
-        out.uri = embedded ? "" : (file_.parent_path() / image.uri).lexically_normal().string();
         warnAbout("image " + std::to_string(imageIndex) + " ('" + image.uri + "') could not be read; its " +
                   (embedded ? "texture is left out" : "reference is kept"));
     } else if (const std::string sniffed = imageMimeTypeOfBytes(out.bytes); sniffed.empty()) {

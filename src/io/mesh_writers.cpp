@@ -41,7 +41,7 @@ std::string mtlFile(const Scene& scene, const fs::path& file) {
         if (material.baseColorTexture.texture >= 0) {
             const Texture& texture = scene.textures[material.baseColorTexture.texture];
             if (!texture.uri.empty())
-                out += "map_Kd " + (texture.bytes.empty() ? imageReference(texture.uri, file) : texture.uri) + "\n";
+                out += "map_Kd " + imageReference(texture.uri, file) + "\n";
         }
     }
     return out;

@@ -78,7 +78,7 @@ int X3dReader::readTexture(const pugi::xml_node& appearance) {
         const fs::path image = file_.parent_path() / url;
         std::error_code error;
         if (url.find("://") == std::string::npos && fs::is_regular_file(image, error)) {
-            out.uri = url;
+            out.uri = image.lexically_normal().string();  // where it was read: writers refer to it from there
             out.bytes = readFileBytes(image);
             break;
         }

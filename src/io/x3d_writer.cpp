@@ -366,7 +366,7 @@ private:
         }
         const Texture& texture = scene_.textures[std::size_t(index)];
         std::string url = file_.empty() ? texture.uri : imageReference(texture.uri, file_);
-        if (!texture.bytes.empty())
+        if (!texture.bytes.empty() && !x3dRefersToImageFile(texture))
             url = "data:" + (texture.mimeType.empty() ? std::string("image/png") : texture.mimeType) + ";base64," +
                   base64(texture.bytes);
         if (url.empty()) return;
@@ -454,6 +454,25 @@ std::string gzip(const std::string& text, const fs::path& file) {
 }
 
 }  // namespace
+
+bool x3dRefersToImageFile(const Texture& texture) {
+    const std::string& uri = texture.uri;
+    if (texture.bytes.empty() || uri.empty() || uri.rfind("data:", 0) == 0 || uri.find("://") != std::string::npos)
+        return false;
+    std::error_code error;
+    return fs::is_regular_file(uri, error);
+}
+
+std::uintmax_t x3dReferencedImageBytes(const Scene& scene) {
+    const std::vector<int> sameImage = firstTextureOfSameImage(scene.textures);
+    std::set<int> images;
+    for (const Material& material : scene.materials)
+        if (const int t = material.baseColorTexture.texture; t >= 0 && x3dRefersToImageFile(scene.textures[t]))
+            images.insert(sameImage[std::size_t(t)]);
+    std::uintmax_t bytes = 0;
+    for (int image : images) bytes += scene.textures[std::size_t(image)].bytes.size();
+    return bytes;
+}
 
 std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options) {
     if (primitive.triangles.empty()) return 0;
