@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace symcompress;
@@ -94,4 +95,46 @@ TEST_CASE("A mesh without normals is written to X3D flat, as glTF draws it", "[i
     writeTextFile(folder / "smooth.x3d", prism("creaseAngle='1'"));
     writeScene(readScene(folder / "smooth.x3d"), folder / "smooth_again.x3d");
     CHECK_THAT(readTextFile(folder / "smooth_again.x3d"), !Catch::Contains("normalPerVertex='false'"));
+}
+
+TEST_CASE("X3D output leaves a mesh's normals to the browser where a creaseAngle makes them, and writes them where "
+          "none does",
+          "[io][x3d]") {
+    TemporaryFolder folder;
+    auto normalsAgree = [](const Primitive& a, const Primitive& b) {
+        REQUIRE(a.triangles.size() == b.triangles.size());
+        double worst = 0;
+        for (std::size_t t = 0; t < a.triangles.size(); ++t)
+            for (int k = 0; k < 3; ++k)
+                worst = std::max(worst, (a.normals[a.triangles[t][k]] - b.normals[b.triangles[t][k]]).norm());
+        return worst;
+    };
+    SECTION("the creased prism, the teapot's patches at 0.5") {
+        writeTextFile(folder / "prism.x3d", prism("creaseAngle='0.5'"));
+        const Scene scene = readScene(folder / "prism.x3d");
+        writeScene(scene, folder / "again.x3d");
+        CHECK_THAT(readTextFile(folder / "again.x3d"), !Catch::Contains("<Normal"));
+        CHECK(normalsAgree(scene.meshes[0].primitives[0], readOnly(folder / "again.x3d")) < 3.5e-3);
+        const Scene teapot = readScene(modelPath("xj3d_cad_teapot/teapot.x3d"));
+        writeScene(teapot, folder / "teapot.x3d");
+        const std::string text = readTextFile(folder / "teapot.x3d");
+        CHECK_THAT(text, Catch::Contains("creaseAngle='0.5'"));
+        CHECK_THAT(text, !Catch::Contains("<Normal"));
+        const Scene again = readScene(folder / "teapot.x3d");
+        REQUIRE(again.meshes.size() == teapot.meshes.size());
+        for (std::size_t m = 0; m < teapot.meshes.size(); ++m)
+            CHECK(normalsAgree(teapot.meshes[m].primitives[0], again.meshes[m].primitives[0]) < 3.5e-3);
+    }
+    SECTION("normals no creaseAngle gives: written") {
+        // The smooth prism's normals are the means of its quads', which its triangles would weight otherwise.
+        writeTextFile(folder / "prism.x3d", prism("creaseAngle='1'"));
+        Scene scene = readScene(folder / "prism.x3d");
+        writeScene(scene, folder / "smooth.x3d");
+        CHECK_THAT(readTextFile(folder / "smooth.x3d"), Catch::Contains("<Normal"));
+        // Normals a modeller tilted.
+        for (Eigen::Vector3d& n : scene.meshes[0].primitives[0].normals) n = (n + Eigen::Vector3d(0, 0, 0.3)).normalized();
+        writeScene(scene, folder / "tilted.x3d");
+        CHECK_THAT(readTextFile(folder / "tilted.x3d"), Catch::Contains("<Normal"));
+        CHECK(normalsAgree(scene.meshes[0].primitives[0], readOnly(folder / "tilted.x3d")) < 1e-3);
+    }
 }

@@ -2,6 +2,7 @@
 #include "x3d_reader.hpp"
 
 #include "symcompress/detail/triangulate_polygon.hpp"
+#include "x3d_crease_normals.hpp"
 #include "x3d_primitives.hpp"
 
 #include <algorithm>
@@ -10,59 +11,7 @@
 
 namespace symcompress {
 namespace fs = std::filesystem;
-namespace {
 
-// The normals an X3D browser makes for a face set without a Normal node, one per corner (X3D 3.3, 13.3.6
-// and 11.2.3): at a point, the average of the unit normals of the faces around it whose normal turns by less
-// than `creaseAngle` from that of the corner's own face (unweighted, as X_ITE averages them). Returns the distinct normals (flat)
-// and, for each corner in face order, the index of its normal. Points out of range are left to the caller.
-std::pair<std::vector<double>, std::vector<std::int64_t>> creasedNormals(const std::vector<std::vector<std::int64_t>>& faces,
-                                                                          const std::vector<double>& points,
-                                                                          double creaseAngle, bool ccw) {
-    const std::size_t pointCount = points.size() / 3;
-    auto point = [&](std::int64_t p) { return Eigen::Vector3d(points[3 * p], points[3 * p + 1], points[3 * p + 2]); };
-    // Newell's normal of each face.
-    std::vector<Eigen::Vector3d> faceNormal(faces.size(), Eigen::Vector3d::Zero());
-    std::vector<std::vector<std::size_t>> facesAt(pointCount);
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-        const auto& face = faces[f];
-        if (!std::all_of(face.begin(), face.end(), [&](std::int64_t p) { return p >= 0 && std::size_t(p) < pointCount; }))
-            continue;
-        for (std::size_t k = 0; k < face.size(); ++k) faceNormal[f] += point(face[k]).cross(point(face[(k + 1) % face.size()]));
-        if (!ccw) faceNormal[f] = -faceNormal[f];
-        for (std::int64_t p : face)
-            if (facesAt[std::size_t(p)].empty() || facesAt[std::size_t(p)].back() != f) facesAt[std::size_t(p)].push_back(f);
-    }
-    const double cosCrease = std::cos(std::min(creaseAngle, M_PI));
-    std::vector<double> normals;
-    std::vector<std::int64_t> cornerNormal;
-    std::vector<std::vector<std::pair<Eigen::Vector3d, std::int64_t>>> madeAt(pointCount);  // distinct, per point
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-        const Eigen::Vector3d own = faceNormal[f].normalized();
-        for (std::int64_t p : faces[f]) {
-            if (p < 0 || std::size_t(p) >= pointCount) {
-                cornerNormal.push_back(-1);
-                continue;
-            }
-            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-            for (std::size_t g : facesAt[std::size_t(p)])
-                if (g == f || own.dot(faceNormal[g].normalized()) > cosCrease) sum += faceNormal[g].normalized();
-            Eigen::Vector3d normal = sum.norm() > 0 ? sum.normalized() : own.norm() > 0 ? own : Eigen::Vector3d::UnitZ();
-            auto& made = madeAt[std::size_t(p)];
-            const auto found = std::find_if(made.begin(), made.end(), [&](const auto& m) { return m.first == normal; });
-            if (found != made.end()) {
-                cornerNormal.push_back(found->second);
-                continue;
-            }
-            made.push_back({normal, std::int64_t(normals.size() / 3)});
-            cornerNormal.push_back(made.back().second);
-            normals.insert(normals.end(), {normal.x(), normal.y(), normal.z()});
-        }
-    }
-    return {normals, cornerNormal};
-}
-
-}  // namespace
 
 bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out) {
     const std::string type = geometry.name();

@@ -7,6 +7,7 @@
 #include "symcompress/io.hpp"
 #include "image_reference.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "x3d_crease_normals.hpp"
 #include "rotation_and_scale.hpp"
 #include "common/markup_text.hpp"
 #include "common/number_text.hpp"
@@ -17,11 +18,12 @@
 #include <zlib.h>
 
 #include <algorithm>
-#include <optional>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace symcompress {
@@ -63,6 +65,101 @@ std::optional<int> positionDecimals(const Primitive& primitive, const WriteOptio
     int decimals = std::clamp(int(std::ceil(-std::log10(2 * bound / std::sqrt(3.0)))), -9, kMostDecimals);
     while (decimals < kMostDecimals && roundingCollapses(primitive, decimals)) ++decimals;
     return decimals;
+}
+
+// A mesh as a face set whose normals the browser makes from a creaseAngle: its vertices joined into points,
+// and the angle, such that every corner gets the normal it has (creasedNormalsMatch). Nothing where no angle
+// tried does: the copies of a region, whose cut faces would smooth otherwise, a tile whose normals its
+// neighbours in the input made, normals a modeller set, or no normals (flat).
+struct CreasedFaceSet {
+    std::vector<std::uint32_t> vertexOfPoint;
+    std::vector<std::vector<std::int64_t>> faces;  // the triangles, by point
+    double creaseAngle = 0;                        // from pi up: every face at a point smoothed
+};
+
+// Vertices at one place (position as written, texture coordinates, colour) whose faces turn by less than
+// `creaseAngle` from one another belong to one point where, as one, the browser would give each corner its
+// normal; otherwise (parts that touch without sharing their points) each stays a point of its own.
+std::vector<std::uint32_t> pointsOfVertices(const Primitive& primitive, const std::vector<Eigen::Vector3d>& faceNormal,
+                                            const std::vector<std::vector<std::uint32_t>>& vertexGroups,
+                                            const std::vector<std::vector<std::uint32_t>>& facesOfVertex,
+                                            double creaseAngle, std::vector<std::uint32_t>& vertexOfPoint) {
+    const double cosCrease = std::cos(std::min(creaseAngle, M_PI));
+    std::vector<std::uint32_t> pointOfVertex(primitive.positions.size());
+    auto newPoint = [&](const std::vector<std::uint32_t>& vertices) {
+        for (std::uint32_t v : vertices) pointOfVertex[v] = std::uint32_t(vertexOfPoint.size());
+        vertexOfPoint.push_back(vertices.front());
+    };
+    for (const std::vector<std::uint32_t>& group : vertexGroups) {
+        // As one point: each corner's normal is the mean of the faces of the group within the angle of its own.
+        bool asOne = true;
+        for (std::uint32_t v : group)
+            for (std::uint32_t f : facesOfVertex[v]) {
+                Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+                for (std::uint32_t w : group)
+                    for (std::uint32_t g : facesOfVertex[w])
+                        if (g == f || faceNormal[f].dot(faceNormal[g]) > cosCrease) sum += faceNormal[g];
+                asOne = asOne && (sum.normalized() - primitive.normals[v]).norm() < 3.5e-3;
+            }
+        if (asOne) {
+            newPoint(group);
+        } else {
+            for (std::uint32_t v : group) newPoint({v});
+        }
+    }
+    return pointOfVertex;
+}
+
+std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive, const std::vector<Eigen::Vector3d>& positions,
+                                               const std::vector<Eigen::Vector2d>& texcoords) {
+    if (primitive.normals.empty() || primitive.triangles.empty()) return std::nullopt;
+    std::vector<Eigen::Vector3d> faceNormal;
+    std::vector<std::vector<std::uint32_t>> facesOfVertex(positions.size());
+    double smoothed = 0;  // the largest angle between two faces of one vertex: the crease angle lies above
+    for (std::uint32_t f = 0; f < primitive.triangles.size(); ++f) {
+        const Triangle& t = primitive.triangles[f];
+        const Eigen::Vector3d normal = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+        if (!(normal.norm() > 0)) return std::nullopt;  // the browser's choice for a face without a normal
+        faceNormal.push_back(normal.normalized());
+        for (std::uint32_t v : t) {
+            for (std::uint32_t g : facesOfVertex[v])
+                smoothed = std::max(smoothed, std::acos(std::clamp(faceNormal[f].dot(faceNormal[g]), -1.0, 1.0)));
+            facesOfVertex[v].push_back(f);
+        }
+    }
+    std::map<std::array<double, 9>, std::vector<std::uint32_t>> atPlace;
+    for (std::uint32_t v = 0; v < positions.size(); ++v) {
+        std::array<double, 9> key{positions[v].x(), positions[v].y(), positions[v].z()};
+        if (!texcoords.empty()) key[3] = texcoords[v].x(), key[4] = texcoords[v].y();
+        if (!primitive.colors.empty())
+            for (int c = 0; c < 4; ++c) key[std::size_t(5 + c)] = primitive.colors[v][c];
+        atPlace[key].push_back(v);
+    }
+    std::vector<std::vector<std::uint32_t>> vertexGroups;
+    for (auto& [place, vertices] : atPlace) vertexGroups.push_back(std::move(vertices));
+    std::vector<Eigen::Vector3d> cornerNormals;
+    for (const Triangle& t : primitive.triangles)
+        for (std::uint32_t v : t) cornerNormals.push_back(primitive.normals[v]);
+    // Angles to try: every face at a point smoothed (a triangle set), then the shortest decimals above the
+    // largest angle smoothed, as modellers set them (0.5, 1).
+    std::vector<double> angles = {4};
+    for (int places = 0; places <= 3; ++places) {
+        const double scale = std::pow(10.0, places), angle = std::floor(smoothed * scale + 1) / scale;
+        if (angle < M_PI && std::find(angles.begin(), angles.end(), angle) == angles.end()) angles.push_back(angle);
+    }
+    for (const double angle : angles) {
+        CreasedFaceSet set;
+        set.creaseAngle = angle;
+        const std::vector<std::uint32_t> pointOfVertex =
+            pointsOfVertices(primitive, faceNormal, vertexGroups, facesOfVertex, angle, set.vertexOfPoint);
+        std::vector<double> points;
+        for (std::uint32_t v : set.vertexOfPoint)
+            points.insert(points.end(), {positions[v].x(), positions[v].y(), positions[v].z()});
+        for (const Triangle& t : primitive.triangles)
+            set.faces.push_back({pointOfVertex[t[0]], pointOfVertex[t[1]], pointOfVertex[t[2]]});
+        if (creasedNormalsMatch(set.faces, points, cornerNormals, angle)) return set;
+    }
+    return std::nullopt;
 }
 
 std::string base64(const std::vector<std::uint8_t>& bytes) {
@@ -380,47 +477,78 @@ private:
         out_ += "<Shape>\n";
         writeAppearance(primitive.material, depth + 1);
         const bool doubleSided = primitive.material >= 0 && scene_.materials[primitive.material].doubleSided;
+        std::vector<Eigen::Vector2d> texcoords(primitive.texcoords.size());
+        for (std::size_t v = 0; v < texcoords.size(); ++v) texcoords[v] = baseColorTexcoord(scene_, primitive, v);
+        // The browser makes its normals from the positions as written: where those the budget's places give
+        // would turn them too far, up to two places more, cheaper than the normals' text.
+        const std::optional<int> fewest = positionDecimals(primitive, options_);
+        std::vector<Eigen::Vector3d> positions;
+        std::optional<CreasedFaceSet> creased;
+        for (int more = 0; more <= (fewest ? 2 : 0) && !creased; ++more) {
+            positions = primitive.positions;
+            if (fewest)
+                for (Eigen::Vector3d& p : positions)
+                    p = p.unaryExpr([&](double x) { return roundedDecimals(x, *fewest + more); });
+            creased = asCreasedFaceSet(primitive, positions, texcoords);
+        }
+        if (!creased && fewest)
+            for (Eigen::Vector3d& p : positions) p = p.unaryExpr([&](double x) { return roundedDecimals(x, *fewest); });
+        // The vertices written, in order: every one, or one for each point of the creased face set.
+        std::vector<std::uint32_t> written(creased ? creased->vertexOfPoint : std::vector<std::uint32_t>{});
+        if (!creased)
+            for (std::uint32_t v = 0; v < primitive.positions.size(); ++v) written.push_back(v);
         indent(depth + 1);
-        // Without normals, flat shading, as glTF draws such a mesh (X3D's default would smooth it).
-        out_ += "<IndexedTriangleSet solid='" + std::string(doubleSided ? "false" : "true") +
-                (primitive.normals.empty() ? "' normalPerVertex='false" : "") + "' index='";
-        bool first = true;
-        for (const Triangle& t : primitive.triangles)
-            for (std::uint32_t i : t) {
-                if (!first) out_ += ' ';
-                first = false;
-                out_ += std::to_string(i);
+        const std::string solid = std::string("solid='") + (doubleSided ? "false" : "true") + "'";
+        const bool faceSet = creased && creased->creaseAngle < M_PI;  // a triangle set smooths at every point
+        if (creased && !faceSet) {
+            // The browser makes the normals, the same for every copy of the mesh.
+            out_ += "<IndexedTriangleSet " + solid + " index='";
+            for (std::size_t f = 0; f < creased->faces.size(); ++f)
+                for (std::size_t k = 0; k < 3; ++k) out_ += (f || k ? " " : "") + std::to_string(creased->faces[f][k]);
+        } else if (faceSet) {
+            out_ += "<IndexedFaceSet " + solid + " creaseAngle='";
+            appendShortest(out_, creased->creaseAngle);
+            out_ += "' coordIndex='";
+            for (std::size_t f = 0; f < creased->faces.size(); ++f) {
+                if (f) out_ += ' ';
+                for (std::int64_t p : creased->faces[f]) out_ += std::to_string(p) + ' ';
+                out_ += "-1";
             }
+        } else {
+            // Without normals, flat shading, as glTF draws such a mesh (X3D's default would smooth it).
+            out_ += "<IndexedTriangleSet " + solid + (primitive.normals.empty() ? " normalPerVertex='false'" : "") +
+                    " index='";
+            bool first = true;
+            for (const Triangle& t : primitive.triangles)
+                for (std::uint32_t i : t) {
+                    if (!first) out_ += ' ';
+                    first = false;
+                    out_ += std::to_string(i);
+                }
+        }
         out_ += "'>\n";
         auto writeValues = [&](const char* node, const char* field, const auto& values, int components, auto transform) {
             indent(depth + 2);
             out_ += std::string("<") + node + " " + field + "='";
-            for (std::size_t i = 0; i < values.size(); ++i) {
+            for (std::size_t i = 0; i < written.size(); ++i) {
                 if (i) out_ += ' ';
-                appendVector(out_, transform(values[i]), components);
+                appendVector(out_, transform(values[written[i]]), components);
             }
             out_ += "'/>\n";
         };
         auto same = [](const auto& v) { return v; };
-        const std::optional<int> decimals = positionDecimals(primitive, options_);
-        writeValues("Coordinate", "point", primitive.positions, 3, [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
-            return decimals ? p.unaryExpr([&](double x) { return roundedDecimals(x, *decimals); }) : p;
-        });
-        // Unit normals to 4 decimals (within 0.01 degree; GLB output keeps 10 bits, about 0.1 degree): the text of
-        // the normals the reader makes for a creaseAngle is then not much longer than the coordinates'.
-        if (!primitive.normals.empty())
+        writeValues("Coordinate", "point", positions, 3, same);
+        // Unit normals to 4 decimals (within 0.01 degree; GLB output keeps 10 bits, about 0.1 degree).
+        if (!primitive.normals.empty() && !creased)
             writeValues("Normal", "vector", primitive.normals, 3, [](const Eigen::Vector3d& n) -> Eigen::Vector3d {
                 return n.unaryExpr([](double x) { return roundedDecimals(x, kNormalDecimals); });
             });
-        if (!primitive.texcoords.empty()) {
-            std::vector<Eigen::Vector2d> texcoords(primitive.texcoords.size());
-            for (std::size_t v = 0; v < texcoords.size(); ++v) texcoords[v] = baseColorTexcoord(scene_, primitive, v);
+        if (!texcoords.empty())
             writeValues("TextureCoordinate", "point", texcoords, 2,
                         [](const Eigen::Vector2d& t) { return Eigen::Vector2d(t.x(), 1 - t.y()); });
-        }
         if (!primitive.colors.empty()) writeValues("ColorRGBA", "color", primitive.colors, 4, same);
         indent(depth + 1);
-        out_ += "</IndexedTriangleSet>\n";
+        out_ += faceSet ? "</IndexedFaceSet>\n" : "</IndexedTriangleSet>\n";
         indent(depth);
         out_ += "</Shape>\n";
     }
