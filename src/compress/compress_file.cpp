@@ -16,8 +16,9 @@ namespace symcompress {
 namespace fs = std::filesystem;
 namespace {
 
-// The share of the error budget left for the rounding of GPU-instanced rotations to normalized shorts.
-constexpr double kRotationShare = 1.0 / 64;
+// The shares of the error budget left for the rounding of GPU-instanced rotations (normalized shorts, meshopt's
+// quaternion filter) and of their translations and scales (meshopt's exponential filter).
+constexpr double kRotationShare = 1.0 / 64, kTranslationShare = 1.0 / 64;
 
 double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -120,10 +121,12 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     WriteOptions write = options.write;
     PlanOptions planOptions = planOptionsOf(options);
     if (!options.fixedPositionBits) {
-        // Of the budget, a share for the rounding of GPU-instanced rotations; the rest for the placements and
-        // each mesh's quantization (the meshes the plan does not bound take all of that).
-        planOptions.maxError = options.maxError * (1 - kRotationShare);
+        // Of the budget, a share for the rounding of GPU-instanced rotations and one for their translations and
+        // scales; the rest for the placements and each mesh's quantization (the meshes the plan does not bound
+        // take all of that).
+        planOptions.maxError = options.maxError * (1 - kRotationShare - kTranslationShare);
         write.instanceRotationDeviation = options.maxError * kRotationShare;
+        write.instanceTranslationDeviation = options.maxError * kTranslationShare;
         write.maxPositionError = planOptions.maxError * analysis.diagonal;
     }
     planOptions.costs = costModelFor(formatFromExtension(output), write);
