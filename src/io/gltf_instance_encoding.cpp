@@ -13,9 +13,11 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace symcompress {
 namespace {
@@ -55,10 +57,6 @@ InstanceEncoding encoding(int componentType, std::size_t elementBytes, const std
     return out;
 }
 
-std::int16_t asNormalizedShort(double value) {
-    return std::int16_t(std::clamp(std::lround(value * 32767.0), -32767L, 32767L));
-}
-
 // The rotation a viewer builds from quaternion components as they are (three.js's compose does not normalize).
 Eigen::Matrix3d matrixOf(const Eigen::Vector4d& q) {
     const double x = q[0], y = q[1], z = q[2], w = q[3];
@@ -75,6 +73,27 @@ double matrixError(const Eigen::Quaterniond& rotation, const Eigen::Vector4d& re
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
     solver.computeDirect(difference.transpose() * difference, Eigen::EigenvaluesOnly);
     return std::sqrt(std::max(0.0, solver.eigenvalues().maxCoeff()));
+}
+
+// Of the 16 ways to round a quaternion's components to normalized SHORTs up or down, the one whose matrix is
+// nearest the rotation's: rounding each to its nearest leaves the quaternion's length up to 2^-15 off, which
+// scales what a viewer draws (it does not normalize).
+std::array<std::int16_t, 4> nearestShorts(const Eigen::Quaterniond& rotation) {
+    const Eigen::Vector4d scaled = rotation.coeffs() * 32767.0;
+    std::array<std::int16_t, 4> best{};
+    double bestError = std::numeric_limits<double>::infinity();
+    for (int way = 0; way < 16; ++way) {
+        std::array<std::int16_t, 4> candidate{};
+        Eigen::Vector4d readBack;
+        for (int c = 0; c < 4; ++c) {
+            const double value = (way >> c & 1) ? std::ceil(scaled[c]) : std::floor(scaled[c]);
+            candidate[std::size_t(c)] = std::int16_t(std::clamp(value, -32767.0, 32767.0));
+            readBack[c] = candidate[std::size_t(c)] / 32767.0;
+        }
+        const double error = matrixError(rotation, readBack);
+        if (error < bestError) best = candidate, bestError = error;
+    }
+    return best;
 }
 
 std::vector<float> floatsOf(const std::vector<Eigen::Vector4d>& quaternions) {
@@ -129,8 +148,8 @@ std::vector<InstanceEncoding> vectorEncodings(const std::vector<Eigen::Vector3d>
 double shortRotationError(const std::vector<Eigen::Quaterniond>& rotations) {
     double error = 0;
     for (const Eigen::Quaterniond& q : rotations) {
-        const Eigen::Vector4d back = q.coeffs().unaryExpr([](double c) { return asNormalizedShort(c) / 32767.0; });
-        error = std::max(error, matrixError(q, back));
+        const std::array<std::int16_t, 4> shorts = nearestShorts(q);
+        error = std::max(error, matrixError(q, Eigen::Vector4d(shorts[0], shorts[1], shorts[2], shorts[3]) / 32767.0));
     }
     return error;
 }
@@ -155,8 +174,10 @@ std::vector<InstanceEncoding> rotationEncodings(const std::vector<Eigen::Quatern
     std::vector<InstanceEncoding> out{encoding(kFloat, 16, "", bytesOf(floats))};
     if (!compress) return out;
     std::vector<std::int16_t> shorts;
-    for (const Eigen::Vector4d& q : coefficients)
-        for (int c = 0; c < 4; ++c) shorts.push_back(asNormalizedShort(q[c]));
+    for (std::size_t i = 0; i < rotations.size(); ++i) {
+        const std::array<std::int16_t, 4> rounded = nearestShorts(rotations[i]);
+        shorts.insert(shorts.end(), rounded.begin(), rounded.end());
+    }
     if (holds(fromShorts(shorts))) out.push_back(encoding(kShort, 8, "", bytesOf(shorts)));
     out.push_back(encoding(kFloat, 16, "NONE", bytesOf(floats)));
 
