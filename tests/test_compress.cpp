@@ -502,10 +502,9 @@ TEST_CASE("Cameras and lights stay where they were: the sterile room's, the Chev
     CHECK(chevyAgain.cameras[0].name == "Chevy Side View");
 }
 
-TEST_CASE("Hundreds of small copies the author shared with a scale are stored merged where their nodes cost more",
+TEST_CASE("Hundreds of small copies the author shared with a scale: one meshopt batch, stored merged where nodes cost more",
           "[compress]") {
-    // One box drawn by 400 nodes that scale it by 0.5, as gltfpack -mi writes a quantized mesh's instances:
-    // kept as the author shared them, 400 nodes cost far more JSON than the boxes cost in Draco.
+    // One box drawn by 400 nodes that scale it by 0.5, as gltfpack -mi writes a quantized mesh's instances.
     Primitive box;
     samples::appendMesh(box, samples::boxMesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 2, 3)));
     Scene scene = samples::singleMeshScene("box", box, {0.5, 0.5, 0.5, 1});
@@ -522,11 +521,20 @@ TEST_CASE("Hundreds of small copies the author shared with a scale are stored me
         scene.nodes.push_back(node);
     }
     TemporaryFolder folder;
-    const nlohmann::json report = compressAndVerify(writePlainGlb(scene, folder, "shared"), folder, "small");
+    const auto input = writePlainGlb(scene, folder, "shared");
+    // One batch, its translations through meshopt's exponential filter and its scale, the same for all, next
+    // to nothing: smaller than the boxes merged, so kept as the author shared them.
+    const nlohmann::json batched = compressAndVerify(input, folder, "batched");
+    CHECK(batched["plan"] == "final");
+    CHECK(batched["triangles_stored"] == 12);
+    CHECK(batched["gpu_instancing"]["instances"] == 400);
+    CHECK(batched["output_bytes"].get<double>() < batched["ablation"]["draco_alone"].get<double>());
+    // As nodes, 400 nodes cost far more JSON than the boxes cost in Draco: merged.
+    CompressOptions asNodes;
+    asNodes.write.gpuInstancing = false;
+    const nlohmann::json report = compressAndVerify(input, folder, "small", asNodes);
     CHECK(report["plan"] == "draco_alone");
     CHECK(report["triangles_stored"] == 400 * 12);
-    // Batched through EXT_mesh_gpu_instancing the 400 nodes cost 24 bytes each (float translation and scale),
-    // still more than the boxes merged; as nodes, over twice as much.
     CHECK(report["output_bytes"].get<double>() < report["ablation"]["instancing_and_regions"].get<double>());
 }
 

@@ -287,7 +287,7 @@ TEST_CASE("A mesh drawn by one node takes the whole error budget, a mesh several
     options.regions = false;
     const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
     PlanOptions plan = planOptionsOf(options);
-    plan.instanceRotationShare = options.maxError / 64;
+    plan.instanceShare = options.maxError / 64;
     const CompressedScene compressed = compressAnalyzed(scene, analysis, plan);
     const Scene& out = compressed.scene;
     std::vector<int> drawers(out.meshes.size(), 0);
@@ -305,7 +305,7 @@ TEST_CASE("A mesh drawn by one node takes the whole error budget, a mesh several
             } else {
                 several = true;
                 CHECK(primitive.maxPositionError <=
-                      (options.maxError - plan.instanceRotationShare) * analysis.diagonal);
+                      (options.maxError - plan.instanceShare) * analysis.diagonal);
             }
         }
     CHECK(once);

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -250,6 +251,139 @@ TEST_CASE("GPU instancing leaves alone what must stay a node", "[io][gpu]") {
             if (node.name == "rigid 1") CHECK(node.extrasJson == R"({"part":"A-1"})");
         if (interopAvailable()) CHECK(validatorErrors(file).empty());
     }
+}
+
+namespace {
+
+// `count` turned copies of the blob, roots, unnamed, at translations off any grid (each step a little different).
+Scene scatteredBlobs(int count) {
+    Scene scene;
+    scene.meshes.push_back({"blob", {blob()}, "", {}});
+    for (int i = 0; i < count; ++i) {
+        Node node;
+        node.mesh = 0;
+        const Eigen::Vector3d at(0.5 * (i % 10) + 0.01 * std::sin(1.7 * i), 0.5 * (i / 10) + 0.01 * std::cos(2.3 * i),
+                                 0.02 * std::sin(0.9 * i));
+        node.transform = placed(0.37 * i, {1 + std::sin(double(i)), 2, 3}, at);
+        scene.roots.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(node);
+    }
+    return scene;
+}
+
+// The largest distance between a mesh vertex placed by the expected and by the read-back world transforms.
+double largestVertexMove(const Primitive& part, const std::vector<Eigen::Matrix4d>& expected,
+                         const std::vector<Eigen::Matrix4d>& got) {
+    double largest = 0;
+    for (std::size_t i = 0; i < expected.size(); ++i)
+        for (const Eigen::Vector3d& p : part.positions)
+            largest = std::max(largest, ((got[i] - expected[i]) * p.homogeneous()).head<3>().norm());
+    return largest;
+}
+
+std::vector<Eigen::Matrix4d> drawingTransforms(const Scene& scene) {
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(scene);
+    std::vector<Eigen::Matrix4d> out;
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n)
+        if (scene.nodes[n].mesh >= 0) out.push_back(world[n]);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("Many instances: their values through EXT_meshopt_compression, smaller, read back within the allowance",
+          "[io][gpu]") {
+    TemporaryFolder folder;
+    const Scene scene = scatteredBlobs(400);
+    for (const char* name : {"many.glb", "many.gltf"}) {
+        INFO(name);
+        const auto file = folder / name;
+        writeScene(scene, file);
+        const nlohmann::json root = std::string(name).find(".glb") != std::string::npos
+                                        ? glbJson(file)
+                                        : nlohmann::json::parse(readTextFile(file));
+        CHECK(root["extensionsRequired"] == nlohmann::json({"EXT_mesh_gpu_instancing", "EXT_meshopt_compression",
+                                                            "KHR_draco_mesh_compression"}));
+        // The fallback buffer: no data, the extension's mark, as long as the views it stands for.
+        REQUIRE(root["buffers"].size() == 2);
+        CHECK_FALSE(root["buffers"][1].contains("uri"));
+        CHECK(root["buffers"][1]["extensions"]["EXT_meshopt_compression"]["fallback"] == true);
+        const auto batches = batchNodes(root);
+        REQUIRE(batches.size() == 1);
+        CHECK(instanceCount(root, *batches[0]) == 400);
+        std::size_t decoded = 0, encoded = 0;
+        std::set<std::string> filters;
+        for (const auto& [attribute, accessor] : (*batches[0])["extensions"]["EXT_mesh_gpu_instancing"]["attributes"].items()) {
+            const auto& view = root["bufferViews"][root["accessors"][accessor.get<std::size_t>()]["bufferView"].get<std::size_t>()];
+            INFO(attribute);
+            REQUIRE(view.contains("extensions"));
+            const auto& meshopt = view["extensions"]["EXT_meshopt_compression"];
+            CHECK(view["buffer"] == 1);
+            CHECK(meshopt["buffer"] == 0);
+            CHECK(meshopt["count"] == 400);
+            decoded += view["byteLength"].get<std::size_t>();
+            encoded += meshopt["byteLength"].get<std::size_t>();
+            filters.insert(meshopt.value("filter", "NONE"));
+        }
+        // Off-grid translations through the exponential filter, turns through the quaternion filter: smaller
+        // than the plain batch's float translations and SHORT rotations (20 bytes an instance).
+        CHECK(filters == std::set<std::string>{"EXPONENTIAL", "QUATERNION"});
+        CHECK(decoded == 400 * 20);
+        CHECK(encoded < decoded * 3 / 4);
+
+        // Read back by our reader (meshoptimizer's decoders): every vertex within the allowances together.
+        const Scene back = readScene(file);
+        CHECK(back.warnings.empty());
+        const std::vector<Eigen::Matrix4d> expected = drawingTransforms(scene), got = drawingTransforms(back);
+        REQUIRE(got.size() == expected.size());
+        // The writer's diagonal: of the mesh's box placed by each instance.
+        Eigen::AlignedBox3d meshBox, box;
+        for (const Eigen::Vector3d& p : blob().positions) meshBox.extend(p);
+        for (const Eigen::Matrix4d& world : expected)
+            for (int corner = 0; corner < 8; ++corner)
+                box.extend((world * meshBox.corner(Eigen::AlignedBox3d::CornerType(corner)).homogeneous()).head<3>());
+        const WriteOptions defaults;
+        const double allowed =
+            (defaults.instanceRotationDeviation + defaults.instanceTranslationDeviation) * box.diagonal().norm();
+        const double moved = largestVertexMove(blob(), expected, got);
+        CHECK(moved <= allowed * 1.0001);
+        CHECK(moved > 0);  // rounded, not float as it was
+        if (interopAvailable()) CHECK(validatorErrors(file).empty());
+    }
+    // The plan's measure of the batch against the file: what batching saved, within a tenth.
+    WriteOptions apart;
+    apart.gpuInstancing = false;
+    writeScene(scene, folder / "apart.glb", apart);
+    const double saved = double(std::filesystem::file_size(folder / "apart.glb")) -
+                         double(std::filesystem::file_size(folder / "many.glb"));
+    const double estimated = gltfNodesBytes(scene.nodes, apart) - gltfNodesBytes(scene.nodes, WriteOptions());
+    INFO("saved " << saved << ", estimated " << estimated);
+    CHECK(estimated == Approx(saved).epsilon(0.1));
+}
+
+TEST_CASE("GPU instancing without Draco stays float and needs no meshopt, as a small batch does not", "[io][gpu]") {
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(scatteredBlobs(400), folder / "plain.glb", plain);
+    const nlohmann::json root = glbJson(folder / "plain.glb");
+    CHECK(root["extensionsRequired"] == nlohmann::json({"EXT_mesh_gpu_instancing"}));
+    CHECK(root["buffers"].size() == 1);
+    for (const auto& view : root["bufferViews"]) CHECK_FALSE(view.contains("extensions"));
+    const auto batches = batchNodes(root);
+    REQUIRE(batches.size() == 1);
+    for (const auto& [attribute, accessor] : (*batches[0])["extensions"]["EXT_mesh_gpu_instancing"]["attributes"].items())
+        CHECK(root["accessors"][accessor.get<std::size_t>()]["componentType"] == 5126);
+    // Read back exactly: float32 as written.
+    const Scene scene = scatteredBlobs(400), back = readScene(folder / "plain.glb");
+    CHECK(largestVertexMove(blob(), drawingTransforms(scene), drawingTransforms(back)) < 1e-6);
+
+    // With Draco but a dozen instances, meshopt's views would cost more than they save: plain accessors.
+    writeScene(scatteredBlobs(12), folder / "few.glb");
+    const nlohmann::json few = glbJson(folder / "few.glb");
+    REQUIRE(batchNodes(few).size() == 1);
+    CHECK(few["extensionsRequired"] == nlohmann::json({"EXT_mesh_gpu_instancing", "KHR_draco_mesh_compression"}));
+    for (const auto& view : few["bufferViews"]) CHECK_FALSE(view.contains("extensions"));
 }
 
 TEST_CASE("gltfNodesBytes: a batch of rigid instances costs a few bytes each, as written", "[io][gpu]") {

@@ -46,10 +46,13 @@ struct WriteOptions {
     // glTF: leaves drawing one mesh written as one node with EXT_mesh_gpu_instancing where that is smaller
     // (--no-gpu-instancing: a node each, for viewers without the extension).
     bool gpuInstancing = true;
-    // How far, relative to the scene's bounding-box diagonal, the rounding of an instance's rotation to
-    // normalized SHORT may move a vertex (else the batch keeps FLOAT rotations): a 16th of the quantization
-    // allowance symdecompress verifies with (2^-13).
+    // How far, relative to the scene's bounding-box diagonal, the rounding of an instance's rotation (to
+    // normalized SHORT, or through meshopt's filters) may move a vertex (else the batch keeps FLOAT rotations):
+    // a 16th of the quantization allowance symdecompress verifies with (2^-13).
     double instanceRotationDeviation = 1.0 / (1 << 17);
+    // The same for the rounding of an instance's translation and scale together (meshopt's exponential filter,
+    // with Draco; else they stay float32): what the budget keeps for them apart from the rotations' share.
+    double instanceTranslationDeviation = 1.0 / (1 << 17);
     // Written as glTF asset.extras / X3D MetadataSet, e.g. the digest of the original scene.
     std::string extrasJson;
 };

@@ -16,8 +16,9 @@ namespace symcompress {
 namespace fs = std::filesystem;
 namespace {
 
-// The share of the error budget left for the rounding of GPU-instanced rotations to normalized shorts.
-constexpr double kRotationShare = 1.0 / 64;
+// The shares of the error budget left for the rounding of GPU-instanced rotations (normalized shorts, meshopt's
+// quaternion filter) and of their translations and scales (meshopt's exponential filter).
+constexpr double kRotationShare = 1.0 / 64, kTranslationShare = 1.0 / 64;
 
 double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -127,12 +128,13 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     WriteOptions write = options.write;
     PlanOptions planOptions = planOptionsOf(options);
     if (!options.fixedPositionBits) {
-        // Of the budget, a share for the rounding of GPU-instanced rotations, kept by the meshes that several
-        // nodes draw; the rest for the placements and each mesh's quantization (the meshes the plan does not
-        // bound take all of that).
-        planOptions.instanceRotationShare = options.maxError * kRotationShare;
-        write.instanceRotationDeviation = planOptions.instanceRotationShare;
-        write.maxPositionError = (options.maxError - planOptions.instanceRotationShare) * analysis.diagonal;
+        // Of the budget, a share for the rounding of GPU-instanced rotations and one for their translations and
+        // scales, kept by the meshes that several nodes draw; the rest for the placements and each mesh's
+        // quantization (the meshes the plan does not bound take all of that).
+        planOptions.instanceShare = options.maxError * (kRotationShare + kTranslationShare);
+        write.instanceRotationDeviation = options.maxError * kRotationShare;
+        write.instanceTranslationDeviation = options.maxError * kTranslationShare;
+        write.maxPositionError = (options.maxError - planOptions.instanceShare) * analysis.diagonal;
     }
     planOptions.costs = costModelFor(formatFromExtension(output), write);
     // The HTML report draws the plan's decisions: kept only when it is asked for.

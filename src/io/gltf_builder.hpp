@@ -44,6 +44,27 @@ public:
         return static_cast<int>(root_["bufferViews"].size()) - 1;
     }
 
+    // A view of EXT_meshopt_compression's fallback buffer (buffer 1, which holds no data) decoded from
+    // `encoded`, meshopt's ATTRIBUTES of `count` elements of `stride` bytes under `filter` ("NONE": none), which
+    // goes in the binary buffer; returns its index.
+    int addMeshoptBufferView(const std::vector<unsigned char>& encoded, std::size_t count, std::size_t stride,
+                             const std::string& filter) {
+        while (binary_.size() % 4) binary_.push_back(0);
+        Json compressed = {{"buffer", 0},     {"byteLength", encoded.size()}, {"byteStride", stride},
+                           {"count", count},  {"mode", "ATTRIBUTES"}};
+        if (!binary_.empty()) compressed["byteOffset"] = binary_.size();
+        if (filter != "NONE") compressed["filter"] = filter;
+        Json view = {{"buffer", 1}, {"byteLength", count * stride}};
+        if (fallbackBytes_) view["byteOffset"] = fallbackBytes_;
+        view["extensions"]["EXT_meshopt_compression"] = compressed;
+        binary_.insert(binary_.end(), encoded.begin(), encoded.end());
+        fallbackBytes_ += (count * stride + 3) / 4 * 4;
+        root_["bufferViews"].push_back(view);
+        return static_cast<int>(root_["bufferViews"].size()) - 1;
+    }
+    // The bytes the fallback buffer stands for (0: no view is meshopt's).
+    std::size_t fallbackBytes() const { return fallbackBytes_; }
+
     void setByteStride(int view, std::size_t stride) { root_["bufferViews"][std::size_t(view)]["byteStride"] = stride; }
 
     int addAccessor(Json accessor) {
@@ -92,6 +113,7 @@ public:
 private:
     Json& root_;
     std::vector<unsigned char> binary_;
+    std::size_t fallbackBytes_ = 0;
 };
 
 // Appends the glTF primitives that store `primitive` (one, or with Draco two when edgebreaker would drop

@@ -1,10 +1,12 @@
 // EXT_mesh_gpu_instancing: batches of plain leaves drawing one mesh, chosen by the bytes they save, and written.
 //
 // The extension goes in extensionsRequired: a viewer without it would draw one copy per batch where there are
-// hundreds, a wrong scene rather than a plainer one (gltfpack -mi marks it required as well). Rotations are
+// hundreds, a wrong scene rather than a plainer one (gltfpack -mi marks it required as well). Rotations may be
 // normalized SHORT, which the extension allows without KHR_mesh_quantization; translations and scales stay
 // FLOAT, the only type it allows for them without that extension (which would also ask for a dequantizing
-// node transform that the batch's mesh would inherit).
+// node transform that the batch's mesh would inherit). With Draco the values may go through
+// EXT_meshopt_compression (gltf_instance_encoding.cpp), which is then required too: its fallback buffer has
+// no data.
 #include "gltf_gpu_instancing.hpp"
 
 #include "rotation_and_scale.hpp"
@@ -15,13 +17,16 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <tuple>
 
 namespace symcompress {
 namespace {
 
-constexpr int kShort = 5122;
 const char* const kExtension = "EXT_mesh_gpu_instancing";
+const char* const kMeshopt = "EXT_meshopt_compression";
+const char* const kTypes[3] = {"VEC3", "VEC4", "VEC3"};  // of TRANSLATION, ROTATION, SCALE
+const char* const kNames[3] = {"TRANSLATION", "ROTATION", "SCALE"};
 
 bool mirrors(const Eigen::Matrix4d& transform) { return transform.topLeftCorner<3, 3>().determinant() < 0; }
 
@@ -47,27 +52,13 @@ bool plainLeaf(const Node& node) {
            node.weights.empty() && node.extrasJson.empty() && instanceTrsOf(node.transform, mirrors(node.transform));
 }
 
-std::int16_t asNormalizedShort(double value) {
-    return std::int16_t(std::clamp(std::lround(value * 32767.0), -32767L, 32767L));
-}
-
-// The rotation as the reader gets it back from normalized SHORTs (each component at most 1/32767 off).
-Eigen::Quaterniond shortRotation(const Eigen::Quaterniond& rotation) {
-    const Eigen::Vector4d q = rotation.coeffs().unaryExpr([](double c) { return asNormalizedShort(c) / 32767.0; });
-    return Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized();
-}
-
 // Which of the three attributes a batch needs: each is left out where it does nothing for every instance.
-struct BatchAttributes {
-    bool translation = false, rotation = false, scale = false;
-};
-
-BatchAttributes attributesOf(const std::vector<InstanceTrs>& instances) {
-    BatchAttributes used;
+std::array<bool, 3> attributesOf(const std::vector<InstanceTrs>& instances) {
+    std::array<bool, 3> used{false, false, false};
     for (const InstanceTrs& trs : instances) {
-        used.translation |= !trs.translation.unaryExpr(&asFloat32).isZero(0);
-        used.rotation |= trs.rotation.coeffs().unaryExpr(&asFloat32) != Eigen::Vector4d(0, 0, 0, 1);
-        used.scale |= trs.scale.unaryExpr(&asFloat32) != Eigen::Vector3d::Ones();
+        used[0] = used[0] || !trs.translation.unaryExpr(&asFloat32).isZero(0);
+        used[1] = used[1] || trs.rotation.coeffs().unaryExpr(&asFloat32) != Eigen::Vector4d(0, 0, 0, 1);
+        used[2] = used[2] || trs.scale.unaryExpr(&asFloat32) != Eigen::Vector3d::Ones();
     }
     return used;
 }
@@ -87,40 +78,108 @@ Json batchNode(int mesh, const Json& attributes, bool mirrored, const std::vecto
     return node;
 }
 
-// What a batch adds to the file: its node (with its index in its parent's list), its accessors (indices and
-// offsets of a typical size) and its binary data; the buffer views, shared by every batch, not counted.
-double batchBytes(const std::vector<InstanceTrs>& instances, const std::vector<std::string>& names, bool mirrored,
-                  bool shortRotation) {
-    const BatchAttributes used = attributesOf(instances);
-    const std::size_t count = instances.size();
-    Json attributes = Json::object();
-    double bytes = 0;
-    auto add = [&](const char* name, int componentType, const char* type, std::size_t elementBytes) {
-        attributes[name] = 100;
-        bytes += double(jsonText(instanceAccessor(1, 10000, componentType, count, type)).size() + 1);
-        bytes += double(count * elementBytes);
-    };
-    if (used.translation) add("TRANSLATION", kFloat, "VEC3", 12);
-    if (used.rotation) add("ROTATION", shortRotation ? kShort : kFloat, "VEC4", shortRotation ? 8 : 16);
-    if (used.scale) add("SCALE", kFloat, "VEC3", 12);
-    return bytes + double(jsonText(batchNode(10, attributes, mirrored, names)).size() + 1 + 3);
+// A buffer view of instance values: per attribute and encoding (its filter, its component type), shared by
+// every batch that stores that attribute so.
+using Stream = std::tuple<int, std::string, int>;
+
+Stream streamOf(int attribute, const InstanceEncoding& encoding) {
+    return {attribute, encoding.filter, encoding.componentType};
 }
 
-// What the first batch adds once: the extension's name in extensionsUsed and extensionsRequired, and a shared
-// buffer view per attribute.
-double fileBytesOfFirstBatch() {
-    const Json view = {{"buffer", 0}, {"byteLength", 10000}, {"byteOffset", 1000000}};
-    return 2.0 * double(std::string(kExtension).size() + 3) + 3.0 * double(jsonText(view).size() + 1);
-}
-
-// Whether normalized SHORT rotations move no vertex of the mesh farther than `allowed`.
-bool shortRotationsHold(const std::vector<InstanceTrs>& instances, double meshRadius, double allowed) {
-    for (const InstanceTrs& trs : instances) {
-        const double angle = trs.rotation.angularDistance(shortRotation(trs.rotation));
-        if (angle * meshRadius * trs.scale.cwiseAbs().maxCoeff() > allowed) return false;
+// What the first batch of a stream adds once: its buffer view; and the first of meshopt's, the extension's
+// name in extensionsUsed and extensionsRequired and the fallback buffer.
+double streamBytes(const InstanceEncoding& encoding, bool firstOfMeshopt) {
+    if (!encoding.meshopt()) {
+        const Json view = {{"buffer", 0}, {"byteLength", 10000}, {"byteOffset", 1000000}};
+        return double(jsonText(view).size() + 1);
     }
-    return true;
+    const Json compressed = {{"buffer", 0},     {"byteLength", 10000},   {"byteOffset", 100000}, {"byteStride", 12},
+                             {"count", 1000},   {"mode", "ATTRIBUTES"}, {"filter", encoding.filter}};
+    const Json view = {{"buffer", 1}, {"byteLength", 10000}, {"byteOffset", 100000},
+                       {"extensions", {{kMeshopt, compressed}}}};
+    double bytes = double(jsonText(view).size() + 1);
+    if (firstOfMeshopt) {
+        const Json fallback = {{"byteLength", 100000}, {"extensions", {{kMeshopt, {{"fallback", true}}}}}};
+        bytes += double(jsonText(fallback).size() + 1) + 2.0 * double(std::string(kMeshopt).size() + 3);
+    }
+    return bytes;
 }
+
+// What the batches' streams so far are.
+struct StreamsInUse {
+    std::set<Stream> streams;
+    bool meshopt = false;
+};
+
+// What an attribute of `count` instances stored as `encoding` adds: its accessor, its data and, where no batch
+// has used its stream yet, the stream.
+double attributeBytes(int attribute, const InstanceEncoding& encoding, std::size_t count, const StreamsInUse& inUse) {
+    double bytes = double(jsonText(instanceAccessor(1, 10000, encoding.componentType, count, kTypes[attribute])).size() + 1);
+    bytes += double(encoding.storedBytes);
+    if (!inUse.streams.count(streamOf(attribute, encoding)))
+        bytes += streamBytes(encoding, encoding.meshopt() && !inUse.meshopt);
+    return bytes;
+}
+
+// What the rounding of one batch may cost. The mesh is not always known (the plan's estimate): then rotations
+// are held to a precision, not a distance (lever 1), and scales kept exact.
+struct BatchAllowance {
+    bool compress = false;               // with Draco: SHORT rotations and meshopt among the candidates
+    double translation = 0;              // what translations and scales, together, may move a vertex by
+    double rotation = 0;                 // what rotations may
+    double meshRadius = 0;               // 0: unknown
+    std::vector<double> rotationLever;   // per instance: its farthest vertex from the mesh's origin, scaled
+};
+
+// The smallest encoding of each attribute the batch needs, and what they add to the file with `inUse`, which
+// then holds their streams too.
+std::pair<std::array<std::optional<InstanceEncoding>, 3>, double> chosenEncodings(
+    const std::vector<InstanceTrs>& instances, const BatchAllowance& allowance, StreamsInUse& inUse) {
+    const std::array<bool, 3> used = attributesOf(instances);
+    std::vector<Eigen::Vector3d> translations, scales;
+    std::vector<Eigen::Quaterniond> rotations;
+    for (const InstanceTrs& trs : instances) {
+        translations.push_back(trs.translation);
+        rotations.push_back(trs.rotation);
+        scales.push_back(trs.scale);
+    }
+    // Translations and scales share their allowance, half each where both are stored.
+    const double vectorShare = allowance.translation * (used[0] && used[2] ? 0.5 : 1.0);
+    std::array<std::vector<InstanceEncoding>, 3> candidates;
+    if (used[0]) candidates[0] = vectorEncodings(translations, 1, vectorShare, allowance.compress);
+    if (used[1]) candidates[1] = rotationEncodings(rotations, allowance.rotationLever, allowance.rotation, allowance.compress);
+    if (used[2])
+        candidates[2] = vectorEncodings(scales, std::max(allowance.meshRadius, 1e-300),
+                                        allowance.meshRadius > 0 ? vectorShare : 0, allowance.compress);
+    std::array<std::optional<InstanceEncoding>, 3> chosen;
+    double bytes = 0;
+    for (int a = 0; a < 3; ++a) {
+        if (candidates[std::size_t(a)].empty()) continue;
+        double best = 0;
+        for (InstanceEncoding& candidate : candidates[std::size_t(a)]) {
+            const double candidateBytes = attributeBytes(a, candidate, instances.size(), inUse);
+            if (!chosen[std::size_t(a)] || candidateBytes < best) chosen[std::size_t(a)] = std::move(candidate), best = candidateBytes;
+        }
+        bytes += best;
+        inUse.streams.insert(streamOf(a, *chosen[std::size_t(a)]));
+        inUse.meshopt = inUse.meshopt || chosen[std::size_t(a)]->meshopt();
+    }
+    return {std::move(chosen), bytes};
+}
+
+// What a batch adds to the file: its node (with its index in its parent's list), its accessors (indices and
+// offsets of a typical size) and its binary data, and the streams `inUse` did not hold yet.
+double batchBytes(const std::vector<InstanceTrs>& instances, const std::vector<std::string>& names, bool mirrored,
+                  double encodedBytes) {
+    Json attributes = Json::object();
+    const std::array<bool, 3> used = attributesOf(instances);
+    for (int a = 0; a < 3; ++a)
+        if (used[std::size_t(a)]) attributes[kNames[a]] = 100;
+    return encodedBytes + double(jsonText(batchNode(10, attributes, mirrored, names)).size() + 1 + 3);
+}
+
+// What the first batch adds once: the extension's name in extensionsUsed and extensionsRequired.
+double fileBytesOfFirstBatch() { return 2.0 * double(std::string(kExtension).size() + 3); }
 
 double meshRadius(const Mesh& mesh) {
     double radius = 0;
@@ -199,15 +258,16 @@ GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& 
             const Node& node = scene.nodes[std::size_t(n)];
             const auto key = std::make_tuple(parent, node.mesh, mirrors(node.transform));
             const auto [at, isNew] = groupOf.emplace(key, groups.size());
-            if (isNew) groups.push_back({parent, node.mesh, std::get<2>(key), true, {}, {}});
+            if (isNew) groups.push_back({parent, node.mesh, std::get<2>(key), {}, {}, {}});
             groups[at->second].nodes.push_back(n);
         }
     };
     collect(-1, scene.roots);
     for (std::size_t p = 0; p < scene.nodes.size(); ++p) collect(int(p), scene.nodes[p].children);
 
-    const double allowed = options.instanceRotationDeviation * sceneDiagonal(scene);
+    const double diagonal = sceneDiagonal(scene);
     std::vector<double> radius(scene.meshes.size(), -1);
+    StreamsInUse inUse;
     for (InstanceBatch& batch : groups) {
         if (batch.nodes.size() < 2) continue;
         double separate = 0;
@@ -218,78 +278,90 @@ GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& 
         double& r = radius[std::size_t(batch.mesh)];
         if (r < 0) r = meshRadius(scene.meshes[std::size_t(batch.mesh)]);
         // Without Draco the file is float throughout, as exact as its reader: the rotations too.
-        batch.shortRotation = options.draco && shortRotationsHold(batch.instances, r, allowed);
-        const double batched =
-            batchBytes(batch.instances, namesOf(scene, batch.nodes), batch.mirrored, batch.shortRotation) +
-            (plan.batches.empty() ? fileBytesOfFirstBatch() : 0);
+        BatchAllowance allowance{options.draco, options.instanceTranslationDeviation * diagonal,
+                                 options.instanceRotationDeviation * diagonal, r, {}};
+        for (const InstanceTrs& trs : batch.instances) allowance.rotationLever.push_back(r * trs.scale.maxCoeff());
+        StreamsInUse withBatch = inUse;
+        auto [attributes, encodedBytes] = chosenEncodings(batch.instances, allowance, withBatch);
+        const double batched = batchBytes(batch.instances, namesOf(scene, batch.nodes), batch.mirrored, encodedBytes) +
+                               (plan.batches.empty() ? fileBytesOfFirstBatch() : 0);
         if (batched >= separate) continue;
+        inUse = std::move(withBatch);
+        batch.attributes = std::move(attributes);
         for (int n : batch.nodes) plan.batchOf[std::size_t(n)] = int(plan.batches.size());
         plan.batches.push_back(std::move(batch));
     }
     return plan;
 }
 
-double gpuBatchBytes(const std::vector<Node>& nodes, bool shortRotation) {
+double gpuBatchBytes(const std::vector<Node>& nodes, const WriteOptions& options) {
     if (nodes.empty()) return -1;
     const bool mirrored = mirrors(nodes.front().transform);
     std::vector<InstanceTrs> instances;
     std::vector<std::string> names;
+    std::vector<Eigen::Quaterniond> rotations;
+    Eigen::AlignedBox3d extent;
     for (const Node& node : nodes) {
         if (!plainLeaf(node) || mirrors(node.transform) != mirrored) return -1;
         instances.push_back(*instanceTrsOf(node.transform, mirrored));
         names.push_back(node.name);
+        rotations.push_back(instances.back().rotation);
+        extent.extend(instances.back().translation);
     }
-    return batchBytes(instances, names, mirrored, shortRotation);
+    // The plan cannot tell the mesh yet: rotations as precise as normalized SHORTs, which nearly every batch
+    // has; translations within the allowance of their own extent, no larger than the scene's.
+    BatchAllowance allowance{options.draco, options.instanceTranslationDeviation * extent.diagonal().norm(),
+                             shortRotationError(rotations), 0, std::vector<double>(nodes.size(), 1.0)};
+    StreamsInUse inUse;
+    // Plain views are taken as there already, as the plan weighs one mesh's nodes among others.
+    for (int a = 0; a < 3; ++a)
+        for (int type : {kFloat, kShort}) inUse.streams.insert({a, std::string(), type});
+    const double encodedBytes = chosenEncodings(instances, allowance, inUse).second;
+    return batchBytes(instances, names, mirrored, encodedBytes);
 }
 
 void writeGpuBatches(const GpuInstancingPlan& plan, const Scene& scene, const std::vector<int>& meshIndex,
                      GltfBuilder& builder, Json& root) {
     if (plan.batches.empty()) return;
-    // Every batch's values, one buffer of each kind, and where each batch's start.
-    std::vector<float> translations, rotations, scales;
-    std::vector<std::int16_t> shortRotations;
-    struct Offsets {
-        std::size_t translation = 0, rotation = 0, scale = 0;
-        BatchAttributes used;
+    // Every batch's values, one stream of each kind, and where each batch's start in it.
+    struct StreamData {
+        std::size_t elementBytes = 0;
+        std::vector<unsigned char> values;
+        int view = -1;
     };
-    std::vector<Offsets> offsets;
+    std::map<Stream, StreamData> streams;
+    std::vector<std::array<std::size_t, 3>> offsets;
     for (const InstanceBatch& batch : plan.batches) {
-        Offsets at{translations.size() * 4, (batch.shortRotation ? shortRotations.size() * 2 : rotations.size() * 4),
-                   scales.size() * 4, attributesOf(batch.instances)};
-        for (const InstanceTrs& trs : batch.instances) {
-            if (at.used.translation)
-                for (int c = 0; c < 3; ++c) translations.push_back(float(trs.translation[c]));
-            if (at.used.rotation)
-                for (int c = 0; c < 4; ++c) {
-                    if (batch.shortRotation)
-                        shortRotations.push_back(asNormalizedShort(trs.rotation.coeffs()[c]));
-                    else
-                        rotations.push_back(float(trs.rotation.coeffs()[c]));
-                }
-            if (at.used.scale)
-                for (int c = 0; c < 3; ++c) scales.push_back(float(trs.scale[c]));
+        std::array<std::size_t, 3> at{0, 0, 0};
+        for (int a = 0; a < 3; ++a) {
+            const std::optional<InstanceEncoding>& encoding = batch.attributes[std::size_t(a)];
+            if (!encoding) continue;
+            StreamData& stream = streams[streamOf(a, *encoding)];
+            stream.elementBytes = encoding->elementBytes;
+            at[std::size_t(a)] = stream.values.size();
+            stream.values.insert(stream.values.end(), encoding->values.begin(), encoding->values.end());
         }
         offsets.push_back(at);
     }
-    auto viewOf = [&](const auto& values) {
-        return values.empty() ? -1 : builder.addBufferView(values.data(), values.size() * sizeof(values[0]));
-    };
-    const int translationView = viewOf(translations), rotationView = viewOf(rotations),
-              shortRotationView = viewOf(shortRotations), scaleView = viewOf(scales);
+    for (auto& [key, stream] : streams) {
+        const std::string& filter = std::get<1>(key);
+        stream.view = filter.empty()
+                          ? builder.addBufferView(stream.values.data(), stream.values.size())
+                          : builder.addMeshoptBufferView(meshoptEncoded(stream.values, stream.elementBytes),
+                                                         stream.values.size() / stream.elementBytes,
+                                                         stream.elementBytes, filter);
+    }
     for (std::size_t b = 0; b < plan.batches.size(); ++b) {
         const InstanceBatch& batch = plan.batches[b];
-        const Offsets& at = offsets[b];
         const std::size_t count = batch.instances.size();
         Json attributes = Json::object();
-        if (at.used.translation)
-            attributes["TRANSLATION"] =
-                builder.addAccessor(instanceAccessor(translationView, at.translation, kFloat, count, "VEC3"));
-        if (at.used.rotation)
-            attributes["ROTATION"] = builder.addAccessor(
-                batch.shortRotation ? instanceAccessor(shortRotationView, at.rotation, kShort, count, "VEC4")
-                                    : instanceAccessor(rotationView, at.rotation, kFloat, count, "VEC4"));
-        if (at.used.scale)
-            attributes["SCALE"] = builder.addAccessor(instanceAccessor(scaleView, at.scale, kFloat, count, "VEC3"));
+        for (int a = 0; a < 3; ++a) {
+            const std::optional<InstanceEncoding>& encoding = batch.attributes[std::size_t(a)];
+            if (!encoding) continue;
+            const int view = streams.at(streamOf(a, *encoding)).view;
+            attributes[kNames[a]] = builder.addAccessor(
+                instanceAccessor(view, offsets[b][std::size_t(a)], encoding->componentType, count, kTypes[a]));
+        }
         root["nodes"].push_back(
             batchNode(meshIndex[std::size_t(batch.mesh)], attributes, batch.mirrored, namesOf(scene, batch.nodes)));
     }
@@ -307,8 +379,7 @@ double gltfNodesBytes(const std::vector<Node>& nodes, const WriteOptions& option
     for (const std::vector<Node>& group : byHandedness) {
         double separate = 0;
         for (const Node& node : group) separate += double(gltfNodeBytes(node));
-        // The plan cannot tell the mesh's radius yet: SHORT rotations, as nearly every batch has them.
-        bytes += group.size() < 2 ? separate : std::min(separate, gpuBatchBytes(group, true));
+        bytes += group.size() < 2 ? separate : std::min(separate, gpuBatchBytes(group, options));
     }
     return bytes;
 }

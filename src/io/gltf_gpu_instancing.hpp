@@ -3,10 +3,13 @@
 #pragma once
 
 #include "gltf_builder.hpp"
+#include "gltf_instance_encoding.hpp"
 #include "symcompress/scene.hpp"
 
 #include <Eigen/Geometry>
 
+#include <array>
+#include <optional>
 #include <vector>
 
 namespace symcompress {
@@ -25,10 +28,10 @@ struct InstanceBatch {
     int parent = -1;  // the scene node whose children they are, -1 for roots
     int mesh = -1;    // into Scene::meshes
     bool mirrored = false;
-    // Rotations as normalized SHORT (with Draco) where their rounding moves no vertex too far.
-    bool shortRotation = true;
     std::vector<int> nodes;              // the scene nodes, in the order their parent lists them
     std::vector<InstanceTrs> instances;  // one per node
+    // How TRANSLATION, ROTATION and SCALE are stored, in that order; none where no instance needs it.
+    std::array<std::optional<InstanceEncoding>, 3> attributes;
 };
 
 struct GpuInstancingPlan {
@@ -38,16 +41,24 @@ struct GpuInstancingPlan {
 
 // The batches worth writing: every group of plain leaves (a mesh that is written and has no morph targets;
 // no children, camera, light, skin, weights or extras; not animated, under nothing animated, no joint; a
-// transform that TRS holds) whose batch is smaller than its nodes, by the writer's bytes. `meshIndex` is the
-// glTF mesh of each scene mesh (-1: not written). Empty when options.gpuInstancing is off.
+// transform that TRS holds) whose batch is smaller than its nodes, by the writer's bytes. Each attribute is
+// stored the smallest way that keeps every vertex within options.instanceRotationDeviation (rotations) and
+// options.instanceTranslationDeviation (translations and scales) of the scene's diagonal: with Draco, normalized
+// SHORT rotations and EXT_meshopt_compression streams are among the candidates; without, the file is float
+// throughout. `meshIndex` is the glTF mesh of each scene mesh (-1: not written). Empty when
+// options.gpuInstancing is off.
 GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& meshIndex, const WriteOptions& options);
 
 // What a batch of `nodes` (local transforms relative to one parent, one mesh) adds to the file, by its JSON and
-// binary data, and whether it is possible at all (no shear, one handedness): -1 when it is not.
-double gpuBatchBytes(const std::vector<Node>& nodes, bool shortRotation);
+// binary data (meshopt's views and extension included where it takes them), and whether it is possible at all
+// (no shear, one handedness): -1 when it is not. The mesh and the scene are not known here: rotations are held
+// to the precision of normalized SHORTs, translations to options.instanceTranslationDeviation of their own
+// extent, scales kept exact.
+double gpuBatchBytes(const std::vector<Node>& nodes, const WriteOptions& options);
 
 // Writes the plan's batch nodes (appended to root["nodes"] in batch order) with their accessors, the
-// instances' data in one buffer view per attribute and component type, shared by every batch.
+// instances' data in one buffer view per attribute and encoding, shared by every batch (meshopt's views in the
+// fallback buffer, GltfBuilder::addMeshoptBufferView).
 void writeGpuBatches(const GpuInstancingPlan& plan, const Scene& scene, const std::vector<int>& meshIndex,
                      GltfBuilder& builder, Json& root);
 

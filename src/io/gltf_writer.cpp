@@ -1,7 +1,8 @@
 // glTF 2.0 writer: .glb (one binary chunk) or .gltf (JSON plus a sibling .bin). Meshes shared by several
 // nodes stay shared (instancing, mirrors included: a negative-determinant node matrix is valid glTF and
 // renderers flip the winding for it); where many plain leaves draw one mesh, they are one node with
-// EXT_mesh_gpu_instancing (gltf_gpu_instancing.cpp) unless WriteOptions::gpuInstancing is false. Geometry is
+// EXT_mesh_gpu_instancing (gltf_gpu_instancing.cpp; their values through EXT_meshopt_compression where that is
+// smaller) unless WriteOptions::gpuInstancing is false. Geometry is
 // compressed with KHR_draco_mesh_compression unless WriteOptions::draco is false.
 #include "common/image_size.hpp"
 #include "common/number_text.hpp"
@@ -457,6 +458,8 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     }
     writeGpuBatches(gpu, scene, meshIndex, builder, root);
     if (!gpu.batches.empty()) extensions.add("EXT_mesh_gpu_instancing", true);
+    // Required: the fallback buffer holds no data for a viewer that cannot decode the views.
+    if (builder.fallbackBytes()) extensions.add("EXT_meshopt_compression", true);
     for (Json& node : extraNodes) root["nodes"].push_back(std::move(node));
     root["scenes"] = {{{"nodes", numbering.list(scene.roots)}}};
     root["scene"] = 0;
@@ -479,8 +482,12 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     for (const std::string& extension : extensions.required) root["extensionsRequired"].push_back(extension);
 
     std::vector<unsigned char>& binary = builder.binary();
+    // EXT_meshopt_compression's views are of buffer 1, whose data only the binary buffer's encoded bytes hold.
+    const Json fallback = {{"byteLength", builder.fallbackBytes()},
+                           {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}};
     if (formatFromExtension(file) == FileFormat::Glb) {
         if (!binary.empty()) root["buffers"] = {{{"byteLength", binary.size()}}};
+        if (builder.fallbackBytes()) root["buffers"].push_back(fallback);
         writeFileAtomically(file, glbFile(root, binary));
         return;
     }
@@ -488,6 +495,7 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     if (!binary.empty()) {
         const fs::path bin = fs::path(file).replace_extension(".bin");
         root["buffers"] = {{{"byteLength", binary.size()}, {"uri", bin.filename().string()}}};
+        if (builder.fallbackBytes()) root["buffers"].push_back(fallback);
         writeFileAtomically(bin, std::string_view(reinterpret_cast<const char*>(binary.data()), binary.size()));
     }
     writeFileAtomically(file, jsonText(root, 1));

@@ -109,10 +109,10 @@ double largestStretch(const Eigen::Matrix4d& transform) {
 }
 
 // Each stored mesh's share of the error budget (a distance): what the deviation of the copies it draws
-// leaves of it (`deviation`, by mesh), less `rotationShare` where several nodes draw it (a GPU batch may round
-// their rotations), in the mesh's frame: divided by the largest stretch of a node that draws it, since a
+// leaves of it (`deviation`, by mesh), less `instanceShare` where several nodes draw it (a GPU batch may round
+// their rotations and translations), in the mesh's frame: divided by the largest stretch of a node that draws it, since a
 // corner moved by e in the mesh moves by s e in the world.
-void shareErrorBudget(Scene& out, double budget, double rotationShare, const std::vector<double>& deviation) {
+void shareErrorBudget(Scene& out, double budget, double instanceShare, const std::vector<double>& deviation) {
     std::vector<double> stretch(out.meshes.size(), 0);
     std::vector<int> drawers(out.meshes.size(), 0);
     std::vector<std::pair<int, Eigen::Matrix4d>> stack;  // node, its parent's world transform
@@ -130,7 +130,7 @@ void shareErrorBudget(Scene& out, double budget, double rotationShare, const std
     }
     for (std::size_t m = 0; m < out.meshes.size(); ++m) {
         const double share =
-            (budget - deviation[m] - (drawers[m] > 1 ? rotationShare : 0)) / std::max(stretch[m], 1e-300);
+            (budget - deviation[m] - (drawers[m] > 1 ? instanceShare : 0)) / std::max(stretch[m], 1e-300);
         for (Primitive& primitive : out.meshes[m].primitives) primitive.maxPositionError = std::max(share, 0.0);
     }
 }
@@ -204,7 +204,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     }
     deviation.resize(out.meshes.size(), 0);
     if (plan.maxError > 0)
-        shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceRotationShare * analysis.diagonal,
+        shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceShare * analysis.diagonal,
                          deviation);
     dropPointLikeTriangles(out, stats);
     return result;

@@ -118,7 +118,7 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
         for (std::size_t i : placed) placedDeviation = std::max(placedDeviation, deviations[i]);
         const double gridError =
             options.maxError > 0
-                ? (options.maxError - options.instanceRotationShare - placedDeviation) * analysis.diagonal
+                ? (options.maxError - options.instanceShare - placedDeviation) * analysis.diagonal
                 : 0;
         if (group.size() > 1)
             std::tie(region, regional) = cheapestRegion(

@@ -31,7 +31,7 @@ Eigen::Matrix4d translationTo(const Eigen::Vector3d& center) {
 CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options) {
     CompressionPlan plan;
     plan.maxError = options.maxError;
-    plan.instanceRotationShare = options.instanceRotationShare;
+    plan.instanceShare = options.instanceShare;
     if (!options.instancing || !analysis.options.classify) {
         // Every copy as it is, as Draco alone stores it, the author's shared meshes too: their sharing may
         // cost more than it saves (hundreds of small scaled copies), and this plan stores nothing shared.

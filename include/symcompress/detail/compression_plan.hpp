@@ -94,9 +94,10 @@ struct PlanOptions {
     // > 0: the error budget (relative to the diagonal) that each stored mesh's quantization shares with the
     // deviation of the copies it rebuilds (CompressOptions::maxError); 0: the writer's fixed bits.
     double maxError = 0;
-    // Of maxError, the share kept for the rounding of GPU-instanced rotations (WriteOptions::
-    // instanceRotationDeviation): taken only from the meshes that several nodes draw, the ones a batch can hold.
-    double instanceRotationShare = 0;
+    // Of maxError, the share kept for the rounding of GPU-instanced rotations, translations and scales
+    // (WriteOptions::instanceRotationDeviation, instanceTranslationDeviation): taken only from the meshes that
+    // several nodes draw, the ones a batch can hold.
+    double instanceShare = 0;
     StorageCostModel costs;
     ProgressCallback progress;
 };
@@ -127,7 +128,7 @@ struct CompressionPlan {
     std::size_t classes = 0, symmetricClasses = 0, attributeMismatches = 0, notWorthInstancing = 0;
     std::string sceneGroup = "C1";
     double maxError = 0;               // PlanOptions::maxError
-    double instanceRotationShare = 0;  // PlanOptions::instanceRotationShare
+    double instanceShare = 0;          // PlanOptions::instanceShare
 };
 
 // The three planners in turn: the scene's own symmetry, repeated assemblies, then every class.
