@@ -148,21 +148,53 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
                                         : std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid, options.threads));
     }
 
-    // The group of each prototype, in parallel; a member's group is its prototype's carried over by its
+    // The group of each prototype, in parallel; a member's is its prototype's carried over by its
     // placement J (J g J^-1), congruent tiles having conjugate groups. Only prototypes need the detector:
     // the geometric check already keeps tiles of different groups apart.
     if (options.symmetries) {
-        withThreads(options.threads, [&] {
-            tbb::parallel_for(std::size_t(0), result.classes.size(), [&](std::size_t k) {
-                const std::size_t prototype = result.classes[k].prototype;
-                TileShape& shape = result.shapes[prototype];
-                if (!(shape.diagonal > 0)) return;
-                SymmetryOptions symmetryOptions;
-                symmetryOptions.tolerance = tileSymmetryTolerance(shape.diagonal, tolerance, relativeTolerance);
-                symmetryOptions.threads = 1;
-                shape.symmetry = detectSymmetries(tiles[prototype].mesh, symmetryOptions);
+        auto detect = [&](const std::vector<std::size_t>& classes) {
+            withThreads(options.threads, [&] {
+                tbb::parallel_for(std::size_t(0), classes.size(), [&](std::size_t i) {
+                    const std::size_t prototype = result.classes[classes[i]].prototype;
+                    TileShape& shape = result.shapes[prototype];
+                    SymmetryOptions symmetryOptions;
+                    symmetryOptions.tolerance = tileSymmetryTolerance(shape.diagonal, tolerance, relativeTolerance);
+                    symmetryOptions.threads = 1;
+                    shape.symmetry = detectSymmetries(tiles[prototype].mesh, symmetryOptions);
+                });
             });
-        });
+        };
+        // Classes of one tile whose group no use could be made of: detected last, and only while the
+        // assembly's symmetry might need them.
+        std::vector<std::size_t> needed, optional;
+        for (std::size_t k = 0; k < result.classes.size(); ++k) {
+            const CongruenceClass& c = result.classes[k];
+            if (!(result.shapes[c.prototype].diagonal > 0)) continue;
+            const bool usable = !options.groupUsable || c.members.size() > 1 || options.groupUsable(c.prototype);
+            (usable ? needed : optional).push_back(k);
+        }
+        detect(needed);
+        // The assembly's symmetry (assemblySymmetries) maps the one tile of such a class onto itself by one
+        // of its symmetries: one of them with none leaves it the identity alone, whatever the groups of the
+        // others. Until one is known, the others are detected a batch at a time.
+        auto asymmetricAlone = [&](std::size_t k) {
+            const CongruenceClass& c = result.classes[k];
+            return c.members.size() == 1 && result.shapes[c.prototype].symmetry.order() == 1;
+        };
+        bool identityAlone = std::any_of(needed.begin(), needed.end(), asymmetricAlone);
+        const std::size_t batch = 16;
+        std::size_t next = 0;
+        while (!identityAlone && next < optional.size()) {
+            const std::vector<std::size_t> some(optional.begin() + std::ptrdiff_t(next),
+                                                optional.begin() + std::ptrdiff_t(std::min(next + batch, optional.size())));
+            detect(some);
+            next += some.size();
+            identityAlone = std::any_of(some.begin(), some.end(), asymmetricAlone);
+        }
+        for (; next < optional.size(); ++next) {
+            result.shapes[result.classes[optional[next]].prototype].symmetrySkipped = true;
+            ++result.groupsSkipped;
+        }
         for (const CongruenceClass& c : result.classes)
             for (std::size_t i = 1; i < c.members.size(); ++i) {
                 const Isometry& j = c.placements[i];

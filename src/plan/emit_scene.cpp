@@ -147,6 +147,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     stats.secondsClasses = analysis.secondsClasses;
     stats.classes = plan.classes;
     stats.symmetricClasses = plan.symmetricClasses;
+    stats.groupsSkipped = analysis.classification.groupsSkipped;
     stats.attributeMismatches = plan.attributeMismatches;
     stats.notWorthInstancing = plan.notWorthInstancing;
     stats.sceneGroup = plan.sceneGroup;
