@@ -96,7 +96,9 @@ int main(int argc, char** argv) {
         PlanOptions planOptions = planOptionsOf(options);
         planOptions.costs = costModelFor(FileFormat::Glb, write);
         auto start = std::chrono::steady_clock::now();
-        const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
+        AnalysisOptions analysisOptions = analysisOptionsOf(options);
+        analysisOptions.groupCosts = costModelFor(FileFormat::Glb, write);  // as compressFile sets it
+        const SceneAnalysis analysis = analyzeScene(scene, analysisOptions);
         const double analyzeSeconds = since(start);
         start = std::chrono::steady_clock::now();
         const CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions);

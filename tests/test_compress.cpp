@@ -3,6 +3,7 @@
 #include "sample_scenes.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/detail/compression_plan.hpp"
+#include "symcompress/detail/solids.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/tiles.hpp"
 #include "symcompress/detail/weld_positions.hpp"
@@ -13,6 +14,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
 
@@ -639,4 +642,62 @@ TEST_CASE("The report's bytes_per_instance counts the nodes that draw a shared m
     CHECK(batched.gpuInstancing.batches == 2);
     CHECK(batched.gpuInstancing.instances == 12);
     CHECK(batched.bytesPerInstance < report.bytesPerInstance);
+}
+
+namespace {
+
+// The GLB bytes of the full plan on an analysis made with or without the cost model's question of which
+// groups can be used, and the analysis's count of groups not detected.
+std::pair<std::string, std::size_t> glbWithGroupsAsked(const Scene& scene, bool ask, const std::filesystem::path& file) {
+    const CompressOptions options;
+    WriteOptions write;
+    AnalysisOptions analysisOptions = analysisOptionsOf(options);
+    if (ask) analysisOptions.groupCosts = costModelFor(FileFormat::Glb, write);
+    const SceneAnalysis analysis = analyzeScene(scene, analysisOptions);
+    PlanOptions planOptions = planOptionsOf(options);
+    planOptions.costs = costModelFor(FileFormat::Glb, write);
+    const CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions);
+    writeScene(compressed.scene, file, write);
+    std::ifstream in(file, std::ios::binary);
+    return {std::string(std::istreambuf_iterator<char>(in), {}), analysis.classification.groupsSkipped};
+}
+
+}  // namespace
+
+TEST_CASE("Small parts alone get no symmetry group, and the output is the same byte for byte", "[compress]") {
+    // Two bolts (a class of copies) and 24 distinct small parts, one of them a cube: no region of a part of
+    // a few dozen triangles pays for its mesh and nodes.
+    Primitive baked;
+    const Primitive bolt = samples::makeBolt();
+    for (int k = 0; k < 2; ++k) {
+        Primitive placed = bolt;
+        for (auto& p : placed.positions) p = Eigen::AngleAxisd(0.7 * k, Eigen::Vector3d::UnitX()) * p + Eigen::Vector3d(6.0 * k, 0, 0);
+        for (auto& n : placed.normals) n = Eigen::AngleAxisd(0.7 * k, Eigen::Vector3d::UnitX()) * n;
+        samples::appendMesh(baked, {placed.positions, placed.triangles});
+    }
+    std::mt19937_64 random(5);
+    std::normal_distribution<double> normal;
+    for (int k = 0; k < 24; ++k) {
+        std::vector<Eigen::Vector3d> points;
+        while (points.size() < 16) points.push_back(Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized());
+        const TriangleMesh part = k == 7 ? samples::boxMesh({0, 0, 0}, {1, 1, 1}) : triangulateFaces(makeConvexPolyhedron(points));
+        samples::appendMesh(baked, samples::transformed(part, Eigen::Matrix3d::Identity(), {3.0 * k, 6, 0}));
+    }
+    const Scene scene = samples::singleMeshScene("parts", std::move(baked), {0.7, 0.7, 0.7, 1});
+    TemporaryFolder folder;
+    const auto [all, none] = glbWithGroupsAsked(scene, false, folder.path() / "all.glb");
+    const auto [asked, skipped] = glbWithGroupsAsked(scene, true, folder.path() / "asked.glb");
+    CHECK(none == 0);
+    CHECK(skipped > 0);
+    CHECK(asked == all);
+}
+
+TEST_CASE("Groups the scene's symmetry needs are detected, small or not: the room keeps its mirrored quadrants",
+          "[compress]") {
+    const Scene scene = samples::makeRoomScene();
+    TemporaryFolder folder;
+    const auto [all, none] = glbWithGroupsAsked(scene, false, folder.path() / "all.glb");
+    const auto [asked, skipped] = glbWithGroupsAsked(scene, true, folder.path() / "asked.glb");
+    CHECK(skipped == 0);
+    CHECK(asked == all);
 }

@@ -2,6 +2,7 @@
 // shared models, with every placement re-checked by brute force (no spatial index, no hash).
 #include "sample_scenes.hpp"
 #include "symcompress/congruence.hpp"
+#include "symcompress/detail/solids.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
@@ -220,5 +221,67 @@ TEST_CASE("Parts of real models, copied and nearly copied: after the geometric c
         CHECK(classification.classes.size() == labels);
         for (const auto& k : classification.classes)
             for (std::size_t member : k.members) CHECK(set.labels[member] == set.labels[k.prototype]);
+    }
+}
+
+namespace {
+
+// A convex part of 16 random points on an ellipsoid of random axes: no symmetry.
+TriangleMesh asymmetricPart(std::uint64_t seed, const Eigen::Vector3d& at) {
+    std::mt19937_64 random(seed);
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> axis(0.4, 1.2);
+    const Eigen::Vector3d axes(axis(random), axis(random), axis(random));
+    std::vector<Eigen::Vector3d> points;
+    while (points.size() < 16)
+        points.push_back(Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized().cwiseProduct(axes));
+    return samples::transformed(triangulateFaces(makeConvexPolyhedron(points)), Eigen::Matrix3d::Identity(), at);
+}
+
+TriangleMesh cubeAt(double size, const Eigen::Vector3d& at) {
+    return samples::boxMesh(at, Eigen::Vector3d::Constant(size));
+}
+
+}  // namespace
+
+TEST_CASE("A group no use can be made of is not detected once a class of one tile has no symmetry", "[congruence]") {
+    // Tile 0, an asymmetric part whose group is asked for; tile 1, a small cube alone whose group is not.
+    const std::vector<Tile> tiles = splitIntoTiles(soupOf({asymmetricPart(3, {0, 0, 0}), cubeAt(0.5, {5, 0, 0})}));
+    REQUIRE(tiles.size() == 2);
+    CongruenceOptions options;
+    options.groupUsable = [](std::size_t tile) { return tile == 0; };
+    const TileClassification classification = classifyTiles(tiles, options);
+    REQUIRE(classification.classes.size() == 2);
+    CHECK(classification.groupsSkipped == 1);
+    CHECK(classification.shapes[0].symmetry.order() == 1);
+    CHECK_FALSE(classification.shapes[0].symmetrySkipped);
+    CHECK(classification.shapes[1].symmetrySkipped);
+    CHECK(classification.shapes[1].symmetry.order() == 0);
+    // Without the question, every group.
+    options.groupUsable = nullptr;
+    const TileClassification all = classifyTiles(tiles, options);
+    CHECK(all.groupsSkipped == 0);
+    CHECK(all.shapes[1].symmetry.order() == 48);
+}
+
+TEST_CASE("A group the scene's symmetry or a class of copies may need is detected however small its tiles",
+          "[congruence]") {
+    CongruenceOptions options;
+    options.groupUsable = [](std::size_t tile) { return tile == 0; };
+    SECTION("no class of one tile is known to have no symmetry: the scene may be symmetric") {
+        const std::vector<Tile> tiles = splitIntoTiles(soupOf({cubeAt(2, {0, 0, 0}), cubeAt(0.5, {5, 0, 0})}));
+        const TileClassification classification = classifyTiles(tiles, options);
+        CHECK(classification.groupsSkipped == 0);
+        CHECK_FALSE(classification.shapes[1].symmetrySkipped);
+        CHECK(classification.shapes[1].symmetry.order() == 48);
+    }
+    SECTION("copies need their group for their placements") {
+        const std::vector<Tile> tiles =
+            splitIntoTiles(soupOf({asymmetricPart(3, {0, 0, 0}), cubeAt(0.5, {5, 0, 0}), cubeAt(0.5, {8, 0, 0})}));
+        const TileClassification classification = classifyTiles(tiles, options);
+        REQUIRE(classification.classes.size() == 2);
+        CHECK(classification.groupsSkipped == 0);
+        CHECK(classification.shapes[1].symmetry.order() == 48);
+        CHECK(classification.shapes[2].symmetry.order() == 48);
     }
 }

@@ -49,6 +49,7 @@ struct CompressionStats {
     std::size_t instancedClasses = 0;      // classes stored once and drawn several times
     std::size_t instances = 0;             // nodes drawing a shared mesh
     std::size_t symmetricClasses = 0;      // classes whose prototype has a symmetry group of order > 1
+    std::size_t groupsSkipped = 0;         // classes of one tile too small for a region to pay: no group sought
     std::size_t attributeMismatches = 0;   // congruent members stored apart because their attributes differ
     std::size_t notWorthInstancing = 0;    // members of classes too small for a node each to pay
     std::size_t regionClasses = 0;         // classes stored as their fundamental region

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <vector>
 
 namespace symcompress {
@@ -31,6 +32,7 @@ struct TileShape {
     Eigen::Matrix3d secondMoments = Eigen::Matrix3d::Zero();  // integral of s s^T about the centroid
     Eigen::Vector3d principalMoments = Eigen::Vector3d::Zero();  // its eigenvalues, ascending
     SymmetryGroup symmetry;  // detected on class prototypes; a member's is its prototype's, carried over by J
+    bool symmetrySkipped = false;  // not detected: no use could be made of it (CongruenceOptions::groupUsable)
 };
 
 // Invariant: members[0] == prototype; placements[i] takes the prototype onto members[i] (identity for
@@ -49,6 +51,10 @@ struct CongruenceOptions {
     int maxOrder = 8;         // moment orders in the descriptor
     bool symmetries = true;   // find each class's symmetry group
     int threads = 0;
+    // When set: whether the group of a class of this one tile could be used (called from one thread). The
+    // groups it cannot use are not detected, unless the symmetry of the whole assembly of tiles might need
+    // them: that is the identity alone as soon as one class of one tile has no symmetry.
+    std::function<bool(std::size_t tile)> groupUsable;
 };
 
 struct TileClassification {
@@ -60,6 +66,7 @@ struct TileClassification {
     double absoluteTolerance = 0, tolerance = 0;
     std::size_t descriptorMatches = 0;  // pairs that passed descriptor and group and went to the geometric check
     std::size_t verifiedMatches = 0;    // of those, the congruent ones
+    std::size_t groupsSkipped = 0;      // classes whose group was not detected (CongruenceOptions::groupUsable)
 };
 
 

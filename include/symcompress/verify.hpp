@@ -4,6 +4,7 @@
 #pragma once
 
 #include "symcompress/scene.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <Eigen/Geometry>
 
@@ -25,6 +26,9 @@ struct SurfaceDigest {
 };
 
 SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance);
+// The same digest (the same sums in the same order) of the primitives one after the other: flattenScene's
+// soup, without copying it into one mesh.
+SurfaceDigest digestOf(const std::vector<WorldPrimitive>& soup, double tolerance);
 
 struct SurfaceComparison {
     double maxDeviation = 0;  // two-sided vertex-to-surface distance, relative to the reference's diagonal

@@ -124,7 +124,10 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         if (!htmlReportAvailable()) throw std::runtime_error("--html: symcompress was built without Node.js and npm");
     }
 
-    const SceneAnalysis analysis = analyzeScene(scene, analysisOptionsOf(options));
+    AnalysisOptions analysisOptions = analysisOptionsOf(options);
+    // Groups no plan could use are not sought; the HTML report shows every class's group.
+    if (options.htmlReport.empty()) analysisOptions.groupCosts = costModelFor(formatFromExtension(output), options.write);
+    const SceneAnalysis analysis = analyzeScene(scene, analysisOptions);
     WriteOptions write = options.write;
     PlanOptions planOptions = planOptionsOf(options);
     if (!options.fixedPositionBits) {

@@ -22,6 +22,7 @@ std::string CompressionReport::json() const {
                                 {"instanced_classes", stats.instancedClasses},
                                 {"instances", stats.instances},
                                 {"symmetric_classes", stats.symmetricClasses},
+                                {"groups_skipped", stats.groupsSkipped},
                                 {"attribute_mismatches", stats.attributeMismatches},
                                 {"not_worth_instancing", stats.notWorthInstancing},
                                 {"max_deviation", stats.maxDeviation},

@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 namespace symcompress {
 namespace {
@@ -109,60 +110,141 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
     });
     std::multimap<double, std::size_t> classByArea;
     std::vector<std::unique_ptr<TileProbe>> prototypeProbes;
-    for (std::size_t tile : order) {
-        const TileShape& shape = result.shapes[tile];
-        const double area = shape.descriptor.area;
-        const double epsilon = descriptorTolerance(shape.diagonal, tolerance);
+    auto sameInvariants = [&](const TileShape& shape, std::size_t k, double epsilon) {
+        const TileShape& prototype = result.shapes[result.classes[k].prototype];
+        return prototype.material == shape.material && descriptorDifference(prototype.descriptor, shape.descriptor) <= epsilon &&
+               samePrincipalMoments(prototype, shape, epsilon);
+    };
+    auto newProbe = [&](std::size_t tile) {
+        return std::make_unique<TileProbe>(tiles[tile].mesh, result.shapes[tile].moments.centroid, options.threads);
+    };
+    // Tiles a batch at a time: each tries the classes that existed before its batch in parallel, in the
+    // index's order up to the first that fits (the geometric checks are most of this stage); then, in order,
+    // the classes the batch's earlier tiles created are tried where they come first in the index. The
+    // classes, placements and counts are those of trying every tile in turn.
+    struct Trial {
+        std::size_t classIndex;
+        std::optional<FoundIsometry> found;
+    };
+    struct Attempt {
         std::unique_ptr<TileProbe> probe;
-        bool placed = false;
-        for (auto it = classByArea.lower_bound(area * (1 - epsilon)); it != classByArea.end() && it->first <= area * (1 + epsilon);
-             ++it) {
-            CongruenceClass& candidate = result.classes[it->second];
-            const TileShape& prototype = result.shapes[candidate.prototype];
-            if (prototype.material != shape.material || descriptorDifference(prototype.descriptor, shape.descriptor) > epsilon ||
-                !samePrincipalMoments(prototype, shape, epsilon))
-                continue;
-            ++result.descriptorMatches;
-            if (!probe) probe = std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid, options.threads);
-            const auto found = findIsometry(prototype, *prototypeProbes[it->second], shape, *probe, tolerance);
-            if (!found) continue;
-            ++result.verifiedMatches;
-            Isometry placement;
-            placement.linear = found->linear;
-            placement.translation = shape.moments.centroid - found->linear * prototype.moments.centroid;
-            candidate.members.push_back(tile);
-            candidate.placements.push_back(placement);
-            candidate.deviations.push_back(found->deviation / result.sceneDiagonal);
-            placed = true;
-            break;
+        std::vector<Trial> trials;
+    };
+    constexpr std::size_t kBatch = 32;
+    for (std::size_t begin = 0; begin < order.size(); begin += kBatch) {
+        const std::size_t end = std::min(order.size(), begin + kBatch), known = result.classes.size();
+        std::vector<Attempt> attempts(end - begin);
+        withThreads(options.threads, [&] {
+            tbb::parallel_for(begin, end, [&](std::size_t i) {
+                const std::size_t tile = order[i];
+                const TileShape& shape = result.shapes[tile];
+                const double area = shape.descriptor.area, epsilon = descriptorTolerance(shape.diagonal, tolerance);
+                Attempt& attempt = attempts[i - begin];
+                for (auto it = classByArea.lower_bound(area * (1 - epsilon));
+                     it != classByArea.end() && it->first <= area * (1 + epsilon); ++it) {
+                    if (!sameInvariants(shape, it->second, epsilon)) continue;
+                    if (!attempt.probe) attempt.probe = newProbe(tile);
+                    const TileShape& prototype = result.shapes[result.classes[it->second].prototype];
+                    attempt.trials.push_back(
+                        {it->second, findIsometry(prototype, *prototypeProbes[it->second], shape, *attempt.probe, tolerance)});
+                    if (attempt.trials.back().found) break;
+                }
+            });
+        });
+        for (std::size_t i = begin; i < end; ++i) {
+            const std::size_t tile = order[i];
+            const TileShape& shape = result.shapes[tile];
+            const double area = shape.descriptor.area, epsilon = descriptorTolerance(shape.diagonal, tolerance);
+            Attempt& attempt = attempts[i - begin];
+            std::size_t tried = 0;
+            bool placed = false;
+            for (auto it = classByArea.lower_bound(area * (1 - epsilon)); it != classByArea.end() && it->first <= area * (1 + epsilon);
+                 ++it) {
+                const std::size_t k = it->second;
+                std::optional<FoundIsometry> found;
+                if (k < known) {
+                    // Tried in parallel: every class of the same invariants, in this order, up to the first that fits.
+                    if (tried == attempt.trials.size() || attempt.trials[tried].classIndex != k) continue;
+                    found = attempt.trials[tried++].found;
+                } else {
+                    if (!sameInvariants(shape, k, epsilon)) continue;
+                    if (!attempt.probe) attempt.probe = newProbe(tile);
+                    found = findIsometry(result.shapes[result.classes[k].prototype], *prototypeProbes[k], shape, *attempt.probe,
+                                         tolerance);
+                }
+                ++result.descriptorMatches;
+                if (!found) continue;
+                ++result.verifiedMatches;
+                CongruenceClass& candidate = result.classes[k];
+                const TileShape& prototype = result.shapes[candidate.prototype];
+                Isometry placement;
+                placement.linear = found->linear;
+                placement.translation = shape.moments.centroid - found->linear * prototype.moments.centroid;
+                candidate.members.push_back(tile);
+                candidate.placements.push_back(placement);
+                candidate.deviations.push_back(found->deviation / result.sceneDiagonal);
+                placed = true;
+                break;
+            }
+            if (placed) continue;
+            CongruenceClass created;
+            created.prototype = tile;
+            created.members.push_back(tile);
+            created.placements.emplace_back();
+            created.deviations.push_back(0);
+            classByArea.emplace(area, result.classes.size());
+            result.classes.push_back(std::move(created));
+            prototypeProbes.push_back(attempt.probe ? std::move(attempt.probe) : newProbe(tile));
         }
-        if (placed) continue;
-        CongruenceClass created;
-        created.prototype = tile;
-        created.members.push_back(tile);
-        created.placements.emplace_back();
-        created.deviations.push_back(0);
-        classByArea.emplace(area, result.classes.size());
-        result.classes.push_back(std::move(created));
-        prototypeProbes.push_back(probe ? std::move(probe)
-                                        : std::make_unique<TileProbe>(tiles[tile].mesh, shape.moments.centroid, options.threads));
     }
 
-    // The group of each prototype, in parallel; a member's group is its prototype's carried over by its
+    // The group of each prototype, in parallel; a member's is its prototype's carried over by its
     // placement J (J g J^-1), congruent tiles having conjugate groups. Only prototypes need the detector:
     // the geometric check already keeps tiles of different groups apart.
     if (options.symmetries) {
-        withThreads(options.threads, [&] {
-            tbb::parallel_for(std::size_t(0), result.classes.size(), [&](std::size_t k) {
-                const std::size_t prototype = result.classes[k].prototype;
-                TileShape& shape = result.shapes[prototype];
-                if (!(shape.diagonal > 0)) return;
-                SymmetryOptions symmetryOptions;
-                symmetryOptions.tolerance = tileSymmetryTolerance(shape.diagonal, tolerance, relativeTolerance);
-                symmetryOptions.threads = 1;
-                shape.symmetry = detectSymmetries(tiles[prototype].mesh, symmetryOptions);
+        auto detect = [&](const std::vector<std::size_t>& classes) {
+            withThreads(options.threads, [&] {
+                tbb::parallel_for(std::size_t(0), classes.size(), [&](std::size_t i) {
+                    const std::size_t prototype = result.classes[classes[i]].prototype;
+                    TileShape& shape = result.shapes[prototype];
+                    SymmetryOptions symmetryOptions;
+                    symmetryOptions.tolerance = tileSymmetryTolerance(shape.diagonal, tolerance, relativeTolerance);
+                    symmetryOptions.threads = 1;
+                    shape.symmetry = detectSymmetries(tiles[prototype].mesh, symmetryOptions);
+                });
             });
-        });
+        };
+        // Classes of one tile whose group no use could be made of: detected last, and only while the
+        // assembly's symmetry might need them.
+        std::vector<std::size_t> needed, optional;
+        for (std::size_t k = 0; k < result.classes.size(); ++k) {
+            const CongruenceClass& c = result.classes[k];
+            if (!(result.shapes[c.prototype].diagonal > 0)) continue;
+            const bool usable = !options.groupUsable || c.members.size() > 1 || options.groupUsable(c.prototype);
+            (usable ? needed : optional).push_back(k);
+        }
+        detect(needed);
+        // The assembly's symmetry (assemblySymmetries) maps the one tile of such a class onto itself by one
+        // of its symmetries: one of them with none leaves it the identity alone, whatever the groups of the
+        // others. Until one is known, the others are detected a batch at a time.
+        auto asymmetricAlone = [&](std::size_t k) {
+            const CongruenceClass& c = result.classes[k];
+            return c.members.size() == 1 && result.shapes[c.prototype].symmetry.order() == 1;
+        };
+        bool identityAlone = std::any_of(needed.begin(), needed.end(), asymmetricAlone);
+        const std::size_t batch = 16;
+        std::size_t next = 0;
+        while (!identityAlone && next < optional.size()) {
+            const std::vector<std::size_t> some(optional.begin() + std::ptrdiff_t(next),
+                                                optional.begin() + std::ptrdiff_t(std::min(next + batch, optional.size())));
+            detect(some);
+            next += some.size();
+            identityAlone = std::any_of(some.begin(), some.end(), asymmetricAlone);
+        }
+        for (; next < optional.size(); ++next) {
+            result.shapes[result.classes[optional[next]].prototype].symmetrySkipped = true;
+            ++result.groupsSkipped;
+        }
         for (const CongruenceClass& c : result.classes)
             for (std::size_t i = 1; i < c.members.size(); ++i) {
                 const Isometry& j = c.placements[i];

@@ -64,9 +64,15 @@ void criticalCandidates(const MomentFunction& f, const std::vector<Eigen::Vector
 }  // namespace
 
 const std::vector<Eigen::Vector3d>& TileProbe::criticalDirections(const MomentFunction& f, int order) {
-    auto found = directions_.find(order);
-    if (found == directions_.end()) found = directions_.emplace(order, findCandidateAxes({f}, 1e-4, threads_)).first;
-    return found->second;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (const auto found = directions_.find(order); found != directions_.end()) return found->second;
+    }
+    // Found outside the lock: two threads that both find them find the same directions, and the first kept
+    // is the one every pair sees (std::map does not move its entries).
+    std::vector<Eigen::Vector3d> directions = findCandidateAxes({f}, 1e-4, threads_);
+    std::lock_guard<std::mutex> lock(mutex_);
+    return directions_.emplace(order, std::move(directions)).first->second;
 }
 
 std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& fromProbe, const TileShape& to, TileProbe& toProbe,

@@ -7,6 +7,7 @@
 #include "geometry/shape_verifier.hpp"
 
 #include <map>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -19,7 +20,7 @@ struct FoundIsometry {
 
 // What the search needs of one tile, kept across every pair the tile takes part in: its verifier, and the
 // critical directions of each order's moment function (Newton from many starts: found once per tile, on
-// `threads` threads, 0: all cores).
+// `threads` threads, 0: all cores). Several pairs may ask one probe at once.
 class TileProbe {
 public:
     TileProbe(const TriangleMesh& mesh, const Eigen::Vector3d& centroid, int threads)
@@ -30,6 +31,7 @@ public:
 private:
     ShapeVerifier verifier_;
     int threads_;
+    std::mutex mutex_;  // over directions_
     std::map<int, std::vector<Eigen::Vector3d>> directions_;  // by order
 };
 

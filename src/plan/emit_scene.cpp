@@ -147,6 +147,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     stats.secondsClasses = analysis.secondsClasses;
     stats.classes = plan.classes;
     stats.symmetricClasses = plan.symmetricClasses;
+    stats.groupsSkipped = plan.classes > 0 ? analysis.classification.groupsSkipped : 0;  // a plan with no classes asked none
     stats.attributeMismatches = plan.attributeMismatches;
     stats.notWorthInstancing = plan.notWorthInstancing;
     stats.sceneGroup = plan.sceneGroup;

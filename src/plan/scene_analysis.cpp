@@ -3,10 +3,12 @@
 #include "symcompress/detail/compression_plan.hpp"
 
 #include "geometry/bounds.hpp"
+#include "plan/storage_costs.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace symcompress {
@@ -75,6 +77,9 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
     analysis.options = options;
     auto start = std::chrono::steady_clock::now();
     analysis.soup = flattenScene(input);
+    // The whole drawing, before anything is set aside (what digestOf(worldMesh(input)) measures, without
+    // flattening the scene a second time).
+    analysis.digest = digestOf(analysis.soup, options.tolerance);
     const std::vector<bool> animated = markAnimatedSubtrees(input, analysis.animatedSubtrees);
     analysis.soup.erase(
         std::remove_if(analysis.soup.begin(), analysis.soup.end(),
@@ -86,7 +91,6 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
     for (const WorldPrimitive& placed : analysis.soup) triangles += placed.primitive.triangles.size();
     if (options.progress) options.progress("splitting into tiles", triangles, "triangles");
     analysis.tiles = splitIntoTiles(analysis.soup);
-    analysis.digest = digestOf(worldMesh(input), options.tolerance);
     analysis.secondsTiles = since(start);
     start = std::chrono::steady_clock::now();
     if (options.classify) {
@@ -94,6 +98,11 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
         CongruenceOptions congruenceOptions;
         congruenceOptions.tolerance = options.tolerance;
         congruenceOptions.threads = options.threads;
+        std::optional<StorageCosts> costs;
+        if (options.groupCosts) {
+            costs.emplace(analysis, *options.groupCosts);
+            congruenceOptions.groupUsable = [&](std::size_t tile) { return costs->regionMayPay(tile); };
+        }
         analysis.classification = classifyTiles(analysis.tiles, congruenceOptions);
         analysis.absoluteTolerance = analysis.classification.absoluteTolerance;
     } else {

@@ -63,6 +63,12 @@ double StorageCosts::apart(std::size_t t) {
     return std::min(merged(t), node(c.placements[memberOf_[t]].matrix(), nullptr) + alone(t) / double(c.members.size()));
 }
 
+bool StorageCosts::regionMayPay(std::size_t t) {
+    constexpr double kMeshFloor = 0.5;  // of a one-triangle mesh's measure
+    const double twoNodes = nodes({PlacedCopy{}, PlacedCopy{}});
+    return merged(t) > kMeshFloor * kindOf(t).overhead + twoNodes;
+}
+
 double StorageCosts::meshOf(const std::vector<std::size_t>& tiles, bool overhead) {
     double bytes = 0;
     std::set<std::pair<int, Attributes>> primitives;

@@ -33,6 +33,10 @@ public:
     // The cheaper way of storing tile t apart from a group of tiles: as it is, or drawn by its class's mesh
     // (a node placing it, and its share of the mesh).
     double apart(std::size_t t);
+    // Whether a fundamental region of tile t, stored for it alone, could cost less than its triangles merged
+    // with others: a region is a mesh of its own, at least about what one triangle with t's attributes costs
+    // as a mesh (half of it, for what a region's grid and frame may spare), and at least two nodes.
+    bool regionMayPay(std::size_t t);
     // A mesh of these tiles: their triangles, and with `overhead` that of a primitive per material and
     // attributes.
     double meshOf(const std::vector<std::size_t>& tiles, bool overhead = true);

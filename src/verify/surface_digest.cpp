@@ -7,15 +7,31 @@
 
 namespace symcompress {
 
-SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance) {
-    SurfaceDigest digest;
-    digest.triangles = surface.triangles.size();
-    digest.tolerance = tolerance;
-    for (const Triangle& t : surface.triangles) {
-        const auto &a = surface.positions[t[0]], &b = surface.positions[t[1]], &c = surface.positions[t[2]];
+namespace {
+
+void addTriangles(const std::vector<Eigen::Vector3d>& positions, const std::vector<Triangle>& triangles,
+                  SurfaceDigest& digest) {
+    digest.triangles += triangles.size();
+    for (const Triangle& t : triangles) {
+        const auto &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
         digest.area += 0.5 * (b - a).cross(c - a).norm();
         digest.bounds.extend(a).extend(b).extend(c);
     }
+}
+
+}  // namespace
+
+SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance) {
+    SurfaceDigest digest;
+    digest.tolerance = tolerance;
+    addTriangles(surface.positions, surface.triangles, digest);
+    return digest;
+}
+
+SurfaceDigest digestOf(const std::vector<WorldPrimitive>& soup, double tolerance) {
+    SurfaceDigest digest;
+    digest.tolerance = tolerance;
+    for (const WorldPrimitive& placed : soup) addTriangles(placed.primitive.positions, placed.primitive.triangles, digest);
     return digest;
 }
 

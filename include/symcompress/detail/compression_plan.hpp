@@ -11,10 +11,34 @@
 #include "symcompress/verify.hpp"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace symcompress {
+
+// What storing parts costs in the output, in bytes: measured by the writer where it gives a measure
+// (meshBytes, nodeBytes), else the constants (a rough Draco glTF of bare positions).
+struct StorageCostModel {
+    double bytesPerTriangle = 1.5;
+    double bytesPerInstance = 120;
+    double bytesPerMesh = 500;
+    // What a part costs as a mesh of its own, as written: it takes the place of bytesPerTriangle and
+    // bytesPerMesh, which cannot tell a part with normals and texture coordinates (Draco: 8 bytes a
+    // triangle) from a bare one (2 to 4). Parts merged with others are then measured on a sample of the
+    // scene's parts stored together.
+    std::function<double(const Primitive&)> meshBytes;
+    // What a node drawing a shared mesh costs (its transform and name): a rigid placement costs less than
+    // a mirrored or scaled one. Else bytesPerInstance.
+    std::function<double(const Node&)> nodeBytes;
+    // What nodes drawing one shared mesh cost together (glTF: batched through EXT_mesh_gpu_instancing where the
+    // writer would batch them, a few bytes an instance). Else nodeBytes each.
+    std::function<double(const std::vector<Node>&)> nodesBytes;
+    // Draco's position bits when the output is quantized, else 0. A fundamental region whose instances are
+    // signed permutations in its frame is then stored on a power-of-two grid through its centre
+    // (seamPreservingGrid), in units of the grid's step, so that its seams stay closed.
+    int seamGridBits = 0;
+};
 
 struct AnalysisOptions {
     double tolerance = 1e-5;  // relative to the diagonal of the tiles' bounding box
@@ -22,6 +46,10 @@ struct AnalysisOptions {
     bool keepInputInstances = true;
     int threads = 0;
     ProgressCallback progress;
+    // When set, what the plans will price storage with: a class of one tile too small for any fundamental
+    // region of it to pay (a mesh of its own and two nodes cost more than its triangles among others) gets no
+    // symmetry group, the detector being most of the classification's time (TileShape::symmetrySkipped).
+    std::optional<StorageCostModel> groupCosts;
 };
 
 // A node of the input that draws a mesh several nodes draw, one of them scaling or shearing it (the author's
@@ -58,29 +86,6 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options = 
 // Whether tiles can carry everything the mesh's primitives hold (not Primitive::attributes or morph targets,
 // which the tiling, the classes and the regions do not handle yet).
 bool tilesCanCarry(const Mesh& mesh);
-
-// What storing parts costs in the output, in bytes: measured by the writer where it gives a measure
-// (meshBytes, nodeBytes), else the constants (a rough Draco glTF of bare positions).
-struct StorageCostModel {
-    double bytesPerTriangle = 1.5;
-    double bytesPerInstance = 120;
-    double bytesPerMesh = 500;
-    // What a part costs as a mesh of its own, as written: it takes the place of bytesPerTriangle and
-    // bytesPerMesh, which cannot tell a part with normals and texture coordinates (Draco: 8 bytes a
-    // triangle) from a bare one (2 to 4). Parts merged with others are then measured on a sample of the
-    // scene's parts stored together.
-    std::function<double(const Primitive&)> meshBytes;
-    // What a node drawing a shared mesh costs (its transform and name): a rigid placement costs less than
-    // a mirrored or scaled one. Else bytesPerInstance.
-    std::function<double(const Node&)> nodeBytes;
-    // What nodes drawing one shared mesh cost together (glTF: batched through EXT_mesh_gpu_instancing where the
-    // writer would batch them, a few bytes an instance). Else nodeBytes each.
-    std::function<double(const std::vector<Node>&)> nodesBytes;
-    // Draco's position bits when the output is quantized, else 0. A fundamental region whose instances are
-    // signed permutations in its frame is then stored on a power-of-two grid through its centre
-    // (seamPreservingGrid), in units of the grid's step, so that its seams stay closed.
-    int seamGridBits = 0;
-};
 
 // The cost model of a file written with `write`: every part measured by the format's writer (gltfMeshBytes,
 // x3dMeshBytes and their node measures), and for Draco glTF the seams' grid.
