@@ -19,6 +19,13 @@ constexpr double kBudgetSlack = 1e-2;
 // Share of the area that may face the other way: slivers that quantization turns over.
 constexpr double kFlippedAllowance = 1e-4;
 
+// How far the rebuilt area may be from the original's: a triangle's area changes by at most half its perimeter
+// times how far its corners move (to first order), taken twice; at least 10 times the allowed deviation's
+// share of the area, as before. `perimeters` is the sum of the triangles' perimeters.
+double allowedAreaChange(double area, double perimeters, double allowed, double diagonal) {
+    return std::max(10 * allowed * area, perimeters * allowed * diagonal);
+}
+
 // Against the original: the surfaces must agree (distance both ways, area, bounds); triangle counts may
 // differ, since fundamental regions split the triangles their planes cut. Quantization may turn over a
 // sliver or two, not a part.
@@ -32,7 +39,14 @@ void verifyAgainstOriginal(const TriangleMesh& rebuilt, const Scene& original, R
     report.flippedArea = comparison.flippedArea;
     report.trianglesOriginal = reference.triangles.size();
     const double allowed = report.allowedDeviation;
-    report.verified = comparison.maxDeviation <= allowed && std::abs(comparison.areaRatio - 1) <= 10 * allowed &&
+    const SurfaceDigest digest = digestOf(reference, 0);
+    double perimeters = 0;
+    for (const Triangle& t : reference.triangles)
+        for (int k = 0; k < 3; ++k) perimeters += (reference.positions[t[k]] - reference.positions[t[(k + 1) % 3]]).norm();
+    const double diagonal = digest.bounds.isEmpty() ? 0 : digest.bounds.diagonal().norm();
+    report.verified = comparison.maxDeviation <= allowed &&
+                      std::abs(comparison.areaRatio - 1) * digest.area <=
+                          allowedAreaChange(digest.area, perimeters, allowed, diagonal) &&
                       comparison.sameBounds && comparison.flippedArea <= kFlippedAllowance;
 }
 
@@ -48,8 +62,12 @@ void verifyAgainstDigest(const SurfaceDigest& rebuilt, const SurfaceDigest& stor
     report.areaRatio = stored.area > 0 ? rebuilt.area / stored.area : 0;
     report.maxDeviation = boundsError;
     report.trianglesOriginal = stored.triangles;
-    report.verified =
-        boundsError <= report.allowedDeviation && std::abs(report.areaRatio - 1) <= 10 * report.allowedDeviation;
+    // The digest has no perimeters: theirs as if the triangles were equilateral, sqrt(4 A / sqrt(3)) a side,
+    // summed at most as 3 sqrt(4 / sqrt(3)) sqrt(n A) (Cauchy-Schwarz).
+    const double perimeters = 3 * std::sqrt(4 / std::sqrt(3.0)) * std::sqrt(double(stored.triangles) * stored.area);
+    report.verified = boundsError <= report.allowedDeviation &&
+                      std::abs(report.areaRatio - 1) * stored.area <=
+                          allowedAreaChange(stored.area, perimeters, report.allowedDeviation, diagonal);
 }
 
 }  // namespace
