@@ -12,7 +12,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$here/build}"
-keep="${2:?KEEP_DIR: the folder of compare_peers.sh's kept tables}"
+keep="${2:?KEEP_DIR: the folder where compare_peers.sh kept its tables}"
 models="$here/../shared/models"
 bench="$here/../shared/bench"
 out="$(mktemp -d)"
@@ -27,11 +27,10 @@ for name in $(cd "$models" && ls */*.gltf */*.glb */*.x3d */*.obj */*.ply */*.st
   echo "compare_matched: $name" >&2
   # The reference the peers read: the input, or its conversion.
   ref="$in"
-  if [[ -f "$keep/$tag.converted" || ! $in =~ \.(gltf|glb)$ ]]; then
-    ref="$out/converted.glb"
-    "$build/symcompress" convert "$in" -o "$ref" --no-draco -q 2>/dev/null
-  fi
-  best=$(python3 - "$keep/$tag" <<'PY'
+  case "$in" in *.gltf|*.glb) ;; *) ref="$out/converted.glb" ;; esac
+  [[ -f "$keep/$tag.converted" ]] && ref="$out/converted.glb"
+  [[ $ref == "$in" ]] || "$build/symcompress" convert "$in" -o "$ref" --no-draco -q 2>/dev/null
+  python3 - "$keep/$tag" >"$out/best.tsv" <<'PY'
 import csv, json, sys
 base = sys.argv[1]
 bound = json.load(open(base + ".verify.json"))["allowed_deviation"]
@@ -47,9 +46,8 @@ if best:
     budget = float(best["dev_rel"]) + 0.5 * 10 ** (int(exponent) - 3)
     print(f"{best['bytes']}\t{best['dev_rel']}\t{budget:.5e}\t{best['peer']} {best['recipe']}")
 PY
-)
-  [[ -n $best ]] || continue
-  IFS=$'\t' read -r peer_bytes peer_dev budget recipe <<<"$best"
+  [[ -s "$out/best.tsv" ]] || continue
+  IFS=$'\t' read -r peer_bytes peer_dev budget recipe <"$out/best.tsv"
   "$build/symcompress" "$in" -o "$out/sc.glb" -q --max-error "$budget" --report "$out/sc.json" ||
     { echo "| $name | $recipe | $peer_bytes | $peer_dev | $budget | FAILED | | | | |"; continue; }
   "$build/symdecompress" "$out/sc.glb" -o "$out/flat.glb" --verify "$in" --json >"$out/verify.json" || true
