@@ -137,17 +137,23 @@ void writeStl(const Scene& scene, const std::filesystem::path& file) {
     out << "endsolid parts\n";
 }
 
-}  // namespace
-
-TEST_CASE("Position bits from an error bound keep every corner within it, never more bits than the bound needs",
-          "[budget][writers]") {
-    std::mt19937 random(3);
+// 300 points at random on a sphere of radius 3 about (10, -4, 2), taken three at a time as triangles.
+Primitive pointsOnSphere(unsigned seed) {
+    std::mt19937 random(seed);
     std::normal_distribution<double> normal;
     Primitive points;
     for (int i = 0; i < 300; ++i)
         points.positions.push_back(Eigen::Vector3d(10, -4, 2) +
                                    3 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized());
     for (std::uint32_t i = 0; i + 2 < 300; i += 3) points.triangles.push_back({i, i + 1, i + 2});
+    return points;
+}
+
+}  // namespace
+
+TEST_CASE("Position bits from an error bound keep every corner within it, never more bits than the bound needs",
+          "[budget][writers]") {
+    const Primitive points = pointsOnSphere(3);
     const double range = 6;  // about the sphere's box
     TemporaryFolder folder;
     int previous = 0;
@@ -174,13 +180,7 @@ TEST_CASE("Position bits from an error bound keep every corner within it, never 
 
 TEST_CASE("X3D positions are written to the fewest places that keep every corner within the error bound",
           "[budget][writers][x3d]") {
-    std::mt19937 random(5);
-    std::normal_distribution<double> normal;
-    Primitive points;
-    for (int i = 0; i < 300; ++i)
-        points.positions.push_back(Eigen::Vector3d(10, -4, 2) +
-                                   3 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized());
-    for (std::uint32_t i = 0; i + 2 < 300; i += 3) points.triangles.push_back({i, i + 1, i + 2});
+    const Primitive points = pointsOnSphere(5);
     TemporaryFolder folder;
     const Scene scene = sceneOf(points);
     writeScene(scene, folder / "exact.x3d", WriteOptions{});
