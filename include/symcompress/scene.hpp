@@ -55,7 +55,7 @@ struct TextureSampler {
 // embed it unchanged. Textures of the same image share it in the output (firstTextureOfSameImage).
 struct Texture {
     std::string name;
-    std::string uri;                  // as written in the source file (may be empty when embedded)
+    std::string uri;                  // the image file, as the reader found or looked for it; empty when embedded
     std::string mimeType;             // "image/png", "image/jpeg", "image/webp", "image/ktx2", ... (may be empty)
     std::vector<std::uint8_t> bytes;  // empty when the image file could not be read (a warning says so)
     TextureSampler sampler;
