@@ -43,13 +43,7 @@ void appendPlaced(Primitive& out, const Primitive& part, const Eigen::Matrix3d& 
 
 // A random convex part with flat normals, about 28 triangles: 16 points on an ellipsoid of random axes.
 Primitive randomPart(std::mt19937_64& random) {
-    std::normal_distribution<double> normal;
-    std::uniform_real_distribution<double> axis(0.4, 1.2);
-    const Eigen::Vector3d axes(axis(random), axis(random), axis(random));
-    std::vector<Eigen::Vector3d> points;
-    while (points.size() < 16)
-        points.push_back(Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized().cwiseProduct(axes));
-    const TriangleMesh mesh = triangulateFaces(makeConvexPolyhedron(points));
+    const TriangleMesh mesh = samples::randomConvexPart(random);
     Primitive part;
     for (const Triangle& t : mesh.triangles) {
         const Eigen::Vector3d n = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]).normalized();

@@ -1,6 +1,8 @@
 // Building blocks of the sample generators: meshes appended into one primitive, boxes and lathes.
 #include "sample_scenes.hpp"
 
+#include "symcompress/detail/solids.hpp"
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
@@ -53,6 +55,16 @@ TriangleMesh latheMesh(const std::vector<Eigen::Vector2d>& profile, int segments
         }
     }
     return lathe;
+}
+
+TriangleMesh randomConvexPart(std::mt19937_64& random) {
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> axis(0.4, 1.2);
+    const Eigen::Vector3d axes(axis(random), axis(random), axis(random));
+    std::vector<Eigen::Vector3d> points;
+    while (points.size() < 16)
+        points.push_back(Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized().cwiseProduct(axes));
+    return triangulateFaces(makeConvexPolyhedron(points));
 }
 
 TriangleMesh unevenEllipsoid(int azimuths, std::uint64_t seed) {

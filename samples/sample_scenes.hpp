@@ -5,6 +5,7 @@
 #include "symcompress/scene.hpp"
 #include "symcompress/tiles.hpp"
 
+#include <random>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ TriangleMesh latheMesh(const std::vector<Eigen::Vector2d>& profile, int segments
 // rounded to float32: within a loose tolerance of round, with no symmetry of its tessellation (a roller a
 // modeller tessellated on its own).
 TriangleMesh unevenEllipsoid(int azimuths, std::uint64_t seed);
+// A convex part of 16 random points on an ellipsoid of random axes (0.4 to 1.2), about 28 triangles: no
+// symmetry. Draws from `random`, so that a caller's sequence of parts is its own.
+TriangleMesh randomConvexPart(std::mt19937_64& random);
 // x -> linear x + translation; a mirroring map also reverses the triangles, keeping them outward.
 TriangleMesh transformed(TriangleMesh mesh, const Eigen::Matrix3d& linear, const Eigen::Vector3d& translation);
 

@@ -229,13 +229,7 @@ namespace {
 // A convex part of 16 random points on an ellipsoid of random axes: no symmetry.
 TriangleMesh asymmetricPart(std::uint64_t seed, const Eigen::Vector3d& at) {
     std::mt19937_64 random(seed);
-    std::normal_distribution<double> normal;
-    std::uniform_real_distribution<double> axis(0.4, 1.2);
-    const Eigen::Vector3d axes(axis(random), axis(random), axis(random));
-    std::vector<Eigen::Vector3d> points;
-    while (points.size() < 16)
-        points.push_back(Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized().cwiseProduct(axes));
-    return samples::transformed(triangulateFaces(makeConvexPolyhedron(points)), Eigen::Matrix3d::Identity(), at);
+    return samples::transformed(samples::randomConvexPart(random), Eigen::Matrix3d::Identity(), at);
 }
 
 TriangleMesh cubeAt(double size, const Eigen::Vector3d& at) {
