@@ -1,6 +1,7 @@
 // One error budget (--max-error): each mesh's position bits keep it within its share, symdecompress verifies
 // the rebuilt surface against it; copies tessellated each on its own are instanced when they agree as
 // surfaces, and a copy just beyond the budget, or scaled, stays apart.
+#include "geometry/bounds.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/detail/compression_plan.hpp"
 #include "symcompress/io.hpp"
@@ -178,6 +179,28 @@ TEST_CASE("Position bits from an error bound keep every corner within it, never 
     CHECK(positionBitsFor(points, fixed) == 11);
 }
 
+TEST_CASE("A part's corners also stay within a fraction of its own diagonal: a small part keeps its shape close up",
+          "[budget][writers]") {
+    const Primitive points = pointsOnSphere(3);  // a diagonal of about 10.4
+    const double diagonal = boundsOfCorners(points.positions, points.triangles).diagonal().norm();
+    WriteOptions options;
+    options.maxPositionError = 0.5;  // the scene's budget: coarse for a part this small
+    const int sceneBits = positionBitsFor(points, options);
+    options.maxRelativePositionError = 2e-4;
+    CHECK(positionErrorBound(points, options) == Approx(2e-4 * diagonal));
+    const int closeUpBits = positionBitsFor(points, options);
+    CHECK(closeUpBits > sceneBits + 6);
+    TemporaryFolder folder;
+    writeScene(sceneOf(points), folder / "points.glb", options);
+    CHECK(largestMove(points, readScene(folder / "points.glb").meshes[0].primitives[0]) <= 2e-4 * diagonal);
+    // Where the scene's bound is the tighter, it alone counts; without a bound, the fixed bits.
+    options.maxPositionError = 1e-4 * diagonal;
+    CHECK(positionErrorBound(points, options) == Approx(1e-4 * diagonal));
+    options.maxPositionError = 0;
+    CHECK(positionErrorBound(points, options) == 0);
+    CHECK(positionBitsFor(points, options) == options.positionBits);
+}
+
 TEST_CASE("X3D positions are written to the fewest places that keep every corner within the error bound",
           "[budget][writers][x3d]") {
     const Primitive points = pointsOnSphere(5);
@@ -321,10 +344,37 @@ TEST_CASE("Hundreds of small parts verify within the budget: the area may change
     REQUIRE(runCommand("python3 " + quoted(sharedDir() / "bench/make_toy_scene.py") + " " + quoted(input) +
                        " --baked 0 --shared 500 --dupes 0")
                 .status == 0);
-    compressFile(input, folder / "small.glb");
+    CompressOptions sceneBudgetOnly;
+    sceneBudgetOnly.closeUpError = 0;  // each part quantized by the scene's budget alone: a blob takes 8 bits
+    const CompressionReport coarse = compressFile(input, folder / "small.glb", sceneBudgetOnly);
     const RebuildReport rebuilt = decompressFile(folder / "small.glb", folder / "flat.glb", input);
     CHECK(rebuilt.maxDeviation <= rebuilt.allowedDeviation);
     CHECK(std::abs(rebuilt.areaRatio - 1) > 10 * rebuilt.allowedDeviation);  // what the old rule refused
     CHECK(rebuilt.verified);
     CHECK(decompressFile(folder / "small.glb", folder / "flat.glb").verified);  // against the digest
+
+    SECTION("by default each part also keeps its shape close up, and the scene renders as its input") {
+        const CompressionReport closeUp = compressFile(input, folder / "close.glb");
+        CHECK(closeUp.outputBytes > coarse.outputBytes);
+        CHECK(closeUp.outputBytes < coarse.outputBytes * 1.05);  // a few bits more for one stored blob
+        const Scene in = readScene(input);
+        const Primitive& blob = in.meshes[0].primitives[0];
+        const double partDiagonal = boundsOfCorners(blob.positions, blob.triangles).diagonal().norm();
+        const TriangleMesh world = worldMesh(in);
+        const double sceneDiagonal = boundsOfCorners(world.positions, world.triangles).diagonal().norm();
+        // Drawn by nodes (float transforms, not a GPU batch's rounded ones): the blob's own quantization.
+        CompressOptions asNodes;
+        asNodes.write.gpuInstancing = false;
+        compressFile(input, folder / "nodes.glb", asNodes);
+        CHECK(decompressFile(folder / "nodes.glb", folder / "flat.glb", input).maxDeviation * sceneDiagonal <=
+              5e-5 * partDiagonal);
+        if (renderAvailable()) {
+            checkRendersSame(input, folder / "close.glb");
+            // The scene's budget alone: 1.2 to 1.5% of the blobs' pixels differ (2.7% of their normals' colours).
+            const CommandResult coarseRender =
+                runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
+                           " --views a " + quoted(input) + " " + quoted(folder / "small.glb"));
+            CHECK(coarseRender.status != 0);
+        }
+    }
 }

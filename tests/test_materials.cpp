@@ -184,21 +184,6 @@ std::set<std::string> listed(const nlohmann::json& root, const char* key) {
     return out;
 }
 
-// Renders both files in headless Chromium (three.js) and compares pixels: ../shared/bench/render.
-bool renderAvailable() {
-    return interopAvailable() && fs::exists(sharedDir() / "bench/render/node_modules") &&
-           runCommand("command -v chromium").status == 0;
-}
-void checkRendersSame(const fs::path& reference, const fs::path& compressed, const std::string& views) {
-    for (const char* mode : {"lit", "normals"}) {
-        const CommandResult result =
-            runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") + " --mode " +
-                       mode + " --views " + views + " " + quoted(reference) + " " + quoted(compressed));
-        INFO(mode << ": " << result.output);
-        CHECK(result.status == 0);
-    }
-}
-
 }  // namespace
 
 TEST_CASE(

@@ -103,6 +103,24 @@ inline bool x3dInteropAvailable() {
            runCommand("node --version").status == 0;
 }
 
+// The render check of ../shared/bench/render (three.js and X_ITE in headless Chromium) is installed.
+inline bool renderAvailable() {
+    return interopAvailable() && std::filesystem::exists(sharedDir() / "bench/render/node_modules") &&
+           runCommand("command -v chromium").status == 0;
+}
+
+// `compressed` renders as `reference` does (render_compare.sh, lit and normals modes, its default limits).
+inline void checkRendersSame(const std::filesystem::path& reference, const std::filesystem::path& compressed,
+                             const std::string& views = "abc") {
+    for (const char* mode : {"lit", "normals"}) {
+        const CommandResult result =
+            runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") + " --mode " +
+                       mode + " --views " + views + " " + quoted(reference) + " " + quoted(compressed));
+        INFO(mode << ": " << result.output);
+        CHECK(result.status == 0);
+    }
+}
+
 // Runs a command that prints a JSON object (after any warnings) and returns the object.
 inline nlohmann::json runJson(const std::string& commandLine) {
     const CommandResult result = runCommand(commandLine);

@@ -39,6 +39,9 @@ struct WriteOptions {
     // > 0: each primitive's position bits are the fewest that keep its corners within this distance
     // (Primitive::maxPositionError, where set, in its place; positionBitsFor).
     double maxPositionError = 0;
+    // > 0: nor farther than this fraction of its own primitive's bounding-box diagonal, so that a part small in
+    // the scene keeps its shape when a viewer zooms in on it (positionErrorBound).
+    double maxRelativePositionError = 0;
     int normalBits = 10;
     int texcoordBits = 12;
     int colorBits = 8;
@@ -71,6 +74,11 @@ std::vector<std::string> formatLosses(const Scene& scene, const std::filesystem:
 // within its error bound (Primitive::maxPositionError, else options.maxPositionError; Draco's quantization
 // simulated), else options.positionBits.
 int positionBitsFor(const Primitive& primitive, const WriteOptions& options);
+
+// How far quantization may move a corner of `primitive` (a distance in its frame): its error bound
+// (Primitive::maxPositionError, else options.maxPositionError) and options.maxRelativePositionError of its own
+// diagonal, whichever is smaller; 0 where the first is not set (fixed bits).
+double positionErrorBound(const Primitive& primitive, const WriteOptions& options);
 
 void writeGltf(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);  // .gltf/.glb
 // What storing `primitive` as a mesh of its own adds to a glTF file written with `options`: its data (Draco's

@@ -138,6 +138,7 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         write.instanceRotationDeviation = options.maxError * kRotationShare;
         write.instanceTranslationDeviation = options.maxError * kTranslationShare;
         write.maxPositionError = (options.maxError - planOptions.instanceShare) * analysis.diagonal;
+        write.maxRelativePositionError = options.closeUpError * options.maxError;
     }
     planOptions.costs = costModelFor(formatFromExtension(output), write);
     // The HTML report draws the plan's decisions: kept only when it is asked for.

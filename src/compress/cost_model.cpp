@@ -13,6 +13,7 @@ StorageCostModel costModelFor(FileFormat format, const WriteOptions& write) {
     } else {
         // glTF: every part measured by the writer, Draco's positions on the grid its quantization uses.
         model.seamGridBits = write.draco ? write.positionBits : 0;
+        model.seamGridRelativeError = write.draco ? write.maxRelativePositionError : 0;
         model.meshBytes = [write](const Primitive& part) { return double(gltfMeshBytes(part, write)); };
         model.nodeBytes = [](const Node& node) { return double(gltfNodeBytes(node)); };
         model.nodesBytes = [write](const std::vector<Node>& nodes) { return gltfNodesBytes(nodes, write); };

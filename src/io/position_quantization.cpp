@@ -43,9 +43,17 @@ bool collapsesTriangles(const Primitive& primitive, int bits) {
 
 }  // namespace
 
+double positionErrorBound(const Primitive& primitive, const WriteOptions& options) {
+    const double bound = primitive.maxPositionError > 0 ? primitive.maxPositionError : options.maxPositionError;
+    if (!(bound > 0)) return 0;  // fixed bits: the relative bound only tightens a bound
+    if (!(options.maxRelativePositionError > 0) || primitive.triangles.empty()) return bound;
+    return std::min(bound, options.maxRelativePositionError *
+                               boundsOfCorners(primitive.positions, primitive.triangles).diagonal().norm());
+}
+
 int positionBitsFor(const Primitive& primitive, const WriteOptions& options) {
     if (primitive.positionGrid) return primitive.positionGrid->bits;
-    const double bound = primitive.maxPositionError > 0 ? primitive.maxPositionError : options.maxPositionError;
+    const double bound = positionErrorBound(primitive, options);
     if (!(bound > 0) || primitive.triangles.empty()) return options.positionBits;
     // A corner moves at most half a step on each axis: sqrt(3)/2 of a step. The bits that bound gives
     // always suffice; fewer often do, where the corners lie near the grid's points.

@@ -55,12 +55,12 @@ bool roundingCollapses(const Primitive& primitive, int decimals) {
 }
 
 // The places after the point that keep every corner of `primitive` within its error bound
-// (Primitive::maxPositionError, else the writer's) and collapse no triangle: the text's quantization, as
+// (positionErrorBound) and collapse no triangle: the text's quantization, as
 // Draco's bits are a GLB's. A corner moves by at most sqrt(3)/2 of a unit in the last place. Nothing
 // (positions as they are) without a bound, or on a seam's grid, whose points the copies of a region share.
 std::optional<int> positionDecimals(const Primitive& primitive, const WriteOptions& options) {
     constexpr int kMostDecimals = 12;
-    const double bound = primitive.maxPositionError > 0 ? primitive.maxPositionError : options.maxPositionError;
+    const double bound = positionErrorBound(primitive, options);
     if (!(bound > 0) || primitive.positionGrid) return std::nullopt;
     int decimals = std::clamp(int(std::ceil(-std::log10(2 * bound / std::sqrt(3.0)))), -9, kMostDecimals);
     while (decimals < kMostDecimals && roundingCollapses(primitive, decimals)) ++decimals;

@@ -122,8 +122,9 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
                 : 0;
         if (group.size() > 1)
             std::tie(region, regional) = cheapestRegion(
-                {prototype, group, center, context.tolerance(), options.costs.seamGridBits, gridError}, costs, alone,
-                perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
+                {prototype, group, center, context.tolerance(), options.costs.seamGridBits, gridError,
+                 options.costs.seamGridRelativeError},
+                costs, alone, perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
     }
     const bool single = placed.size() == 1 && !region;
     if (single || copies * costs.merged(c.prototype) <= std::min(instanced, regional)) {

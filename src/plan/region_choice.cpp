@@ -1,5 +1,7 @@
 #include "plan/region_choice.hpp"
 
+#include "geometry/bounds.hpp"
+
 #include "symcompress/symmetry.hpp"
 #include "symcompress/verify.hpp"
 
@@ -43,8 +45,12 @@ std::optional<FundamentalRegion> storableRegion(const RegionCandidate& candidate
                                                 const std::vector<Eigen::Matrix3d>& group) {
     std::optional<FundamentalRegion> region = regionOf(candidate.tile, group, candidate.center, candidate.tolerance);
     if (region && candidate.seamGridBits > 0 && region->signedPermutationFrame) {
-        const double left = candidate.seamGridError - region->deviation;  // for the grid, of the budget
+        double left = candidate.seamGridError - region->deviation;  // for the grid, of the budget
         if (candidate.seamGridError > 0 && !(left > 0)) return std::nullopt;
+        if (candidate.seamGridRelativeError > 0)
+            left = std::min(left,
+                            candidate.seamGridRelativeError *
+                                boundsOfCorners(candidate.tile.positions, candidate.tile.triangles).diagonal().norm());
         RegionInGridSteps onGrid =
             inGridSteps(*region, candidate.seamGridError > 0 ? seamPreservingGridWithin(*region, left)
                                                              : seamPreservingGrid(*region, candidate.seamGridBits));

@@ -23,6 +23,7 @@ struct RegionCandidate {
     // leaves after the class's placements): the grid is then the coarsest within what is left, in place of
     // seamGridBits.
     double seamGridError = 0;
+    double seamGridRelativeError = 0;  // StorageCostModel::seamGridRelativeError
 };
 
 // The fundamental region that stores a class's copies in the fewest bytes, of G itself or of a subgroup H

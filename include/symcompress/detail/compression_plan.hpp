@@ -38,6 +38,9 @@ struct StorageCostModel {
     // signed permutations in its frame is then stored on a power-of-two grid through its centre
     // (seamPreservingGrid), in units of the grid's step, so that its seams stay closed.
     int seamGridBits = 0;
+    // WriteOptions::maxRelativePositionError: the seam grid moves no corner farther than this fraction of its
+    // tile's diagonal either.
+    double seamGridRelativeError = 0;
 };
 
 struct AnalysisOptions {
