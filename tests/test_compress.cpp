@@ -346,7 +346,8 @@ TEST_CASE("The input's own shared meshes stay shared: the subpass scene", "[comp
 TEST_CASE("Tiles stored as they are keep their attributes, whatever the other tiles of their material carry",
           "[compress]") {
     // Two different parts of one material, one with normals and one without: merged into one primitive the
-    // normals would have to go (a glTF primitive has them for every vertex or for none).
+    // normals would have to go (a glTF primitive has them for every vertex or for none). The small part without
+    // (flat) joins the other with its faces' normals, shaded as before.
     Primitive withNormals, without;
     for (Primitive* part : {&withNormals, &without}) {
         part->material = 0;
@@ -360,10 +361,20 @@ TEST_CASE("Tiles stored as they are keep their attributes, whatever the other ti
     scene.meshes[0].primitives.push_back(without);
     scene.materials.emplace_back();
     const CompressedScene compressed = compressInMemory(scene);
-    std::size_t trianglesWithNormals = 0;
+    std::size_t trianglesWithNormals = 0, flatShaded = 0;
     for (const Mesh& mesh : compressed.scene.meshes)
-        for (const Primitive& p : mesh.primitives) trianglesWithNormals += p.normals.empty() ? 0 : p.triangles.size();
-    CHECK(trianglesWithNormals == 4);
+        for (const Primitive& p : mesh.primitives) {
+            trianglesWithNormals += p.normals.empty() ? 0 : p.triangles.size();
+            for (const Triangle& t : p.triangles) {
+                if (p.normals.empty()) continue;
+                const Eigen::Vector3d face =
+                    (p.positions[t[1]] - p.positions[t[0]]).cross(p.positions[t[2]] - p.positions[t[0]]).normalized();
+                flatShaded +=
+                    std::all_of(t.begin(), t.end(), [&](std::uint32_t v) { return p.normals[v].dot(face) > 0.9999; });
+            }
+        }
+    CHECK(trianglesWithNormals == 8);
+    CHECK(flatShaded == 4);  // the other part's normals (all +z) are no face's
 }
 
 TEST_CASE("Compressing to .gltf leaves the .gltf and its .bin, and nothing of the ablation's trial files", "[compress][cli]") {

@@ -1,5 +1,6 @@
 // Pruning and deduplication before tiling: each acts where it must and not where it must not; what a
 // viewer draws (every material's fields but names, every primitive's texture) stays the same.
+#include "plan/primitives_by_kind.hpp"
 #include "sample_scenes.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
@@ -218,5 +219,62 @@ TEST_CASE("Normals that are their triangles' own are dropped and the vertices th
         keep.optimize.dropFlatNormals = false;
         CHECK(compressFile(folder / "box.glb", folder / "kept.glb", keep).optimizations.flatNormalsDropped == 0);
         CHECK(std::filesystem::file_size(folder / "small.glb") < std::filesystem::file_size(folder / "kept.glb"));
+    }
+}
+
+TEST_CASE("A small flat part is drawn by its material's smooth part, each corner given its triangle's normal",
+          "[optimize][plan]") {
+    // A smooth sphere and a flat box of one material, stored as they are.
+    std::vector<Eigen::Vector2d> profile;
+    for (int k = 0; k <= 12; ++k) profile.emplace_back(std::sin(M_PI * k / 12), -std::cos(M_PI * k / 12));
+    Primitive sphere;
+    samples::appendMesh(sphere, samples::latheMesh(profile, 16, Eigen::Vector3d::Zero()));
+    for (const Eigen::Vector3d& p : sphere.positions) sphere.normals.push_back(p.normalized());
+    Primitive box;
+    samples::appendMesh(box, samples::boxMesh({5, 0, 0}, {1, 1, 1}));
+    sphere.material = box.material = 0;
+    PrimitivesByKind parts;
+    parts.add(sphere);
+    parts.add(box);
+    Mesh mesh;
+    parts.moveInto(mesh);
+    REQUIRE(mesh.primitives.size() == 1);
+    const Primitive& joined = mesh.primitives[0];
+    CHECK(joined.triangles.size() == sphere.triangles.size() + 12);
+    CHECK(joined.positions.size() == sphere.positions.size() + 36);
+    for (std::size_t t = sphere.triangles.size(); t < joined.triangles.size(); ++t) {
+        const Triangle& c = joined.triangles[t];
+        const Eigen::Vector3d face =
+            (joined.positions[c[1]] - joined.positions[c[0]]).cross(joined.positions[c[2]] - joined.positions[c[0]]);
+        for (std::uint32_t v : c) CHECK(joined.normals[v].dot(face.normalized()) == Approx(1));
+    }
+
+    SECTION("another material's, or a larger flat part, stays a primitive of its own") {
+        Primitive other = box;
+        other.material = 1;
+        Primitive large;
+        for (int k = 0; k < 3; ++k) samples::appendMesh(large, samples::boxMesh({0, 5.0 * k, 0}, {1, 1, 1}));
+        large.material = 0;
+        PrimitivesByKind apart;
+        apart.add(sphere);
+        apart.add(other);
+        apart.add(large);
+        Mesh separate;
+        apart.moveInto(separate);
+        CHECK(separate.primitives.size() == 3);
+    }
+    SECTION("through symcompress: one primitive, verified") {
+        Scene scene = samples::singleMeshScene("parts", sphere, {0.8, 0.2, 0.2, 1});
+        scene.meshes[0].primitives.push_back(box);
+        TemporaryFolder folder;
+        WriteOptions plain;
+        plain.draco = false;
+        writeScene(scene, folder / "parts.glb", plain);
+        compressFile(folder / "parts.glb", folder / "small.glb");
+        const nlohmann::json json = glbJson(folder / "small.glb");
+        std::size_t primitives = 0;
+        for (const auto& m : json["meshes"]) primitives += m["primitives"].size();
+        CHECK(primitives == 1);
+        CHECK(decompressFile(folder / "small.glb", folder / "flat.glb", folder / "parts.glb").verified);
     }
 }
