@@ -5,6 +5,7 @@
 #include "symcompress/tiles.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -55,20 +56,45 @@ bool sameOrientation(const Primitive& prototype, const Primitive& member, const 
     return difference <= 0.5 * size;
 }
 
-bool reproducesWithAttributes(const Primitive& prototype, const Primitive& member, const Isometry& j,
-                              double tolerance, double* deviation) {
+enum class Reproduction { Reproduced, Differs, CutOtherwise };
+
+Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitive& member, const Isometry& j,
+                                      double tolerance, double* deviation) {
     if (prototype.triangles.size() != member.triangles.size() ||
         prototype.positions.size() != member.positions.size() || prototype.normals.empty() != member.normals.empty() ||
         prototype.texcoords.empty() != member.texcoords.empty() || prototype.colors.empty() != member.colors.empty())
-        return false;
+        return Reproduction::Differs;
     std::vector<Eigen::Vector3d> both;
     both.reserve(prototype.positions.size() + member.positions.size());
     for (const auto& p : prototype.positions) both.push_back(j.linear * p + j.translation);
     both.insert(both.end(), member.positions.begin(), member.positions.end());
     const std::vector<std::uint32_t> representative = weldPositions(both, tolerance);
-    // Prototype vertices by position (seams put several vertices, with different attributes, at one place).
-    std::multimap<std::uint32_t, std::uint32_t> atPosition;
-    for (std::uint32_t u = 0; u < prototype.positions.size(); ++u) atPosition.emplace(representative[u], u);
+    // Triangles by their corners' places, in their cyclic order from the first place: corner by corner, since
+    // seams put several vertices with different attributes at one place (a cone's tip, a normal for each side),
+    // and a vertex that matches one of them may belong to another triangle. The prototype placed by a mirror is
+    // drawn with its winding reversed, so its triangles are keyed backwards.
+    using Corners = std::array<std::uint32_t, 3>;
+    auto keyed = [&](const Triangle& t, std::size_t offset, bool backwards) {
+        Corners corners{t[0], t[1], t[2]};
+        if (backwards) std::swap(corners[1], corners[2]);
+        std::rotate(corners.begin(),
+                    std::min_element(corners.begin(), corners.end(),
+                                     [&](std::uint32_t a, std::uint32_t b) {
+                                         return representative[a + offset] < representative[b + offset];
+                                     }),
+                    corners.end());
+        return corners;
+    };
+    auto places = [&](const Corners& corners, std::size_t offset) {
+        return Corners{representative[corners[0] + offset], representative[corners[1] + offset],
+                       representative[corners[2] + offset]};
+    };
+    const bool mirrored = j.linear.determinant() < 0;
+    std::multimap<Corners, Corners> prototypeAt;
+    for (const Triangle& t : prototype.triangles) {
+        const Corners corners = keyed(t, 0, mirrored);
+        prototypeAt.emplace(places(corners, 0), corners);
+    }
     auto same = [&](std::uint32_t u, std::uint32_t v) {
         if (!prototype.normals.empty() && (j.linear * prototype.normals[u]).dot(member.normals[v]) < kNormalCosine)
             return false;
@@ -80,19 +106,27 @@ bool reproducesWithAttributes(const Primitive& prototype, const Primitive& membe
             return false;
         return true;
     };
+    const std::size_t offset = prototype.positions.size();
     double largest = 0;
-    for (std::uint32_t v = 0; v < member.positions.size(); ++v) {
-        const auto [first, last] = atPosition.equal_range(representative[prototype.positions.size() + v]);
-        bool found = false;
-        for (auto it = first; it != last && !found; ++it) {
-            found = same(it->second, v);
-            if (found) largest = std::max(largest, (both[it->second] - member.positions[v]).norm());
-        }
-        if (!found) return false;
+    for (const Triangle& t : member.triangles) {
+        const Corners corners = keyed(t, offset, false);
+        const auto [first, last] = prototypeAt.equal_range(places(corners, offset));
+        if (first == last)
+            return Reproduction::CutOtherwise;  // the same corners, other triangles (a quad's
+                                                // other diagonal)
+        const auto match = std::find_if(first, last, [&](const auto& entry) {
+            for (int k = 0; k < 3; ++k)
+                if (!same(entry.second[k], corners[k])) return false;
+            return true;
+        });
+        if (match == last) return Reproduction::Differs;
+        for (int k = 0; k < 3; ++k)
+            largest = std::max(largest, (both[match->second[k]] - member.positions[corners[k]]).norm());
     }
     if (deviation) *deviation = largest;
     const Eigen::AlignedBox3d box = boundsOf(member.positions);
-    return sameOrientation(prototype, member, j, std::max(box.diagonal().norm(), tolerance));
+    return sameOrientation(prototype, member, j, std::max(box.diagonal().norm(), tolerance)) ? Reproduction::Reproduced
+                                                                                             : Reproduction::Differs;
 }
 
 // The barycentric coordinates of p (on or near the triangle abc) in it.
@@ -111,9 +145,27 @@ Vector interpolated(const std::vector<Vector>& values, const Triangle& t, const 
     return weights[0] * values[t[0]] + weights[1] * values[t[1]] + weights[2] * values[t[2]];
 }
 
+// Whether `a`'s attributes at `weights` in its triangle `s` agree with `b`'s at `onto` in its triangle `t`
+// (a's normals turned by `linear`).
+bool sameAttributes(const Primitive& a, const Triangle& s, const Eigen::Vector3d& weights,
+                    const Eigen::Matrix3d& linear, const Primitive& b, const Triangle& t, const Eigen::Vector3d& onto) {
+    if (!a.normals.empty() &&
+        (linear * interpolated(a.normals, s, weights)).normalized().dot(interpolated(b.normals, t, onto).normalized()) <
+            kNormalCosine)
+        return false;
+    if (!a.texcoords.empty() &&
+        (interpolated(a.texcoords, s, weights) - interpolated(b.texcoords, t, onto)).cwiseAbs().maxCoeff() >
+            kTexcoordTolerance)
+        return false;
+    return a.colors.empty() ||
+           (interpolated(a.colors, s, weights) - interpolated(b.colors, t, onto)).cwiseAbs().maxCoeff() <=
+               kColorTolerance;
+}
+
 // One way of the surface check: `from`'s vertices and centroids, mapped by `map` into `onto`'s frame, against
-// `onto`'s surface, and at the vertices `from`'s attributes against `onto`'s interpolated (normals turned by
-// map's linear part). The largest distance, or nothing.
+// `onto`'s surface, and there `from`'s attributes against `onto`'s interpolated (normals turned by map's linear
+// part): at the centroids too, since a vertex where a seam puts several (a cone's tip, a normal for each side)
+// may match the attributes of another triangle than its own. The largest distance, or nothing.
 std::optional<double> oneWay(const TileSurface& from, const TileSurface& onto, const Isometry& map, double tolerance,
                              bool geometryOnly) {
     const Primitive &a = from.primitive(), &b = onto.primitive();
@@ -121,6 +173,7 @@ std::optional<double> oneWay(const TileSurface& from, const TileSurface& onto, c
     double largest = 0;
     std::uint32_t triangle = 0;
     Eigen::Vector3d weights;
+    const bool attributes = !geometryOnly && !(a.normals.empty() && a.texcoords.empty() && a.colors.empty());
     for (std::uint32_t v = 0; v < a.positions.size(); ++v) {
         // Where the vertex has a normal, on the triangles facing its way: at a crease (a cap's rim), the side
         // its normal belongs to.
@@ -130,22 +183,21 @@ std::optional<double> oneWay(const TileSurface& from, const TileSurface& onto, c
                                             a.normals.empty() || geometryOnly ? nullptr : &normal);
         if (squared > bound) return std::nullopt;
         largest = std::max(largest, squared);
-        if (geometryOnly) continue;
-        const Triangle& t = b.triangles[triangle];
-        if (!a.normals.empty() && normal.dot(interpolated(b.normals, t, weights).normalized()) < kNormalCosine)
-            return std::nullopt;
-        if (!a.texcoords.empty() &&
-            (a.texcoords[v] - interpolated(b.texcoords, t, weights)).cwiseAbs().maxCoeff() > kTexcoordTolerance)
-            return std::nullopt;
-        if (!a.colors.empty() &&
-            (a.colors[v] - interpolated(b.colors, t, weights)).cwiseAbs().maxCoeff() > kColorTolerance)
+        if (attributes &&
+            !sameAttributes(a, {v, v, v}, Eigen::Vector3d(1, 0, 0), map.linear, b, b.triangles[triangle], weights))
             return std::nullopt;
     }
+    const Eigen::Vector3d third = Eigen::Vector3d::Constant(1.0 / 3);
     for (const Triangle& t : a.triangles) {
-        const Eigen::Vector3d centroid = (a.positions[t[0]] + a.positions[t[1]] + a.positions[t[2]]) / 3;
-        const double squared = onto.closest(map.linear * centroid + map.translation, bound, triangle, weights);
+        const Eigen::Vector3d &p = a.positions[t[0]], &q = a.positions[t[1]], &r = a.positions[t[2]];
+        // On the triangles facing the way this one does (a thin part's other side lies within the tolerance).
+        const Eigen::Vector3d facing = map.linear * (q - p).cross(r - p);
+        const double squared = onto.closest(map.linear * (p + q + r) / 3 + map.translation, bound, triangle, weights,
+                                            attributes && facing.squaredNorm() > 0 ? &facing : nullptr);
         if (squared > bound) return std::nullopt;
         largest = std::max(largest, squared);
+        if (attributes && !sameAttributes(a, t, third, map.linear, b, b.triangles[triangle], weights))
+            return std::nullopt;
     }
     return std::sqrt(largest);
 }
@@ -194,8 +246,16 @@ std::optional<double> surfaceDeviation(const TileSurface& prototype, const TileS
 
 bool reproduces(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance,
                 bool geometryOnly, double* deviation) {
-    return geometryOnly ? reproducesWithAttributes(geometryOf(prototype), geometryOf(member), j, tolerance, deviation)
-                        : reproducesWithAttributes(prototype, member, j, tolerance, deviation);
+    const Reproduction reproduction =
+        geometryOnly ? reproducesWithAttributes(geometryOf(prototype), geometryOf(member), j, tolerance, deviation)
+                     : reproducesWithAttributes(prototype, member, j, tolerance, deviation);
+    if (reproduction != Reproduction::CutOtherwise) return reproduction == Reproduction::Reproduced;
+    // The same corners cut into other triangles: the same surface where it is within the tolerance of the
+    // other's and its attributes agree as fields.
+    const TileSurface prototypeSurface(prototype), memberSurface(member);
+    const std::optional<double> surface = surfaceDeviation(prototypeSurface, memberSurface, j, tolerance, geometryOnly);
+    if (surface && deviation) *deviation = *surface;
+    return bool(surface);
 }
 
 }  // namespace symcompress

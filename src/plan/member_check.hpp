@@ -12,9 +12,11 @@
 
 namespace symcompress {
 
-// Whether `prototype` placed by j reproduces `member` one vertex to one vertex within `tolerance` (a
-// distance), facing the same way; with `geometryOnly`, positions and faces only, else normals, texture
-// coordinates and colours too. With `deviation`, the largest distance of a member vertex from its match.
+// Whether `prototype` placed by j reproduces `member` triangle for triangle, corner by corner, within
+// `tolerance` (a distance), facing the same way; with `geometryOnly`, positions and faces only, else normals,
+// texture coordinates and colours too. Where the same corners are cut into other triangles (a quad's other
+// diagonal), as surfaces (surfaceDeviation). With `deviation`, the largest distance of a member vertex from its
+// match.
 bool reproduces(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance,
                 bool geometryOnly, double* deviation = nullptr);
 
