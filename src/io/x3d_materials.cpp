@@ -1,0 +1,75 @@
+// How the X3D writer draws a material (x3d_materials.hpp).
+#include "x3d_materials.hpp"
+
+#include "common/color_space.hpp"
+
+#include <algorithm>
+
+namespace symcompress::x3d {
+
+bool needsPhysicalMaterial(const Material& material) {
+    if (material.phong) return false;
+    const auto refs = material.textureRefs();
+    const bool otherTextures =
+        std::any_of(refs.begin() + 1, refs.begin() + 5, [](const TextureRef* use) { return use->texture >= 0; });
+    return material.metallicFactor != 0 || otherTextures;
+}
+
+PhongMaterial phongOf(const Material& material) {
+    if (material.phong) return *material.phong;
+    // Each field the shortest decimal that reads back to the glTF factor (as float32): glTF -> X3D -> glTF keeps
+    // the factors, X3D -> glTF -> X3D the fields.
+    PhongMaterial phong;
+    for (int c = 0; c < 3; ++c) {
+        phong.diffuseColor[c] = linearToSrgbShortest(material.baseColorFactor[c]);
+        phong.emissiveColor[c] = linearToSrgbShortest(material.emissiveFactor[c]);
+    }
+    const auto complement = [](double s) { return 1 - s; };
+    phong.transparency = shortestReadingBack(1 - material.baseColorFactor[3], material.baseColorFactor[3], complement);
+    phong.shininess = shortestReadingBack(1 - material.roughnessFactor, material.roughnessFactor, complement);
+    return phong;
+}
+
+MaterialTextures materialTextures(const Material& material) {
+    MaterialTextures out;
+    const bool physical = needsPhysicalMaterial(material);
+    struct Slot {
+        const char* physicalField;
+        const char* phongField;  // nullptr: Phong's Material has no such field
+        const TextureRef* use;
+    };
+    const Slot slots[] = {{"baseTexture", "diffuseTexture", &material.baseColorTexture},
+                          {"metallicRoughnessTexture", nullptr, &material.metallicRoughnessTexture},
+                          {"normalTexture", "normalTexture", &material.normalTexture},
+                          {"occlusionTexture", "occlusionTexture", &material.occlusionTexture},
+                          {"emissiveTexture", "emissiveTexture", &material.emissiveTexture}};
+    for (const Slot& slot : slots) {
+        const char* field = physical ? slot.physicalField : slot.phongField;
+        if (!field || slot.use->texture < 0) continue;
+        out.x3d4Fields = out.x3d4Fields || physical || slot.use != &material.baseColorTexture;
+        // Uses on the same set with the same transform share their coordinates.
+        const int set = slot.use->texCoordSet();
+        const auto same = std::find_if(out.channels.begin(), out.channels.end(), [&](const TexcoordChannel& channel) {
+            return channel.set == set && channel.transform == slot.use->transform;
+        });
+        const std::size_t channel = std::size_t(same - out.channels.begin());
+        if (same == out.channels.end()) out.channels.push_back({set, slot.use->transform, ""});
+        out.fields.push_back({field, slot.use, channel});
+    }
+    // A Phong material's base texture alone stays the Appearance's texture, as X3D 3.3 has it.
+    if (!out.x3d4Fields && !out.fields.empty()) out.fields[0].field = "texture";
+    // No texture: the coordinates the base colour's use would read, as before.
+    if (out.channels.empty())
+        out.channels.push_back({material.baseColorTexture.texCoordSet(), material.baseColorTexture.transform, ""});
+    if (out.channels.size() > 1)
+        for (std::size_t c = 0; c < out.channels.size(); ++c)
+            out.channels[c].mapping = "TEXCOORD_" + std::to_string(out.channels[c].set) +
+                                      (out.channels[c].transform ? "_" + std::to_string(c) : "");
+    return out;
+}
+
+bool needsX3d4(const Material& material) {
+    return needsPhysicalMaterial(material) || materialTextures(material).x3d4Fields;
+}
+
+}  // namespace symcompress::x3d
