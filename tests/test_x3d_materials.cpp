@@ -66,6 +66,8 @@ Scene everySlotScene() {
     material.normalTexture = {1, 0, 0.75, std::nullopt};
     material.occlusionTexture = {1, 0, 0.5, std::nullopt};
     material.emissiveTexture = {0, 1, 1, std::nullopt};
+    material.alphaMode = Material::AlphaMode::Mask;
+    material.alphaCutoff = 0.25;
     scene.materials = {material};
     Primitive quad;
     quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
@@ -193,6 +195,8 @@ TEST_CASE("A glTF material with every core texture slot comes back from X3D with
     CHECK(after.metallicFactor == before.metallicFactor);
     CHECK(after.roughnessFactor == before.roughnessFactor);
     CHECK(after.emissiveFactor == before.emissiveFactor);
+    CHECK(after.alphaMode == Material::AlphaMode::Mask);  // X3D 4's Appearance alphaMode and alphaCutoff
+    CHECK(after.alphaCutoff == 0.25);
     // The emissive texture's set comes back as TEXCOORD_1, with its coordinates.
     const Primitive& quad = x3d.meshes.at(0).primitives.at(0);
     REQUIRE(quad.attributes.size() == 1);

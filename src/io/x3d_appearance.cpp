@@ -249,6 +249,14 @@ int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::
         material.metallicFactor = 0;
     }
     if (material.baseColorFactor[3] < 1) material.alphaMode = Material::AlphaMode::Blend;
+    // X3D 4's Appearance holds glTF's alpha modes (AUTO, the default, as X3D 3 decides: blend when transparent).
+    const std::string alphaMode = appearance.attribute("alphaMode").value();
+    if (alphaMode == "OPAQUE") material.alphaMode = Material::AlphaMode::Opaque;
+    if (alphaMode == "BLEND") material.alphaMode = Material::AlphaMode::Blend;
+    if (alphaMode == "MASK") {
+        material.alphaMode = Material::AlphaMode::Mask;
+        material.alphaCutoff = scalar(appearance, "alphaCutoff", 0.5);
+    }
     // The material's own base texture (X3D 4) takes the place of the Appearance's texture.
     if (phong || physical) readMaterialTextures(phong ? phong : physical, material, texcoordMappings);
     if (material.baseColorTexture.texture < 0) material.baseColorTexture.texture = readTexture(appearance);
