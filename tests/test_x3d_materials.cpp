@@ -54,6 +54,7 @@ Scene everySlotScene() {
     a.mimeType = "image/png";
     b.bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 2};
     b.mimeType = "image/png";
+    b.sampler = {9728, 9986, 33071, 33648, ""};  // as X3D's TextureProperties
     scene.textures = {a, b};
     Material material;
     material.name = "pbr";
@@ -84,12 +85,14 @@ Scene everySlotScene() {
     return scene;
 }
 
-// A texture use by value: the image's bytes (indices differ between files), the set and the scale.
+// A texture use by value: the image's bytes (indices differ between files), its sampler, the set and the scale.
 std::string describeUse(const Scene& scene, const TextureRef& use) {
     if (use.texture < 0) return "-";
-    const auto& bytes = scene.textures[std::size_t(use.texture)].bytes;
-    return std::string(bytes.begin(), bytes.end()) + " set " + std::to_string(use.texCoord) + " scale " +
-           std::to_string(use.scale);
+    const Texture& texture = scene.textures[std::size_t(use.texture)];
+    const TextureSampler& s = texture.sampler;
+    return std::string(texture.bytes.begin(), texture.bytes.end()) + " sampler " + std::to_string(s.magFilter) + "," +
+           std::to_string(s.minFilter) + "," + std::to_string(s.wrapS) + "," + std::to_string(s.wrapT) + " set " +
+           std::to_string(use.texCoord) + " scale " + std::to_string(use.scale);
 }
 
 std::vector<std::string> describeSlots(const Scene& scene, const Material& m) {
@@ -187,6 +190,10 @@ TEST_CASE("A glTF material with every core texture slot comes back from X3D with
     CHECK_THAT(text, Catch::Contains("<PhysicalMaterial"));
     CHECK_THAT(text, Catch::Contains("<MultiTextureCoordinate>"));
     CHECK(count(text, "data:image/png") == 2);  // each image once, then USEd
+    CHECK_THAT(text,
+               Catch::Contains("<TextureProperties boundaryModeS='CLAMP_TO_EDGE' boundaryModeT='MIRRORED_REPEAT' "
+                               "magnificationFilter='NEAREST_PIXEL' minificationFilter='NEAREST_PIXEL_AVG_MIPMAP' "
+                               "generateMipMaps='true'/>"));
     const Scene x3d = readScene(folder / "out.x3d");
     REQUIRE(x3d.materials.size() == 1);
     const Material &before = scene.materials[0], &after = x3d.materials[0];
@@ -278,7 +285,7 @@ TEST_CASE("An X3D 3.3 Phong scene is written as X3D 3.3, as it was", "[io][x3d][
     TemporaryFolder folder;
     writeTextFile(folder / "in.x3d",
                   quadWith("<Appearance><Material diffuseColor='0.8 0.2 0.1' specularColor='0.5 0.5 0.5' "
-                           "ambientIntensity='0.4' shininess='0.7'/><ImageTexture url='\"" +
+                           "ambientIntensity='0.4' shininess='0.7'/><ImageTexture repeatT='false' url='\"" +
                                kImageA + "\"'/></Appearance>",
                            "3.3"));
     const Scene scene = readScene(folder / "in.x3d");
@@ -292,6 +299,8 @@ TEST_CASE("An X3D 3.3 Phong scene is written as X3D 3.3, as it was", "[io][x3d][
                Catch::Contains("<Material diffuseColor='0.8 0.2 0.1' specularColor='0.5 0.5 0.5' emissiveColor='0 "
                                "0 0' ambientIntensity='0.4' shininess='0.7' transparency='0'/><ImageTexture "
                                "DEF='texture0' url="));
+    CHECK_THAT(text, Catch::Contains("repeatT='false'/>"));  // clamped along t: glTF's CLAMP_TO_EDGE
+    CHECK(scene.textures.at(0).sampler == TextureSampler{0, 0, 10497, 33071, ""});
     CHECK_THAT(text, !Catch::Contains("PhysicalMaterial"));
     CHECK_THAT(text, !Catch::Contains("containerField"));
     const Scene back = readScene(folder / "out.x3d");

@@ -100,23 +100,21 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
         losses.push_back(std::to_string(scene.skins.size()) + " skins not written: " + extension +
                          " output draws skinned meshes where their nodes place them, unskinned");
     // OBJ's and PLY's materials hold a colour and one texture (transformed into the coordinates). X3D's hold the
-    // five core textures (x3d_materials.hpp), transformed into the coordinates, but a Phong material (one read
-    // from X3D) no metallic-roughness texture, and no X3D material glTF's samplers or extensions.
+    // five core textures with their samplers (x3d_materials.hpp), transformed into the coordinates, but a Phong
+    // material (one read from X3D) no metallic-roughness texture, and no X3D material glTF's extensions.
     const bool x3d = format == FileFormat::X3d;
     const std::size_t richer = std::count_if(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
         const auto refs = m.textureRefs();
         const auto firstDropped = x3d ? refs.begin() + 5 : refs.begin() + 1;
         bool dropped = std::any_of(firstDropped, refs.end(), [](const TextureRef* use) { return use->texture >= 0; });
         if (x3d && m.phong) dropped = dropped || m.metallicRoughnessTexture.texture >= 0;
-        const bool sampled =
-            std::any_of(refs.begin(), x3d ? refs.begin() + 5 : refs.begin() + 1, [&](const TextureRef* use) {
-                return use->texture >= 0 && !(scene.textures[std::size_t(use->texture)].sampler == TextureSampler{});
-            });
+        const bool sampled = !x3d && m.baseColorTexture.texture >= 0 &&
+                             !(scene.textures[std::size_t(m.baseColorTexture.texture)].sampler == TextureSampler{});
         return dropped || sampled || !m.extensions.empty();
     });
     if (richer)
         losses.push_back(std::to_string(richer) + " materials written " +
-                         (x3d ? "with their core textures only: their samplers, extensions and other textures have"
+                         (x3d ? "with their core textures only: their extensions and other textures have"
                               : "with their base colour only: their other textures, samplers and extensions have") +
                          " no place in " + file.extension().string() + " output");
     if (format != FileFormat::X3d) {

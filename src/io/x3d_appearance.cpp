@@ -5,6 +5,7 @@
 #include "common/color_space.hpp"
 #include "common/mime_type.hpp"
 #include "symcompress/detail/atomic_file.hpp"
+#include "x3d_materials.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -49,6 +50,11 @@ bool decodeBase64(const std::string& text, std::vector<std::uint8_t>& bytes) {
     return !bytes.empty();
 }
 
+std::string nodeName(const pugi::xml_node& node) {
+    const std::string def = node.attribute("DEF").value();
+    return std::string(node.name()) + (def.empty() ? "" : " '" + def + "'");
+}
+
 }  // namespace
 
 int X3dReader::readTexture(const pugi::xml_node& appearance) {
@@ -59,6 +65,27 @@ int X3dReader::readTexture(const pugi::xml_node& appearance) {
         return -1;
     }
     return readTextureNode(texture, "an Appearance's texture");
+}
+
+// glTF's sampler of an ImageTexture: its TextureProperties' boundary modes and filters, else its repeatS and
+// repeatT (x3d_materials.hpp).
+TextureSampler X3dReader::readSampler(const pugi::xml_node& texture) {
+    TextureSampler sampler;
+    if (!boolean(texture, "repeatS", true)) sampler.wrapS = 33071;
+    if (!boolean(texture, "repeatT", true)) sampler.wrapT = 33071;
+    pugi::xml_node properties = texture.child("TextureProperties");
+    if (!properties || !knownUse(properties, nodeName(texture) + " textureProperties")) return sampler;
+    if (const pugi::xml_attribute def = properties.attribute("DEF")) definitions_[def.value()] = properties;
+    properties = resolve(properties);
+    if (std::strcmp(properties.name(), "TextureProperties") != 0) return sampler;
+    sampler.wrapS = x3d::boundaryModeOf(properties.attribute("boundaryModeS").as_string("REPEAT"));
+    sampler.wrapT = x3d::boundaryModeOf(properties.attribute("boundaryModeT").as_string("REPEAT"));
+    sampler.magFilter = x3d::filterOf(properties.attribute("magnificationFilter").value());
+    sampler.minFilter = x3d::filterOf(properties.attribute("minificationFilter").value());
+    // Mipmap filters without mipmaps: the browser samples the one level (LINEAR or NEAREST).
+    if (!boolean(properties, "generateMipMaps", false) && sampler.minFilter >= 9984)
+        sampler.minFilter = sampler.minFilter == 9984 || sampler.minFilter == 9986 ? 9728 : 9729;
+    return sampler;
 }
 
 bool X3dReader::knownUse(const pugi::xml_node& node, const std::string& where) {
@@ -82,6 +109,7 @@ int X3dReader::readTextureNode(const pugi::xml_node& node, const std::string& wh
     auto [entry, inserted] = textureOfNode_.try_emplace(texture.internal_object(), -1);
     if (!inserted) return entry->second;
     Texture out;
+    out.sampler = readSampler(texture);
     for (const std::string& url : x3d::parseStrings(texture.attribute("url").value())) {
         if (url.compare(0, 5, "data:") == 0) {
             // An image inside the file (how the X3D writer embeds them): data:[mime type][;base64],bytes.
@@ -142,11 +170,6 @@ const TextureField kPhongTextureFields[] = {{"diffuseTexture", &Material::baseCo
                                             {"ambientTexture", nullptr},
                                             {"specularTexture", nullptr},
                                             {"shininessTexture", nullptr}};
-
-std::string nodeName(const pugi::xml_node& node) {
-    const std::string def = node.attribute("DEF").value();
-    return std::string(node.name()) + (def.empty() ? "" : " '" + def + "'");
-}
 
 }  // namespace
 

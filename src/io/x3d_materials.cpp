@@ -4,6 +4,7 @@
 #include "common/color_space.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace symcompress::x3d {
 
@@ -70,6 +71,45 @@ MaterialTextures materialTextures(const Material& material) {
 
 bool needsX3d4(const Material& material) {
     return needsPhysicalMaterial(material) || materialTextures(material).x3d4Fields;
+}
+
+namespace {
+
+const std::pair<int, const char*> kWraps[] = {{10497, "REPEAT"}, {33071, "CLAMP_TO_EDGE"}, {33648, "MIRRORED_REPEAT"}};
+const std::pair<int, const char*> kFilters[] = {{9728, "NEAREST_PIXEL"},
+                                                {9729, "AVG_PIXEL"},
+                                                {9984, "NEAREST_PIXEL_NEAREST_MIPMAP"},
+                                                {9985, "AVG_PIXEL_NEAREST_MIPMAP"},
+                                                {9986, "NEAREST_PIXEL_AVG_MIPMAP"},
+                                                {9987, "AVG_PIXEL_AVG_MIPMAP"}};
+
+}  // namespace
+
+std::string boundaryModeName(int wrap) {
+    for (const auto& [value, name] : kWraps)
+        if (value == wrap) return name;
+    return "REPEAT";
+}
+
+int boundaryModeOf(const std::string& name) {
+    if (name.rfind("CLAMP", 0) == 0) return 33071;
+    return name == "MIRRORED_REPEAT" ? 33648 : 10497;
+}
+
+std::string minificationFilterName(int filter) {
+    for (const auto& [value, name] : kFilters)
+        if (value == filter) return name;
+    return "NICEST";
+}
+
+std::string magnificationFilterName(int filter) {
+    return filter == 9728 || filter == 9729 ? minificationFilterName(filter) : "NICEST";
+}
+
+int filterOf(const std::string& name) {
+    for (const auto& [value, filterName] : kFilters)
+        if (name == filterName) return value;
+    return 0;
 }
 
 }  // namespace symcompress::x3d

@@ -47,4 +47,13 @@ MaterialTextures materialTextures(const Material& material);
 // Whether writing `material` needs X3D 4.0 (PhysicalMaterial, Material's texture fields, texture mappings).
 bool needsX3d4(const Material& material);
 
+// glTF's samplers as X3D's TextureProperties (Texturing component, X3D 3.0 on): boundary modes and filters by
+// name. The sampler's enums (scene.hpp); 0, a filter left to the viewer, is X3D's NICEST (what X_ITE uses
+// without TextureProperties).
+std::string boundaryModeName(int wrap);
+int boundaryModeOf(const std::string& name);  // CLAMP, CLAMP_TO_EDGE and CLAMP_TO_BOUNDARY: CLAMP_TO_EDGE
+std::string minificationFilterName(int filter);
+std::string magnificationFilterName(int filter);
+int filterOf(const std::string& name);  // NICEST, FASTEST, DEFAULT: 0
+
 }  // namespace symcompress::x3d

@@ -52,6 +52,7 @@ private:
                               const std::vector<std::string>& texcoordMappings);
     int readTexture(const pugi::xml_node& appearance);
     int readTextureNode(const pugi::xml_node& node, const std::string& where);  // -1 (and a note) if not an image
+    TextureSampler readSampler(const pugi::xml_node& texture);
     bool knownUse(const pugi::xml_node& node, const std::string& where);        // a USE that names no DEF: a note
     int addTexture(int& index, Texture texture);  // sets `index` (the ImageTexture's) and returns it
     bool readGeometry(const pugi::xml_node& geometry, Primitive& out, std::vector<std::string>& texcoordMappings);

@@ -467,8 +467,7 @@ private:
             writePhongMaterial(m, textures);
         }
         for (const x3d::TextureField& field : textures.fields)
-            if (std::string(field.field) == "texture")
-                writeImageTexture(sameImage_[std::size_t(field.use->texture)], "");
+            if (std::string(field.field) == "texture") writeImageTexture(field.use->texture, "");
         out_ += "</Appearance>\n";
     }
 
@@ -501,7 +500,7 @@ private:
             if (std::string(field.field) != "texture") {
                 if (!any) out_ += ">";
                 any = true;
-                writeImageTexture(sameImage_[std::size_t(field.use->texture)], field.field);
+                writeImageTexture(field.use->texture, field.field);
             }
         return any;
     }
@@ -538,24 +537,51 @@ private:
         out_ += writeTextureChildren(textures) ? "</Material>" : "/>";
     }
 
-    // An image is written once, with a DEF, and USEd by every other material showing it; `containerField` is the
-    // material's field that holds it (empty: the Appearance's texture).
-    void writeImageTexture(int index, const std::string& containerField) {
+    // An image is written once, with a DEF, and USEd by every other material showing it with the same sampler
+    // (X3D's ImageTexture holds both); `containerField` is the material's field that holds it (empty: the
+    // Appearance's texture).
+    void writeImageTexture(int texture, const std::string& containerField) {
+        const std::vector<Texture>& textures = scene_.textures;
+        int index = sameImage_[std::size_t(texture)];
+        while (!(textures[std::size_t(index)].sampler == textures[std::size_t(texture)].sampler) ||
+               sameImage_[std::size_t(index)] != sameImage_[std::size_t(texture)])
+            ++index;  // the first texture of this image with this sampler (`texture` itself at the latest)
         const std::string def = "texture" + std::to_string(index);
         const std::string field = containerField.empty() ? "" : " containerField='" + containerField + "'";
         if (textureWritten_.count(index)) {
             out_ += "<ImageTexture USE='" + def + "'" + field + "/>";
             return;
         }
-        const Texture& texture = scene_.textures[std::size_t(index)];
-        std::string url = file_.empty() ? texture.uri : imageReference(texture.uri, file_);
-        if (!texture.bytes.empty() && !x3dRefersToImageFile(texture))
-            url = "data:" + (texture.mimeType.empty() ? std::string("image/png") : texture.mimeType) + ";base64," +
-                  base64(texture.bytes);
+        const Texture& image = textures[std::size_t(sameImage_[std::size_t(texture)])];
+        std::string url = file_.empty() ? image.uri : imageReference(image.uri, file_);
+        if (!image.bytes.empty() && !x3dRefersToImageFile(image))
+            url = "data:" + (image.mimeType.empty() ? std::string("image/png") : image.mimeType) + ";base64," +
+                  base64(image.bytes);
         if (url.empty()) return;
         textureWritten_.insert(index);
         names_.insert(def);
-        out_ += "<ImageTexture DEF='" + def + "'" + field + " url='\"" + escapedMarkup(url) + "\"'/>";
+        out_ += "<ImageTexture DEF='" + def + "'" + field + " url='\"" + escapedMarkup(url) + "\"'";
+        writeSampler(textures[std::size_t(texture)].sampler);
+    }
+
+    // glTF's sampler: clamping alone as repeatS and repeatT (X3D 3.3's ImageTexture fields), anything else as
+    // TextureProperties; the default writes nothing, X3D's default being glTF's.
+    void writeSampler(const TextureSampler& sampler) {
+        const bool filtered = sampler.magFilter != 0 || sampler.minFilter != 0;
+        const auto repeatOrClamp = [](int wrap) { return wrap == 10497 || wrap == 33071; };
+        if (!filtered && repeatOrClamp(sampler.wrapS) && repeatOrClamp(sampler.wrapT)) {
+            if (sampler.wrapS == 33071) out_ += " repeatS='false'";
+            if (sampler.wrapT == 33071) out_ += " repeatT='false'";
+            out_ += "/>";
+            return;
+        }
+        // Mipmaps unless the minification filter reads none (NEAREST, LINEAR).
+        const bool mipmaps = sampler.minFilter != 9728 && sampler.minFilter != 9729;
+        out_ += "><TextureProperties boundaryModeS='" + x3d::boundaryModeName(sampler.wrapS) + "' boundaryModeT='" +
+                x3d::boundaryModeName(sampler.wrapT) + "' magnificationFilter='" +
+                x3d::magnificationFilterName(sampler.magFilter) + "' minificationFilter='" +
+                x3d::minificationFilterName(sampler.minFilter) + "' generateMipMaps='" + (mipmaps ? "true" : "false") +
+                "'/></ImageTexture>";
     }
 
     // Vertex v's coordinates on a channel: its set (TEXCOORD_0, else the attribute TEXCOORD_n, else TEXCOORD_0 as
