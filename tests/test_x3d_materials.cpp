@@ -281,6 +281,29 @@ TEST_CASE("Colours convert between glTF's linear factors and X3D's sRGB-encoded 
     }
 }
 
+TEST_CASE("KHR_materials_unlit is X3D 4's UnlitMaterial, its colour sRGB-encoded, and comes back",
+          "[io][x3d][materials]") {
+    TemporaryFolder folder;
+    Scene scene = everySlotScene();
+    Material& m = scene.materials[0];
+    m = Material{};
+    m.baseColorFactor = {expectedLinear(0.5), 0.02, 1, 1};
+    m.baseColorTexture.texture = 0;
+    m.extensions.push_back({"KHR_materials_unlit", "{}", {}, false});
+    writeScene(scene, folder / "unlit.x3d");
+    const std::string text = readTextFile(folder / "unlit.x3d");
+    CHECK_THAT(text, Catch::Contains("version='4.0'"));
+    CHECK_THAT(text, Catch::Contains("<UnlitMaterial emissiveColor='0.5 0.15170372 1'><ImageTexture DEF='texture0' "
+                                     "containerField='emissiveTexture'"));
+    const Scene back = readScene(folder / "unlit.x3d");
+    REQUIRE(back.materials.size() == 1);
+    const Material& read = back.materials[0];
+    for (int c = 0; c < 4; ++c) CHECK(std::abs(read.baseColorFactor[c] - m.baseColorFactor[c]) < 1e-6);
+    REQUIRE(read.extensions.size() == 1);
+    CHECK(read.extensions[0].name == "KHR_materials_unlit");
+    CHECK(describeUse(back, read.baseColorTexture) == describeUse(scene, m.baseColorTexture));
+}
+
 TEST_CASE("An X3D 3.3 Phong scene is written as X3D 3.3, as it was", "[io][x3d][materials]") {
     TemporaryFolder folder;
     writeTextFile(folder / "in.x3d",
@@ -424,4 +447,19 @@ TEST_CASE("Colours as X3D render in X_ITE as the glTF's do in three.js, and back
     const CommandResult back = renderCompare(folder / "colours.x3d", folder / "back.glb", "lit", "d");
     INFO("X3D -> glTF: " << back.output);
     CHECK(back.status == 0);
+}
+
+TEST_CASE("Unlit glTF materials as X3D render in X_ITE as in three.js", "[io][x3d][materials][models]") {
+    if (!renderAvailable()) {
+        WARN("skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
+        return;
+    }
+    // UnlitTest: two KHR_materials_unlit colours, which no light changes, so that the two viewers agree.
+    TemporaryFolder folder;
+    const fs::path input = modelPath("pbr/unlit/UnlitTest.gltf");
+    writeScene(readScene(input), folder / "unlit.x3d");
+    CHECK_THAT(readTextFile(folder / "unlit.x3d"), Catch::Contains("<UnlitMaterial"));
+    const CommandResult there = renderCompare(input, folder / "unlit.x3d", "lit", "abc");
+    INFO(there.output);
+    CHECK(there.status == 0);
 }

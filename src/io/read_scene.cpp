@@ -110,7 +110,10 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
         if (x3d && m.phong) dropped = dropped || m.metallicRoughnessTexture.texture >= 0;
         const bool sampled = !x3d && m.baseColorTexture.texture >= 0 &&
                              !(scene.textures[std::size_t(m.baseColorTexture.texture)].sampler == TextureSampler{});
-        return dropped || sampled || !m.extensions.empty();
+        const bool extended = std::any_of(m.extensions.begin(), m.extensions.end(), [&](const MaterialExtension& e) {
+            return !(x3d && e.name == "KHR_materials_unlit" && x3d::isUnlit(m));  // X3D's UnlitMaterial
+        });
+        return dropped || sampled || extended;
     });
     if (richer)
         losses.push_back(std::to_string(richer) + " materials written " +

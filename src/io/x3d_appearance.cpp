@@ -163,6 +163,9 @@ const TextureField kPhysicalTextureFields[] = {{"baseTexture", &Material::baseCo
                                                {"normalTexture", &Material::normalTexture},
                                                {"occlusionTexture", &Material::occlusionTexture},
                                                {"emissiveTexture", &Material::emissiveTexture}};
+// UnlitMaterial draws its emissive texture: glTF's unlit base colour texture.
+const TextureField kUnlitTextureFields[] = {{"emissiveTexture", &Material::baseColorTexture},
+                                            {"normalTexture", nullptr}};
 const TextureField kPhongTextureFields[] = {{"diffuseTexture", &Material::baseColorTexture},
                                             {"normalTexture", &Material::normalTexture},
                                             {"occlusionTexture", &Material::occlusionTexture},
@@ -178,8 +181,10 @@ const TextureField kPhongTextureFields[] = {{"diffuseTexture", &Material::baseCo
 void X3dReader::readMaterialTextures(const pugi::xml_node& node, Material& material,
                                      const std::vector<std::string>& texcoordMappings) {
     const bool physical = std::strcmp(node.name(), "PhysicalMaterial") == 0;
+    const bool unlit = std::strcmp(node.name(), "UnlitMaterial") == 0;
     const std::vector<TextureField> fields =
         physical ? std::vector<TextureField>(std::begin(kPhysicalTextureFields), std::end(kPhysicalTextureFields))
+        : unlit  ? std::vector<TextureField>(std::begin(kUnlitTextureFields), std::end(kUnlitTextureFields))
                  : std::vector<TextureField>(std::begin(kPhongTextureFields), std::end(kPhongTextureFields));
     const std::string what = nodeName(node);
     for (pugi::xml_node child : node.children()) {
@@ -229,12 +234,13 @@ int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::
     material.name = appearance.attribute("DEF").value();
     pugi::xml_node phong = appearance.child("Material");
     pugi::xml_node physical = appearance.child("PhysicalMaterial");
+    pugi::xml_node unlit = appearance.child("UnlitMaterial");
     pugi::xml_node twoSided = appearance.child("TwoSidedMaterial");
     if (twoSided) {
         phong = twoSided;
         material.doubleSided = true;
     }
-    for (pugi::xml_node* node : {&phong, &physical})
+    for (pugi::xml_node* node : {&phong, &physical, &unlit})
         if (*node) {
             if (!knownUse(*node, "an Appearance's " + std::string(node->name()))) {
                 *node = pugi::xml_node();
@@ -267,6 +273,14 @@ int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::
         material.roughnessFactor = scalar(physical, "roughness", 1);
         material.emissiveFactor = vector3(physical, "emissiveColor", Eigen::Vector3d::Zero());
         if (material.name.empty()) material.name = physical.attribute("DEF").value();
+    } else if (unlit) {
+        // UnlitMaterial draws its emissive colour, sRGB-encoded as Phong's (X_ITE draws it so), as glTF's
+        // KHR_materials_unlit draws the base colour.
+        material.baseColorFactor << srgbToLinear(vector3(unlit, "emissiveColor", Eigen::Vector3d::Ones())),
+            1 - scalar(unlit, "transparency", 0);
+        material.metallicFactor = 0;
+        material.extensions.push_back({"KHR_materials_unlit", "{}", {}, false});
+        if (material.name.empty()) material.name = unlit.attribute("DEF").value();
     } else {
         // An Appearance without a material is unlit white in X3D.
         material.metallicFactor = 0;
@@ -281,7 +295,8 @@ int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::
         material.alphaCutoff = scalar(appearance, "alphaCutoff", 0.5);
     }
     // The material's own base texture (X3D 4) takes the place of the Appearance's texture.
-    if (phong || physical) readMaterialTextures(phong ? phong : physical, material, texcoordMappings);
+    if (phong || physical || unlit)
+        readMaterialTextures(phong ? phong : physical ? physical : unlit, material, texcoordMappings);
     if (material.baseColorTexture.texture < 0) material.baseColorTexture.texture = readTexture(appearance);
     // Appearances written out one per Shape, with the same Material and texture USEd in each, are one
     // material (else every Shape would look like its own part). Double-sidedness comes from the geometry

@@ -8,8 +8,13 @@
 
 namespace symcompress::x3d {
 
+bool isUnlit(const Material& material) {
+    return !material.phong && std::any_of(material.extensions.begin(), material.extensions.end(),
+                                          [](const MaterialExtension& e) { return e.name == "KHR_materials_unlit"; });
+}
+
 bool needsPhysicalMaterial(const Material& material) {
-    if (material.phong) return false;
+    if (material.phong || isUnlit(material)) return false;
     const auto refs = material.textureRefs();
     const bool otherTextures =
         std::any_of(refs.begin() + 1, refs.begin() + 5, [](const TextureRef* use) { return use->texture >= 0; });
@@ -33,21 +38,22 @@ PhongMaterial phongOf(const Material& material) {
 
 MaterialTextures materialTextures(const Material& material) {
     MaterialTextures out;
-    const bool physical = needsPhysicalMaterial(material);
+    const bool physical = needsPhysicalMaterial(material), unlit = isUnlit(material);
     struct Slot {
         const char* physicalField;
         const char* phongField;  // nullptr: Phong's Material has no such field
+        const char* unlitField;  // UnlitMaterial's: its emissive texture is the colour drawn
         const TextureRef* use;
     };
-    const Slot slots[] = {{"baseTexture", "diffuseTexture", &material.baseColorTexture},
-                          {"metallicRoughnessTexture", nullptr, &material.metallicRoughnessTexture},
-                          {"normalTexture", "normalTexture", &material.normalTexture},
-                          {"occlusionTexture", "occlusionTexture", &material.occlusionTexture},
-                          {"emissiveTexture", "emissiveTexture", &material.emissiveTexture}};
+    const Slot slots[] = {{"baseTexture", "diffuseTexture", "emissiveTexture", &material.baseColorTexture},
+                          {"metallicRoughnessTexture", nullptr, nullptr, &material.metallicRoughnessTexture},
+                          {"normalTexture", "normalTexture", nullptr, &material.normalTexture},
+                          {"occlusionTexture", "occlusionTexture", nullptr, &material.occlusionTexture},
+                          {"emissiveTexture", "emissiveTexture", nullptr, &material.emissiveTexture}};
     for (const Slot& slot : slots) {
-        const char* field = physical ? slot.physicalField : slot.phongField;
+        const char* field = unlit ? slot.unlitField : physical ? slot.physicalField : slot.phongField;
         if (!field || slot.use->texture < 0) continue;
-        out.x3d4Fields = out.x3d4Fields || physical || slot.use != &material.baseColorTexture;
+        out.x3d4Fields = out.x3d4Fields || physical || unlit || slot.use != &material.baseColorTexture;
         // Uses on the same set with the same transform share their coordinates.
         const int set = slot.use->texCoordSet();
         const auto same = std::find_if(out.channels.begin(), out.channels.end(), [&](const TexcoordChannel& channel) {
@@ -70,7 +76,7 @@ MaterialTextures materialTextures(const Material& material) {
 }
 
 bool needsX3d4(const Material& material) {
-    return needsPhysicalMaterial(material) || materialTextures(material).x3d4Fields;
+    return needsPhysicalMaterial(material) || isUnlit(material) || materialTextures(material).x3d4Fields;
 }
 
 namespace {

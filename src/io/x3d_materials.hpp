@@ -11,8 +11,13 @@
 
 namespace symcompress::x3d {
 
-// A PhysicalMaterial where Phong cannot draw the material: no Phong fields kept from an X3D input, and metal, or a
-// texture other than the base colour's. Otherwise X3D 3.3's Material, as symcompress always wrote it.
+// KHR_materials_unlit (not read from X3D's Phong Material): X3D 4's UnlitMaterial, whose emissive colour and
+// texture are the colour drawn (sRGB-encoded, as Phong's: X_ITE draws it so).
+bool isUnlit(const Material& material);
+
+// A PhysicalMaterial where Phong cannot draw the material (and it is not unlit): no Phong fields kept from an X3D
+// input, and metal, or a texture other than the base colour's. Otherwise X3D 3.3's Material, as symcompress always
+// wrote it.
 bool needsPhysicalMaterial(const Material& material);
 
 // The Phong fields written for a material: those it was read with, else its glTF factors sRGB-encoded.

@@ -451,7 +451,7 @@ private:
         const Material& m = scene_.materials[material];
         const x3d::MaterialTextures textures = x3d::materialTextures(m);
         out_ += "<Appearance DEF='" + def + "'";
-        if (x3d::needsPhysicalMaterial(m)) {
+        if (x3d::needsPhysicalMaterial(m) || x3d::isUnlit(m)) {
             // glTF's alpha modes, which X3D 4's Appearance has (its AUTO would blend a texture's alpha).
             if (m.alphaMode == Material::AlphaMode::Mask) {
                 out_ += " alphaMode='MASK' alphaCutoff='";
@@ -461,7 +461,10 @@ private:
                 out_ += " alphaMode='OPAQUE'";
             }
             out_ += ">";
-            writePhysicalMaterial(m, textures);
+            if (x3d::isUnlit(m))
+                writeUnlitMaterial(m, textures);
+            else
+                writePhysicalMaterial(m, textures);
         } else {
             out_ += ">";
             writePhongMaterial(m, textures);
@@ -515,6 +518,17 @@ private:
         appendField("transparency", 1 - m.baseColorFactor[3], 0.0);
         appendTextureFields(textures);
         out_ += writeTextureChildren(textures) ? "</PhysicalMaterial>" : "/>";
+    }
+
+    // KHR_materials_unlit as X3D 4's UnlitMaterial: the base colour, sRGB-encoded, as its emissive colour (the
+    // colour drawn), the base texture as its emissive texture.
+    void writeUnlitMaterial(const Material& m, const x3d::MaterialTextures& textures) {
+        const PhongMaterial phong = x3d::phongOf(m);
+        out_ += "<UnlitMaterial";
+        appendField("emissiveColor", phong.diffuseColor, Eigen::Vector3d::Ones().eval(), 3);
+        appendField("transparency", phong.transparency, 0.0);
+        appendTextureFields(textures);
+        out_ += writeTextureChildren(textures) ? "</UnlitMaterial>" : "/>";
     }
 
     // Phong's Material, its colours sRGB-encoded (x3d::phongOf), with X3D 4's texture fields where it has them.
