@@ -173,6 +173,18 @@ TEST_CASE("An X3D 4 PhysicalMaterial with its textures is read into glTF's slots
         CHECK(phong.materials[0].normalTexture == TextureRef{1, 0, 2, std::nullopt});
         CHECK(phong.materials[0].phong);
         CHECK(warned(phong, "phong.x3d: Material: specularTexture not carried through"));
+        // Written back as X3D 4's Material with its texture fields and its Phong fields as they were.
+        writeScene(phong, folder / "phong_out.x3d");
+        const std::string text = readTextFile(folder / "phong_out.x3d");
+        CHECK_THAT(text, Catch::Contains("version='4.0'"));
+        CHECK_THAT(text,
+                   Catch::Contains("<Material diffuseColor='1 1 1' specularColor='0 0 0' emissiveColor='0 0 0' "
+                                   "ambientIntensity='0.2' shininess='0.2' transparency='0' "
+                                   "diffuseTextureMapping='TEXCOORD_1' normalTextureMapping='TEXCOORD_0' "
+                                   "normalScale='2'><ImageTexture DEF='texture0' containerField='diffuseTexture'"));
+        CHECK_THAT(text, !Catch::Contains("PhysicalMaterial"));
+        const Scene again = readScene(folder / "phong_out.x3d");
+        CHECK(again.materials.at(0).sameButName(phong.materials[0]));
     }
 }
 

@@ -63,6 +63,22 @@ MaterialTextures materialTextures(const Material& material) {
         if (same == out.channels.end()) out.channels.push_back({set, slot.use->transform, ""});
         out.fields.push_back({field, slot.use, channel});
     }
+    // The sets in order, those without a transform first, so that a reader numbering them as they come (as
+    // symcompress's does) gives TEXCOORD_0, _1, ... back as they were.
+    std::vector<std::size_t> order(out.channels.size());
+    for (std::size_t c = 0; c < order.size(); ++c) order[c] = c;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return std::make_pair(out.channels[a].set, out.channels[a].transform.has_value()) <
+               std::make_pair(out.channels[b].set, out.channels[b].transform.has_value());
+    });
+    std::vector<TexcoordChannel> sorted;
+    std::vector<std::size_t> position(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        sorted.push_back(out.channels[order[k]]);
+        position[order[k]] = k;
+    }
+    out.channels = std::move(sorted);
+    for (TextureField& field : out.fields) field.channel = position[field.channel];
     // A Phong material's base texture alone stays the Appearance's texture, as X3D 3.3 has it.
     if (!out.x3d4Fields && !out.fields.empty()) out.fields[0].field = "texture";
     // No texture: the coordinates the base colour's use would read, as before.
