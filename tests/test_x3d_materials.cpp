@@ -385,6 +385,19 @@ TEST_CASE("Broken X3D material nodes are warned about, naming the file and the n
         CHECK(warned(mapping,
                      "mapping.x3d: PhysicalMaterial: baseTextureMapping 'elsewhere' names no texture coordinates"));
         CHECK(mapping.materials.at(0).baseColorTexture.texCoord == 0);
+        // A further set shorter than the first is left out with its mapping, not the file.
+        std::string shortSet = quadWith(
+            "<Appearance><PhysicalMaterial baseTextureMapping='uvB'><ImageTexture "
+            "containerField='baseTexture' url='\"" +
+            kImageA + "\"'/></PhysicalMaterial></Appearance>");
+        shortSet.replace(shortSet.find("0.5 0.5 0.75 0.5 0.75 0.75 0.5 0.75"), 35, "0.5 0.5 0.75 0.5");
+        writeTextFile(folder / "short.x3d", shortSet);
+        Scene shortRead;
+        REQUIRE_NOTHROW(shortRead = readScene(folder / "short.x3d"));
+        CHECK(warned(shortRead,
+                     "short.x3d: a MultiTextureCoordinate's TextureCoordinate 'uvB' has 2 points, the first 4"));
+        CHECK(warned(shortRead, "short.x3d: PhysicalMaterial: baseTextureMapping 'uvB' names no texture coordinates"));
+        CHECK(shortRead.meshes.at(0).primitives.at(0).attributes.empty());
     }
 }
 

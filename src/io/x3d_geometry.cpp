@@ -85,6 +85,15 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
             texcoordMappings.push_back(resolved.attribute("mapping").value());
         }
     }
+    // A further set of another size than the first cannot be indexed as it is: left out, and its mapping with it.
+    for (std::size_t set = texcoordSets.size(); set-- > 1;)
+        if (texcoordSets[set].size() != texcoordSets[0].size()) {
+            notes_.insert("a MultiTextureCoordinate's TextureCoordinate '" + texcoordMappings[set] + "' has " +
+                          std::to_string(texcoordSets[set].size() / 2) + " points, the first " +
+                          std::to_string(texcoordSets[0].size() / 2) + "; left out");
+            texcoordSets.erase(texcoordSets.begin() + long(set));
+            texcoordMappings.erase(texcoordMappings.begin() + long(set));
+        }
     std::vector<double> normalValues = normalNode ? numbers(normalNode, "vector") : std::vector<double>();
     const std::vector<double> colorValues = colorNode ? numbers(colorNode, "color") : std::vector<double>();
     const int colorComponents = colorNode && std::strcmp(colorNode.name(), "ColorRGBA") == 0 ? 4 : 3;
