@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -232,6 +233,11 @@ TEST_CASE("A glTF material with every core texture slot comes back from X3D with
         return start == std::string::npos ? std::string() : in.substr(start, in.find(to, start) - start);
     };
     const std::string again = readTextFile(folder / "again.x3d");
+    // Its nodes are named after the first file's DEFs (mesh0): the second file's DEFs are still unique.
+    std::set<std::string> defs;
+    for (std::size_t at = again.find("DEF='"); at != std::string::npos; at = again.find("DEF='", at + 1))
+        CHECK(defs.insert(again.substr(at + 5, again.find('\'', at + 5) - at - 5)).second);
+    CHECK(defs.count("mesh0_2"));
     CHECK_FALSE(between(text, "<Appearance", "</Appearance>").empty());
     CHECK(between(again, "<Appearance", "</Appearance>") == between(text, "<Appearance", "</Appearance>"));
     const auto unindented = [](std::string in) {  // the second file nests the mesh one Transform deeper

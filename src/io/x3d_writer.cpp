@@ -421,15 +421,22 @@ private:
         return unique;
     }
 
+    // The DEF of the index'th mesh, material or texture: `prefix` and the index, made unique the first time (a
+    // node read from symcompress's own X3D output may be named mesh0).
+    std::string defOf(const std::string& prefix, int index) {
+        auto [entry, inserted] = defs_.try_emplace(prefix + std::to_string(index));
+        if (inserted) entry->second = uniqueName(entry->first);
+        return entry->second;
+    }
+
     void writeMesh(int mesh, int depth) {
         indent(depth);
-        const std::string def = "mesh" + std::to_string(mesh);
+        const std::string def = defOf("mesh", mesh);
         if (written_[mesh]) {
             out_ += "<Group USE='" + def + "'/>\n";
             return;
         }
         written_[mesh] = true;
-        names_.insert(def);
         out_ += "<Group DEF='" + def + "'>\n";
         for (const Primitive& primitive : scene_.meshes[mesh].primitives)
             if (!primitive.triangles.empty()) writeShape(primitive, depth + 1);
@@ -443,7 +450,7 @@ private:
             out_ += "<Appearance><Material/></Appearance>\n";
             return;
         }
-        const std::string def = "material" + std::to_string(material);
+        const std::string def = defOf("material", material);
         if (!materialWritten_.insert(material).second) {
             out_ += "<Appearance USE='" + def + "'/>\n";
             return;
@@ -560,9 +567,9 @@ private:
         while (!(textures[std::size_t(index)].sampler == textures[std::size_t(texture)].sampler) ||
                sameImage_[std::size_t(index)] != sameImage_[std::size_t(texture)])
             ++index;  // the first texture of this image with this sampler (`texture` itself at the latest)
-        const std::string def = "texture" + std::to_string(index);
         const std::string field = containerField.empty() ? "" : " containerField='" + containerField + "'";
         if (textureWritten_.count(index)) {
+            const std::string def = defOf("texture", index);
             out_ += "<ImageTexture USE='" + def + "'" + field + "/>";
             return;
         }
@@ -573,7 +580,7 @@ private:
                   base64(image.bytes);
         if (url.empty()) return;
         textureWritten_.insert(index);
-        names_.insert(def);
+        const std::string def = defOf("texture", index);
         out_ += "<ImageTexture DEF='" + def + "'" + field + " url='\"" + escapedMarkup(url) + "\"'";
         writeSampler(textures[std::size_t(texture)].sampler);
     }
@@ -721,6 +728,7 @@ private:
     std::set<int> textureWritten_;
     std::set<std::string> names_;
     std::map<int, std::string> nodeDef_;  // animated node -> its DEF
+    std::map<std::string, std::string> defs_;  // "mesh3", "material0", "texture2" -> its DEF (defOf)
     bool version4_ = false;               // a material needs X3D 4.0 (x3d::needsX3d4)
 };
 
