@@ -44,9 +44,21 @@ nlohmann::json decodeCheck(const std::filesystem::path& file, const std::filesys
 // one-pixel PNG standing in for each missing image, for the checks of geometry; others are used as they are.
 std::filesystem::path withStandInImages(const std::filesystem::path& model, const std::filesystem::path& folder) {
     namespace fs = std::filesystem;
-    if (model.extension() != ".glb" && model.extension() != ".gltf") return model;
-    const nlohmann::json root = model.extension() == ".glb" ? glbJson(model) : nlohmann::json::parse(readTextFile(model));
     std::vector<std::string> present, missing;
+    if (model.extension() == ".x3d") {
+        // An X3D file's images are where its reader looked for them, beside it (the cat's PhysicalMaterial
+        // textures are not in the shared folder).
+        for (const Texture& texture : readScene(model).textures)
+            if (texture.bytes.empty() && texture.uri.find("://") == std::string::npos)
+                missing.push_back(
+                    fs::path(texture.uri).lexically_relative(model.parent_path().lexically_normal()).string());
+        if (missing.empty()) return model;
+    } else if (model.extension() != ".glb" && model.extension() != ".gltf") {
+        return model;
+    }
+    const nlohmann::json root = model.extension() == ".glb"    ? glbJson(model)
+                                : model.extension() == ".gltf" ? nlohmann::json::parse(readTextFile(model))
+                                                               : nlohmann::json::object();
     for (const char* list : {"buffers", "images"})
         for (const auto& item : root.value(list, nlohmann::json::array()))
             if (item.contains("uri") && item["uri"].get<std::string>().rfind("data:", 0) != 0)

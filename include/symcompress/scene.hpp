@@ -101,7 +101,8 @@ struct MaterialExtension {
     }
 };
 
-// X3D's Phong Material fields, kept when the source was X3D so that an X3D writer gives them back.
+// X3D's Phong Material fields (colours sRGB-encoded, as X3D browsers draw them), kept when the source was X3D so
+// that an X3D writer gives them back.
 struct PhongMaterial {
     Eigen::Vector3d diffuseColor{0.8, 0.8, 0.8};
     Eigen::Vector3d specularColor{0, 0, 0};
@@ -115,8 +116,9 @@ struct PhongMaterial {
     }
 };
 
-// glTF's metallic-roughness material; X3D materials are mapped onto it (diffuseColor -> baseColor,
-// 1 - transparency -> alpha) and keep their Phong fields in `phong`.
+// glTF's metallic-roughness material, its factors linear; X3D's Phong materials are mapped onto it (diffuseColor,
+// sRGB-decoded, -> baseColor, 1 - transparency -> alpha; docs/scene-model.md, "Colour spaces") and keep their
+// Phong fields in `phong`; X3D 4's PhysicalMaterial fills it as it is.
 struct Material {
     std::string name;
     Eigen::Vector4d baseColorFactor{1, 1, 1, 1};

@@ -1,6 +1,7 @@
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "x3d_materials.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -72,8 +73,16 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
     std::set<std::string> attributes;
     std::size_t morphed = 0, weightChannels = 0;
     for (const Mesh& mesh : scene.meshes) {
-        for (const Primitive& primitive : mesh.primitives)
-            for (const VertexAttribute& attribute : primitive.attributes) attributes.insert(attribute.name);
+        for (const Primitive& primitive : mesh.primitives) {
+            // X3D writes the texture coordinate sets its material's textures read (x3d_materials.hpp).
+            std::set<std::string> written;
+            if (format == FileFormat::X3d && primitive.material >= 0)
+                for (const x3d::TexcoordChannel& channel :
+                     x3d::materialTextures(scene.materials[std::size_t(primitive.material)]).channels)
+                    written.insert("TEXCOORD_" + std::to_string(channel.set));
+            for (const VertexAttribute& attribute : primitive.attributes)
+                if (!written.count(attribute.name)) attributes.insert(attribute.name);
+        }
         morphed += morphTargetCount(mesh) > 0;
     }
     for (const Animation& animation : scene.animations)
@@ -90,17 +99,27 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
     if (!scene.skins.empty())
         losses.push_back(std::to_string(scene.skins.size()) + " skins not written: " + extension +
                          " output draws skinned meshes where their nodes place them, unskinned");
-    // X3D 3.3's Material, OBJ's and PLY's hold a colour and one texture (transformed into the coordinates).
+    // OBJ's and PLY's materials hold a colour and one texture (transformed into the coordinates). X3D's hold the
+    // five core textures with their samplers (x3d_materials.hpp), transformed into the coordinates, but a Phong
+    // material (one read from X3D) no metallic-roughness texture, and no X3D material glTF's extensions.
+    const bool x3d = format == FileFormat::X3d;
     const std::size_t richer = std::count_if(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
         const auto refs = m.textureRefs();
-        const bool otherTextures = std::any_of(refs.begin() + 1, refs.end(), [](const TextureRef* use) { return use->texture >= 0; });
-        const bool sampled = m.baseColorTexture.texture >= 0 &&
+        const auto firstDropped = x3d ? refs.begin() + 5 : refs.begin() + 1;
+        bool dropped = std::any_of(firstDropped, refs.end(), [](const TextureRef* use) { return use->texture >= 0; });
+        if (x3d && m.phong) dropped = dropped || m.metallicRoughnessTexture.texture >= 0;
+        const bool sampled = !x3d && m.baseColorTexture.texture >= 0 &&
                              !(scene.textures[std::size_t(m.baseColorTexture.texture)].sampler == TextureSampler{});
-        return otherTextures || sampled || !m.extensions.empty();
+        const bool extended = std::any_of(m.extensions.begin(), m.extensions.end(), [&](const MaterialExtension& e) {
+            return !(x3d && e.name == "KHR_materials_unlit" && x3d::isUnlit(m));  // X3D's UnlitMaterial
+        });
+        return dropped || sampled || extended;
     });
     if (richer)
-        losses.push_back(std::to_string(richer) + " materials written with their base colour only: their other " +
-                         "textures, samplers and extensions have no place in " + file.extension().string() + " output");
+        losses.push_back(std::to_string(richer) + " materials written " +
+                         (x3d ? "with their core textures only: their extensions and other textures have"
+                              : "with their base colour only: their other textures, samplers and extensions have") +
+                         " no place in " + file.extension().string() + " output");
     if (format != FileFormat::X3d) {
         if (!scene.animations.empty())
             losses.push_back(std::to_string(scene.animations.size()) + " animations not written: " + extension +

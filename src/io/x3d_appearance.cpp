@@ -1,11 +1,16 @@
-// X3D appearances: materials and image textures (files beside the scene, or data: URLs).
+// X3D appearances: Phong and physical materials with their X3D 4 texture fields, and image textures (files
+// beside the scene, or data: URLs).
 #include "x3d_reader.hpp"
 
+#include "common/color_space.hpp"
 #include "common/mime_type.hpp"
 #include "symcompress/detail/atomic_file.hpp"
+#include "x3d_materials.hpp"
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
+#include <iterator>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -45,6 +50,11 @@ bool decodeBase64(const std::string& text, std::vector<std::uint8_t>& bytes) {
     return !bytes.empty();
 }
 
+std::string nodeName(const pugi::xml_node& node) {
+    const std::string def = node.attribute("DEF").value();
+    return std::string(node.name()) + (def.empty() ? "" : " '" + def + "'");
+}
+
 }  // namespace
 
 int X3dReader::readTexture(const pugi::xml_node& appearance) {
@@ -54,11 +64,52 @@ int X3dReader::readTexture(const pugi::xml_node& appearance) {
             if (std::strstr(child.name(), "Texture")) notes_.insert(std::string(child.name()) + " not carried through");
         return -1;
     }
-    if (const pugi::xml_attribute def = texture.attribute("DEF")) definitions_[def.value()] = texture;
-    texture = resolve(texture);
+    return readTextureNode(texture, "an Appearance's texture");
+}
+
+// glTF's sampler of an ImageTexture: its TextureProperties' boundary modes and filters, else its repeatS and
+// repeatT (x3d_materials.hpp).
+TextureSampler X3dReader::readSampler(const pugi::xml_node& texture) {
+    TextureSampler sampler;
+    if (!boolean(texture, "repeatS", true)) sampler.wrapS = 33071;
+    if (!boolean(texture, "repeatT", true)) sampler.wrapT = 33071;
+    pugi::xml_node properties = texture.child("TextureProperties");
+    if (!properties || !knownUse(properties, nodeName(texture) + " textureProperties")) return sampler;
+    if (const pugi::xml_attribute def = properties.attribute("DEF")) definitions_[def.value()] = properties;
+    properties = resolve(properties);
+    if (std::strcmp(properties.name(), "TextureProperties") != 0) return sampler;
+    sampler.wrapS = x3d::boundaryModeOf(properties.attribute("boundaryModeS").as_string("REPEAT"));
+    sampler.wrapT = x3d::boundaryModeOf(properties.attribute("boundaryModeT").as_string("REPEAT"));
+    sampler.magFilter = x3d::filterOf(properties.attribute("magnificationFilter").value());
+    sampler.minFilter = x3d::filterOf(properties.attribute("minificationFilter").value());
+    // Mipmap filters without mipmaps: the browser samples the one level (LINEAR or NEAREST).
+    if (!boolean(properties, "generateMipMaps", false) && sampler.minFilter >= 9984)
+        sampler.minFilter = sampler.minFilter == 9984 || sampler.minFilter == 9986 ? 9728 : 9729;
+    return sampler;
+}
+
+bool X3dReader::knownUse(const pugi::xml_node& node, const std::string& where) {
+    const pugi::xml_attribute use = node.attribute("USE");
+    if (!use || definitions_.count(use.value())) return true;
+    notes_.insert(where + ": USE='" + use.value() + "' refers to no DEF before it; left out");
+    return false;
+}
+
+int X3dReader::readTextureNode(const pugi::xml_node& node, const std::string& where) {
+    if (!knownUse(node, where)) return -1;
+    if (const pugi::xml_attribute def = node.attribute("DEF")) definitions_[def.value()] = node;
+    const pugi::xml_node texture = resolve(node);
+    if (std::strcmp(texture.name(), "ImageTexture") != 0) {
+        if (std::strstr(texture.name(), "Texture"))
+            notes_.insert(where + ": " + texture.name() + " not carried through (only ImageTexture is read)");
+        else
+            notes_.insert(where + " holds a " + texture.name() + ", not a texture node; left out");
+        return -1;
+    }
     auto [entry, inserted] = textureOfNode_.try_emplace(texture.internal_object(), -1);
     if (!inserted) return entry->second;
     Texture out;
+    out.sampler = readSampler(texture);
     for (const std::string& url : x3d::parseStrings(texture.attribute("url").value())) {
         if (url.compare(0, 5, "data:") == 0) {
             // An image inside the file (how the X3D writer embeds them): data:[mime type][;base64],bytes.
@@ -99,9 +150,82 @@ int X3dReader::addTexture(int& index, Texture texture) {
     return index;
 }
 
-int X3dReader::readMaterial(const pugi::xml_node& shape) {
+namespace {
+
+// The X3D 4 fields of a material that hold a texture, and the core slot each fills (none: the scene model has
+// no slot for it). Material's diffuse texture is its base colour's, as the Appearance's texture is.
+struct TextureField {
+    const char* field;
+    TextureRef Material::*slot;
+};
+const TextureField kPhysicalTextureFields[] = {{"baseTexture", &Material::baseColorTexture},
+                                               {"metallicRoughnessTexture", &Material::metallicRoughnessTexture},
+                                               {"normalTexture", &Material::normalTexture},
+                                               {"occlusionTexture", &Material::occlusionTexture},
+                                               {"emissiveTexture", &Material::emissiveTexture}};
+// UnlitMaterial draws its emissive texture: glTF's unlit base colour texture.
+const TextureField kUnlitTextureFields[] = {{"emissiveTexture", &Material::baseColorTexture},
+                                            {"normalTexture", nullptr}};
+const TextureField kPhongTextureFields[] = {{"diffuseTexture", &Material::baseColorTexture},
+                                            {"normalTexture", &Material::normalTexture},
+                                            {"occlusionTexture", &Material::occlusionTexture},
+                                            {"emissiveTexture", &Material::emissiveTexture},
+                                            {"ambientTexture", nullptr},
+                                            {"specularTexture", nullptr},
+                                            {"shininessTexture", nullptr}};
+
+}  // namespace
+
+// An X3D 4 material's textures (child nodes whose containerField names the field), each with its *Mapping (the
+// texture coordinate set), the normal texture's normalScale and the occlusion texture's occlusionStrength.
+void X3dReader::readMaterialTextures(const pugi::xml_node& node, Material& material,
+                                     const std::vector<std::string>& texcoordMappings) {
+    const bool physical = std::strcmp(node.name(), "PhysicalMaterial") == 0;
+    const bool unlit = std::strcmp(node.name(), "UnlitMaterial") == 0;
+    const std::vector<TextureField> fields =
+        physical ? std::vector<TextureField>(std::begin(kPhysicalTextureFields), std::end(kPhysicalTextureFields))
+        : unlit  ? std::vector<TextureField>(std::begin(kUnlitTextureFields), std::end(kUnlitTextureFields))
+                 : std::vector<TextureField>(std::begin(kPhongTextureFields), std::end(kPhongTextureFields));
+    const std::string what = nodeName(node);
+    for (pugi::xml_node child : node.children()) {
+        if (child.type() != pugi::node_element || std::strncmp(child.name(), "Metadata", 8) == 0 ||
+            std::strcmp(child.name(), "IS") == 0)
+            continue;
+        const std::string field = child.attribute("containerField").value();
+        const auto found = std::find_if(fields.begin(), fields.end(),
+                                        [&](const TextureField& candidate) { return field == candidate.field; });
+        if (found == fields.end()) {
+            notes_.insert(what + ": a " + child.name() +
+                          (field.empty() ? " without containerField" : " in field '" + field + "'") +
+                          " is in no texture field of the material; left out");
+            continue;
+        }
+        if (!found->slot) {
+            notes_.insert(what + ": " + field + " not carried through (no such slot in glTF's material)");
+            continue;
+        }
+        const int texture = readTextureNode(child, what + " " + field);
+        if (texture < 0) continue;
+        TextureRef& use = material.*(found->slot);
+        use = TextureRef{};
+        use.texture = texture;
+        const std::string mapping = node.attribute((field + "Mapping").c_str()).value();
+        if (!mapping.empty()) {
+            const auto set = std::find(texcoordMappings.begin(), texcoordMappings.end(), mapping);
+            if (set != texcoordMappings.end())
+                use.texCoord = static_cast<int>(set - texcoordMappings.begin());
+            else
+                notes_.insert(what + ": " + field + "Mapping '" + mapping +
+                              "' names no texture coordinates of its geometry; the first set used");
+        }
+    }
+    if (material.normalTexture.texture >= 0) material.normalTexture.scale = scalar(node, "normalScale", 1);
+    if (material.occlusionTexture.texture >= 0) material.occlusionTexture.scale = scalar(node, "occlusionStrength", 1);
+}
+
+int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings) {
     pugi::xml_node appearance = shape.child("Appearance");
-    if (!appearance) return -1;
+    if (!appearance || !knownUse(appearance, "a Shape's Appearance")) return -1;
     if (const pugi::xml_attribute def = appearance.attribute("DEF")) definitions_[def.value()] = appearance;
     appearance = resolve(appearance);
     auto [entry, inserted] = materialOfAppearance_.try_emplace(appearance.internal_object(), -1);
@@ -110,16 +234,23 @@ int X3dReader::readMaterial(const pugi::xml_node& shape) {
     material.name = appearance.attribute("DEF").value();
     pugi::xml_node phong = appearance.child("Material");
     pugi::xml_node physical = appearance.child("PhysicalMaterial");
+    pugi::xml_node unlit = appearance.child("UnlitMaterial");
     pugi::xml_node twoSided = appearance.child("TwoSidedMaterial");
     if (twoSided) {
         phong = twoSided;
         material.doubleSided = true;
     }
-    for (pugi::xml_node* node : {&phong, &physical})
+    for (pugi::xml_node* node : {&phong, &physical, &unlit})
         if (*node) {
+            if (!knownUse(*node, "an Appearance's " + std::string(node->name()))) {
+                *node = pugi::xml_node();
+                continue;
+            }
             if (const pugi::xml_attribute def = node->attribute("DEF")) definitions_[def.value()] = *node;
             *node = resolve(*node);
         }
+    // Phong's colours are sRGB-encoded, glTF's factors linear (docs/scene-model.md, "Colour spaces"); the
+    // fields are kept as they are for the X3D writer.
     if (phong) {
         PhongMaterial fields;
         fields.diffuseColor = vector3(phong, "diffuseColor", fields.diffuseColor);
@@ -128,25 +259,45 @@ int X3dReader::readMaterial(const pugi::xml_node& shape) {
         fields.ambientIntensity = scalar(phong, "ambientIntensity", fields.ambientIntensity);
         fields.shininess = scalar(phong, "shininess", fields.shininess);
         fields.transparency = scalar(phong, "transparency", fields.transparency);
-        material.baseColorFactor << fields.diffuseColor, 1 - fields.transparency;
-        material.emissiveFactor = fields.emissiveColor;
+        material.baseColorFactor << srgbToLinear(fields.diffuseColor), 1 - fields.transparency;
+        material.emissiveFactor = srgbToLinear(fields.emissiveColor);
         material.metallicFactor = 0;
         material.roughnessFactor = 1 - fields.shininess;
         material.phong = fields;
         if (material.name.empty()) material.name = phong.attribute("DEF").value();
     } else if (physical) {
+        // PhysicalMaterial is glTF's metallic-roughness material, its colours linear as glTF's factors.
         const double transparency = scalar(physical, "transparency", 0);
         material.baseColorFactor << vector3(physical, "baseColor", Eigen::Vector3d::Ones()), 1 - transparency;
         material.metallicFactor = scalar(physical, "metallic", 1);
         material.roughnessFactor = scalar(physical, "roughness", 1);
         material.emissiveFactor = vector3(physical, "emissiveColor", Eigen::Vector3d::Zero());
         if (material.name.empty()) material.name = physical.attribute("DEF").value();
+    } else if (unlit) {
+        // UnlitMaterial draws its emissive colour, sRGB-encoded as Phong's (X_ITE draws it so), as glTF's
+        // KHR_materials_unlit draws the base colour.
+        material.baseColorFactor << srgbToLinear(vector3(unlit, "emissiveColor", Eigen::Vector3d::Ones())),
+            1 - scalar(unlit, "transparency", 0);
+        material.metallicFactor = 0;
+        material.extensions.push_back({"KHR_materials_unlit", "{}", {}, false});
+        if (material.name.empty()) material.name = unlit.attribute("DEF").value();
     } else {
         // An Appearance without a material is unlit white in X3D.
         material.metallicFactor = 0;
     }
     if (material.baseColorFactor[3] < 1) material.alphaMode = Material::AlphaMode::Blend;
-    material.baseColorTexture.texture = readTexture(appearance);
+    // X3D 4's Appearance holds glTF's alpha modes (AUTO, the default, as X3D 3 decides: blend when transparent).
+    const std::string alphaMode = appearance.attribute("alphaMode").value();
+    if (alphaMode == "OPAQUE") material.alphaMode = Material::AlphaMode::Opaque;
+    if (alphaMode == "BLEND") material.alphaMode = Material::AlphaMode::Blend;
+    if (alphaMode == "MASK") {
+        material.alphaMode = Material::AlphaMode::Mask;
+        material.alphaCutoff = scalar(appearance, "alphaCutoff", 0.5);
+    }
+    // The material's own base texture (X3D 4) takes the place of the Appearance's texture.
+    if (phong || physical || unlit)
+        readMaterialTextures(phong ? phong : physical ? physical : unlit, material, texcoordMappings);
+    if (material.baseColorTexture.texture < 0) material.baseColorTexture.texture = readTexture(appearance);
     // Appearances written out one per Shape, with the same Material and texture USEd in each, are one
     // material (else every Shape would look like its own part). Double-sidedness comes from the geometry
     // (solid="false" makes the material double-sided, below in readShape), so it is not compared.

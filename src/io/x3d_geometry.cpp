@@ -11,14 +11,20 @@
 
 namespace symcompress {
 namespace fs = std::filesystem;
+namespace {
 
+// More texture coordinate sets than a material's five textures can use are not kept (TEXCOORD_0 to _7).
+constexpr std::size_t kMaxTexcoordSets = 8;
 
-bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out) {
+}  // namespace
+
+bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out,
+                             std::vector<std::string>& texcoordMappings) {
     const std::string type = geometry.name();
     if (type == "IndexedFaceSet") {
-        readFaceSet(geometry, out, true);
+        readFaceSet(geometry, out, true, texcoordMappings);
     } else if (type == "IndexedTriangleSet" || type == "TriangleSet") {
-        readFaceSet(geometry, out, false);
+        readFaceSet(geometry, out, false, texcoordMappings);
     } else if (type == "Box") {
         out = x3d::tessellateBox(vector3(geometry, "size", Eigen::Vector3d(2, 2, 2)));
     } else if (type == "Sphere") {
@@ -37,7 +43,8 @@ bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out) {
     return true;
 }
 
-void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces) {
+void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces,
+                            std::vector<std::string>& texcoordMappings) {
     auto child = [&](std::initializer_list<const char*> types) -> pugi::xml_node {
         for (const char* type : types)
             if (pugi::xml_node node = geometry.child(type)) {
@@ -53,11 +60,47 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
     const std::size_t pointCount = points.size() / 3;
     const pugi::xml_node normalNode = child({"Normal"});
     const pugi::xml_node colorNode = child({"Color", "ColorRGBA"});
-    const pugi::xml_node texcoordNode = child({"TextureCoordinate"});
+    // Texture coordinate sets: one TextureCoordinate, or a MultiTextureCoordinate's (X3D 4 materials pick theirs
+    // by mapping); the first is TEXCOORD_0, the others TEXCOORD_1, ... All are indexed as the first is.
+    std::vector<std::vector<double>> texcoordSets;
+    if (const pugi::xml_node single = child({"TextureCoordinate"})) {
+        texcoordSets.push_back(numbers(single, "point"));
+        texcoordMappings.push_back(single.attribute("mapping").value());
+    } else if (const pugi::xml_node multi = child({"MultiTextureCoordinate"})) {
+        for (pugi::xml_node set : multi.children()) {
+            if (set.type() != pugi::node_element || std::strncmp(set.name(), "Metadata", 8) == 0) continue;
+            if (!knownUse(set, "a MultiTextureCoordinate")) continue;
+            if (const pugi::xml_attribute def = set.attribute("DEF")) definitions_[def.value()] = set;
+            const pugi::xml_node resolved = resolve(set);
+            if (std::strcmp(resolved.name(), "TextureCoordinate") != 0) {
+                notes_.insert(std::string("a MultiTextureCoordinate's ") + resolved.name() + " not carried through");
+                continue;
+            }
+            if (texcoordSets.size() == kMaxTexcoordSets) {
+                notes_.insert("texture coordinate sets beyond the first " + std::to_string(kMaxTexcoordSets) +
+                              " left out");
+                break;
+            }
+            texcoordSets.push_back(numbers(resolved, "point"));
+            texcoordMappings.push_back(resolved.attribute("mapping").value());
+        }
+    }
+    // A further set of another size than the first cannot be indexed as it is: left out, and its mapping with it.
+    for (std::size_t set = texcoordSets.size(); set-- > 1;)
+        if (texcoordSets[set].size() != texcoordSets[0].size()) {
+            notes_.insert("a MultiTextureCoordinate's TextureCoordinate '" + texcoordMappings[set] + "' has " +
+                          std::to_string(texcoordSets[set].size() / 2) + " points, the first " +
+                          std::to_string(texcoordSets[0].size() / 2) + "; left out");
+            texcoordSets.erase(texcoordSets.begin() + long(set));
+            texcoordMappings.erase(texcoordMappings.begin() + long(set));
+        }
     std::vector<double> normalValues = normalNode ? numbers(normalNode, "vector") : std::vector<double>();
     const std::vector<double> colorValues = colorNode ? numbers(colorNode, "color") : std::vector<double>();
     const int colorComponents = colorNode && std::strcmp(colorNode.name(), "ColorRGBA") == 0 ? 4 : 3;
-    const std::vector<double> texcoordValues = texcoordNode ? numbers(texcoordNode, "point") : std::vector<double>();
+    const std::vector<double> texcoordValues = texcoordSets.empty() ? std::vector<double>() : texcoordSets[0];
+    if (!texcoordValues.empty())
+        for (std::size_t set = 1; set < texcoordSets.size(); ++set)
+            out.attributes.push_back({"TEXCOORD_" + std::to_string(set), 2, {}});
     const bool ccw = boolean(geometry, "ccw", true);
     const bool normalPerVertex = boolean(geometry, "normalPerVertex", true);
     const bool colorPerVertex = boolean(geometry, "colorPerVertex", true);
@@ -142,7 +185,9 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
             };
             if (hasNormals) check(key.normal, normalValues.size() / 3, "normal");
             if (hasColors) check(key.color, colorValues.size() / colorComponents, "colour");
-            if (hasTexcoords) check(key.texcoord, texcoordValues.size() / 2, "texture coordinate");
+            if (hasTexcoords)
+                for (const std::vector<double>& set : texcoordSets)
+                    check(key.texcoord, set.size() / 2, "texture coordinate");
             auto [entry, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(out.positions.size()));
             if (inserted) {
                 out.positions.emplace_back(points[3 * point], points[3 * point + 1], points[3 * point + 2]);
@@ -154,9 +199,14 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
                     for (int c = 0; c < colorComponents; ++c) color[c] = colorValues[colorComponents * key.color + c];
                     out.colors.push_back(color);
                 }
-                if (hasTexcoords)  // X3D's v points up, glTF's down
+                if (hasTexcoords) {  // X3D's v points up, glTF's down
                     out.texcoords.emplace_back(texcoordValues[2 * key.texcoord],
                                                1 - texcoordValues[2 * key.texcoord + 1]);
+                    for (std::size_t set = 1; set < texcoordSets.size(); ++set)
+                        out.attributes[set - 1].values.insert(
+                            out.attributes[set - 1].values.end(),
+                            {texcoordSets[set][2 * key.texcoord], 1 - texcoordSets[set][2 * key.texcoord + 1]});
+                }
             }
             local.push_back(entry->second);
             polygon.push_back(out.positions[entry->second]);

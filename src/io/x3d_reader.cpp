@@ -353,7 +353,6 @@ void X3dReader::readInline(const pugi::xml_node& source, std::vector<int>& into)
 int X3dReader::readShape(const pugi::xml_node& shape) {
     auto [entry, inserted] = meshOfShape_.try_emplace(shape.internal_object(), -1);
     if (!inserted) return entry->second;
-    const int material = readMaterial(shape);
     pugi::xml_node geometry;
     for (pugi::xml_node child : shape.children()) {
         if (child.type() != pugi::node_element) continue;
@@ -367,7 +366,10 @@ int X3dReader::readShape(const pugi::xml_node& shape) {
     if (const pugi::xml_attribute def = geometry.attribute("DEF")) definitions_[def.value()] = geometry;
     geometry = resolve(geometry);
     Primitive primitive;
-    if (!readGeometry(geometry, primitive)) return -1;
+    std::vector<std::string> texcoordMappings;
+    if (!readGeometry(geometry, primitive, texcoordMappings)) return -1;
+    // After the geometry: an X3D 4 material's textures name its texture coordinate sets by their mapping.
+    const int material = readMaterial(shape, texcoordMappings);
     primitive.material = material;
     if (material >= 0 && !boolean(geometry, "solid", true)) scene_.materials[material].doubleSided = true;
     Mesh mesh;

@@ -45,11 +45,19 @@ private:
     void readChildren(const pugi::xml_node& parent, std::vector<int>& into, int depth);
     int readNode(const pugi::xml_node& node, int depth);
     int readShape(const pugi::xml_node& shape);
-    int readMaterial(const pugi::xml_node& appearance);
+    // `texcoordMappings`: the mapping of each texture coordinate set of the shape's geometry (x3d_geometry.cpp),
+    // which the X3D 4 materials' *TextureMapping fields name.
+    int readMaterial(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings);
+    void readMaterialTextures(const pugi::xml_node& node, Material& material,
+                              const std::vector<std::string>& texcoordMappings);
     int readTexture(const pugi::xml_node& appearance);
+    int readTextureNode(const pugi::xml_node& node, const std::string& where);  // -1 (and a note) if not an image
+    TextureSampler readSampler(const pugi::xml_node& texture);
+    bool knownUse(const pugi::xml_node& node, const std::string& where);        // a USE that names no DEF: a note
     int addTexture(int& index, Texture texture);  // sets `index` (the ImageTexture's) and returns it
-    bool readGeometry(const pugi::xml_node& geometry, Primitive& out);
-    void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces);
+    bool readGeometry(const pugi::xml_node& geometry, Primitive& out, std::vector<std::string>& texcoordMappings);
+    void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces,
+                     std::vector<std::string>& texcoordMappings);
     void readInline(const pugi::xml_node& node, std::vector<int>& into);
     void readAnimations();
     int readViewpoint(const pugi::xml_node& viewpoint);

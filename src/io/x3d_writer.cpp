@@ -1,5 +1,5 @@
-// X3D writer: XML encoding with X3D 3.3 Interchange nodes only, so that X3D 3 and 4 readers (X_ITE,
-// assimp, meshlab) load it. Each mesh becomes one DEF'd Group of Shapes the first time a node draws it
+// X3D writer: XML encoding with X3D 3.3 Interchange nodes, so that X3D 3 and 4 readers (X_ITE, assimp,
+// meshlab) load it, unless a material needs X3D 4's PhysicalMaterial or texture fields (x3d_materials.hpp). Each mesh becomes one DEF'd Group of Shapes the first time a node draws it
 // and a USE afterwards; node transforms become Transforms (any affine matrix, mirrors included, through
 // rotation, scale and scaleOrientation); animations become a TimeSensor, interpolators and ROUTEs. `.x3dz`
 // is the same, gzip-compressed.
@@ -8,6 +8,7 @@
 #include "image_reference.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "x3d_crease_normals.hpp"
+#include "x3d_materials.hpp"
 #include "rotation_and_scale.hpp"
 #include "common/markup_text.hpp"
 #include "common/number_text.hpp"
@@ -25,6 +26,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <type_traits>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -229,9 +231,29 @@ public:
         : scene_(scene), options_(options), file_(std::move(file)) {}
 
     std::string write() {
-        out_ += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                "<!DOCTYPE X3D PUBLIC \"ISO//Web3D//DTD X3D 3.3//EN\" \"http://www.web3d.org/specifications/x3d-3.3.dtd\">\n"
+        // X3D 4.0 only where a material needs it (x3d_materials.hpp); X3D 3.3 otherwise, as before.
+        bool physical = false;
+        for (const Mesh& mesh : scene_.meshes)
+            for (const Primitive& primitive : mesh.primitives)
+                if (primitive.material >= 0 && !primitive.triangles.empty()) {
+                    const Material& material = scene_.materials[std::size_t(primitive.material)];
+                    version4_ = version4_ || x3d::needsX3d4(material);
+                    physical = physical || x3d::needsPhysicalMaterial(material);
+                }
+        out_ += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+        if (version4_)
+            out_ +=
+                "<!DOCTYPE X3D PUBLIC \"ISO//Web3D//DTD X3D 4.0//EN\" "
+                "\"https://www.web3d.org/specifications/x3d-4.0.dtd\">\n"
+                "<X3D profile='Interchange' version='4.0' xmlns:xsd='http://www.w3.org/2001/XMLSchema-instance' "
+                "xsd:noNamespaceSchemaLocation='https://www.web3d.org/specifications/x3d-4.0.xsd'>\n<head>\n";
+        else
+            out_ +=
+                "<!DOCTYPE X3D PUBLIC \"ISO//Web3D//DTD X3D 3.3//EN\" "
+                "\"http://www.web3d.org/specifications/x3d-3.3.dtd\">\n"
                 "<X3D profile='Interchange' version='3.3'>\n<head>\n";
+        // PhysicalMaterial is Shape level 2, beyond the Interchange profile's level 1.
+        if (physical) out_ += "<component name='Shape' level='2'/>\n";
         // OrthoViewpoint is Navigation level 3, beyond the Interchange profile's level 1.
         if (std::any_of(scene_.cameras.begin(), scene_.cameras.end(),
                         [](const Camera& camera) { return camera.projection == Camera::Projection::Orthographic; }))
@@ -399,15 +421,22 @@ private:
         return unique;
     }
 
+    // The DEF of the index'th mesh, material or texture: `prefix` and the index, made unique the first time (a
+    // node read from symcompress's own X3D output may be named mesh0).
+    std::string defOf(const std::string& prefix, int index) {
+        auto [entry, inserted] = defs_.try_emplace(prefix + std::to_string(index));
+        if (inserted) entry->second = uniqueName(entry->first);
+        return entry->second;
+    }
+
     void writeMesh(int mesh, int depth) {
         indent(depth);
-        const std::string def = "mesh" + std::to_string(mesh);
+        const std::string def = defOf("mesh", mesh);
         if (written_[mesh]) {
             out_ += "<Group USE='" + def + "'/>\n";
             return;
         }
         written_[mesh] = true;
-        names_.insert(def);
         out_ += "<Group DEF='" + def + "'>\n";
         for (const Primitive& primitive : scene_.meshes[mesh].primitives)
             if (!primitive.triangles.empty()) writeShape(primitive, depth + 1);
@@ -421,22 +450,97 @@ private:
             out_ += "<Appearance><Material/></Appearance>\n";
             return;
         }
-        const std::string def = "material" + std::to_string(material);
+        const std::string def = defOf("material", material);
         if (!materialWritten_.insert(material).second) {
             out_ += "<Appearance USE='" + def + "'/>\n";
             return;
         }
         const Material& m = scene_.materials[material];
-        PhongMaterial phong;
-        if (m.phong) {
-            phong = *m.phong;
+        const x3d::MaterialTextures textures = x3d::materialTextures(m);
+        out_ += "<Appearance DEF='" + def + "'";
+        if (x3d::needsPhysicalMaterial(m) || x3d::isUnlit(m)) {
+            // glTF's alpha modes, which X3D 4's Appearance has (its AUTO would blend a texture's alpha).
+            if (m.alphaMode == Material::AlphaMode::Mask) {
+                out_ += " alphaMode='MASK' alphaCutoff='";
+                appendShortestFloat(out_, m.alphaCutoff);
+                out_ += "'";
+            } else if (m.alphaMode == Material::AlphaMode::Opaque && m.baseColorTexture.texture >= 0) {
+                out_ += " alphaMode='OPAQUE'";
+            }
+            out_ += ">";
+            if (x3d::isUnlit(m))
+                writeUnlitMaterial(m, textures);
+            else
+                writePhysicalMaterial(m, textures);
         } else {
-            phong.diffuseColor = m.baseColorFactor.head<3>();
-            phong.emissiveColor = m.emissiveFactor;
-            phong.transparency = 1 - m.baseColorFactor[3];
-            phong.shininess = 1 - m.roughnessFactor;
+            out_ += ">";
+            writePhongMaterial(m, textures);
         }
-        out_ += "<Appearance DEF='" + def + "'>";
+        for (const x3d::TextureField& field : textures.fields)
+            if (std::string(field.field) == "texture") writeImageTexture(field.use->texture, "");
+        out_ += "</Appearance>\n";
+    }
+
+    // A field with the value it has unless that is X3D's default.
+    template <typename Value>
+    void appendField(const char* field, const Value& value, const Value& fallback, int components = 1) {
+        if (value == fallback) return;
+        out_ += std::string(" ") + field + "='";
+        if constexpr (std::is_arithmetic_v<Value>)
+            appendShortestFloat(out_, value);
+        else
+            appendVector(out_, value, components);
+        out_ += "'";
+    }
+
+    // Each texture field's mapping (where the material reads more than one set), normalScale, occlusionStrength,
+    // then, after the node's fields, its textures.
+    void appendTextureFields(const x3d::MaterialTextures& textures) {
+        for (const x3d::TextureField& field : textures.fields) {
+            const std::string& mapping = textures.channels[field.channel].mapping;
+            if (!mapping.empty() && std::string(field.field) != "texture")
+                out_ += std::string(" ") + field.field + "Mapping='" + escapedMarkup(mapping) + "'";
+            if (std::string(field.field) == "normalTexture") appendField("normalScale", field.use->scale, 1.0);
+            if (std::string(field.field) == "occlusionTexture") appendField("occlusionStrength", field.use->scale, 1.0);
+        }
+    }
+    bool writeTextureChildren(const x3d::MaterialTextures& textures) {
+        bool any = false;
+        for (const x3d::TextureField& field : textures.fields)
+            if (std::string(field.field) != "texture") {
+                if (!any) out_ += ">";
+                any = true;
+                writeImageTexture(field.use->texture, field.field);
+            }
+        return any;
+    }
+
+    // X3D 4's PhysicalMaterial is glTF's material: its colours linear, as glTF's factors.
+    void writePhysicalMaterial(const Material& m, const x3d::MaterialTextures& textures) {
+        out_ += "<PhysicalMaterial";
+        appendField("baseColor", Eigen::Vector3d(m.baseColorFactor.head<3>()), Eigen::Vector3d::Ones().eval(), 3);
+        appendField("metallic", m.metallicFactor, 1.0);
+        appendField("roughness", m.roughnessFactor, 1.0);
+        appendField("emissiveColor", m.emissiveFactor, Eigen::Vector3d::Zero().eval(), 3);
+        appendField("transparency", 1 - m.baseColorFactor[3], 0.0);
+        appendTextureFields(textures);
+        out_ += writeTextureChildren(textures) ? "</PhysicalMaterial>" : "/>";
+    }
+
+    // KHR_materials_unlit as X3D 4's UnlitMaterial: the base colour, sRGB-encoded, as its emissive colour (the
+    // colour drawn), the base texture as its emissive texture.
+    void writeUnlitMaterial(const Material& m, const x3d::MaterialTextures& textures) {
+        const PhongMaterial phong = x3d::phongOf(m);
+        out_ += "<UnlitMaterial";
+        appendField("emissiveColor", phong.diffuseColor, Eigen::Vector3d::Ones().eval(), 3);
+        appendField("transparency", phong.transparency, 0.0);
+        appendTextureFields(textures);
+        out_ += writeTextureChildren(textures) ? "</UnlitMaterial>" : "/>";
+    }
+
+    // Phong's Material, its colours sRGB-encoded (x3d::phongOf), with X3D 4's texture fields where it has them.
+    void writePhongMaterial(const Material& m, const x3d::MaterialTextures& textures) {
+        const PhongMaterial phong = x3d::phongOf(m);
         out_ += "<Material diffuseColor='";
         appendVector(out_, phong.diffuseColor, 3);
         out_ += "' specularColor='";
@@ -449,27 +553,69 @@ private:
         appendShortestFloat(out_, phong.shininess);
         out_ += "' transparency='";
         appendShortestFloat(out_, phong.transparency);
-        out_ += "'/>";
-        if (m.baseColorTexture.texture >= 0) writeImageTexture(sameImage_[std::size_t(m.baseColorTexture.texture)]);
-        out_ += "</Appearance>\n";
+        out_ += "'";
+        appendTextureFields(textures);
+        out_ += writeTextureChildren(textures) ? "</Material>" : "/>";
     }
 
-    // An image is written once, with a DEF, and USEd by every other material showing it.
-    void writeImageTexture(int index) {
-        const std::string def = "texture" + std::to_string(index);
+    // An image is written once, with a DEF, and USEd by every other material showing it with the same sampler
+    // (X3D's ImageTexture holds both); `containerField` is the material's field that holds it (empty: the
+    // Appearance's texture).
+    void writeImageTexture(int texture, const std::string& containerField) {
+        const std::vector<Texture>& textures = scene_.textures;
+        int index = sameImage_[std::size_t(texture)];
+        while (!(textures[std::size_t(index)].sampler == textures[std::size_t(texture)].sampler) ||
+               sameImage_[std::size_t(index)] != sameImage_[std::size_t(texture)])
+            ++index;  // the first texture of this image with this sampler (`texture` itself at the latest)
+        const std::string field = containerField.empty() ? "" : " containerField='" + containerField + "'";
         if (textureWritten_.count(index)) {
-            out_ += "<ImageTexture USE='" + def + "'/>";
+            const std::string def = defOf("texture", index);
+            out_ += "<ImageTexture USE='" + def + "'" + field + "/>";
             return;
         }
-        const Texture& texture = scene_.textures[std::size_t(index)];
-        std::string url = file_.empty() ? texture.uri : imageReference(texture.uri, file_);
-        if (!texture.bytes.empty() && !x3dRefersToImageFile(texture))
-            url = "data:" + (texture.mimeType.empty() ? std::string("image/png") : texture.mimeType) + ";base64," +
-                  base64(texture.bytes);
+        const Texture& image = textures[std::size_t(sameImage_[std::size_t(texture)])];
+        std::string url = file_.empty() ? image.uri : imageReference(image.uri, file_);
+        if (!image.bytes.empty() && !x3dRefersToImageFile(image))
+            url = "data:" + (image.mimeType.empty() ? std::string("image/png") : image.mimeType) + ";base64," +
+                  base64(image.bytes);
         if (url.empty()) return;
         textureWritten_.insert(index);
-        names_.insert(def);
-        out_ += "<ImageTexture DEF='" + def + "' url='\"" + escapedMarkup(url) + "\"'/>";
+        const std::string def = defOf("texture", index);
+        out_ += "<ImageTexture DEF='" + def + "'" + field + " url='\"" + escapedMarkup(url) + "\"'";
+        writeSampler(textures[std::size_t(texture)].sampler);
+    }
+
+    // glTF's sampler: clamping alone as repeatS and repeatT (X3D 3.3's ImageTexture fields), anything else as
+    // TextureProperties; the default writes nothing, X3D's default being glTF's.
+    void writeSampler(const TextureSampler& sampler) {
+        const bool filtered = sampler.magFilter != 0 || sampler.minFilter != 0;
+        const auto repeatOrClamp = [](int wrap) { return wrap == 10497 || wrap == 33071; };
+        if (!filtered && repeatOrClamp(sampler.wrapS) && repeatOrClamp(sampler.wrapT)) {
+            if (sampler.wrapS == 33071) out_ += " repeatS='false'";
+            if (sampler.wrapT == 33071) out_ += " repeatT='false'";
+            out_ += "/>";
+            return;
+        }
+        // Mipmaps unless the minification filter reads none (NEAREST, LINEAR).
+        const bool mipmaps = sampler.minFilter != 9728 && sampler.minFilter != 9729;
+        out_ += "><TextureProperties boundaryModeS='" + x3d::boundaryModeName(sampler.wrapS) + "' boundaryModeT='" +
+                x3d::boundaryModeName(sampler.wrapT) + "' magnificationFilter='" +
+                x3d::magnificationFilterName(sampler.magFilter) + "' minificationFilter='" +
+                x3d::minificationFilterName(sampler.minFilter) + "' generateMipMaps='" + (mipmaps ? "true" : "false") +
+                "'/></ImageTexture>";
+    }
+
+    // Vertex v's coordinates on a channel: its set (TEXCOORD_0, else the attribute TEXCOORD_n, else TEXCOORD_0 as
+    // a viewer falls back), the channel's transform applied (as baseColorTexcoord does for the base colour).
+    static Eigen::Vector2d channelTexcoord(const Primitive& primitive, const x3d::TexcoordChannel& channel,
+                                           std::size_t v) {
+        Eigen::Vector2d t = primitive.texcoords[v];
+        const std::string set = "TEXCOORD_" + std::to_string(channel.set);
+        for (const VertexAttribute& attribute : primitive.attributes)
+            if (channel.set > 0 && attribute.name == set && attribute.components >= 2)
+                t = {attribute.values[v * std::size_t(attribute.components)],
+                     attribute.values[v * std::size_t(attribute.components) + 1]};
+        return channel.transform ? Eigen::Vector2d(channel.transform->matrix() * t.homogeneous()) : t;
     }
 
     void writeShape(const Primitive& primitive, int depth) {
@@ -477,8 +623,16 @@ private:
         out_ += "<Shape>\n";
         writeAppearance(primitive.material, depth + 1);
         const bool doubleSided = primitive.material >= 0 && scene_.materials[primitive.material].doubleSided;
-        std::vector<Eigen::Vector2d> texcoords(primitive.texcoords.size());
-        for (std::size_t v = 0; v < texcoords.size(); ++v) texcoords[v] = baseColorTexcoord(scene_, primitive, v);
+        // One set of coordinates for each channel the material's textures read (x3d_materials.hpp).
+        const std::vector<x3d::TexcoordChannel> channels =
+            primitive.material >= 0 ? x3d::materialTextures(scene_.materials[std::size_t(primitive.material)]).channels
+                                    : std::vector<x3d::TexcoordChannel>{{}};
+        std::vector<std::vector<Eigen::Vector2d>> texcoordSets;
+        for (const x3d::TexcoordChannel& channel : channels) {
+            std::vector<Eigen::Vector2d>& texcoords = texcoordSets.emplace_back(primitive.texcoords.size());
+            for (std::size_t v = 0; v < texcoords.size(); ++v) texcoords[v] = channelTexcoord(primitive, channel, v);
+        }
+        const std::vector<Eigen::Vector2d>& texcoords = texcoordSets[0];
         // The browser makes its normals from the positions as written: where those the budget's places give
         // would turn them too far, up to two places more, cheaper than the normals' text.
         const std::optional<int> fewest = positionDecimals(primitive, options_);
@@ -489,7 +643,8 @@ private:
             if (fewest)
                 for (Eigen::Vector3d& p : positions)
                     p = p.unaryExpr([&](double x) { return roundedDecimals(x, *fewest + more); });
-            creased = asCreasedFaceSet(primitive, positions, texcoords);
+            // Points join vertices with the same coordinates of one set only.
+            if (texcoordSets.size() == 1) creased = asCreasedFaceSet(primitive, positions, texcoords);
         }
         if (!creased && fewest)
             for (Eigen::Vector3d& p : positions) p = p.unaryExpr([&](double x) { return roundedDecimals(x, *fewest); });
@@ -543,9 +698,19 @@ private:
             writeValues("Normal", "vector", primitive.normals, 3, [](const Eigen::Vector3d& n) -> Eigen::Vector3d {
                 return n.unaryExpr([](double x) { return roundedDecimals(x, kNormalDecimals); });
             });
-        if (!texcoords.empty())
-            writeValues("TextureCoordinate", "point", texcoords, 2,
-                        [](const Eigen::Vector2d& t) { return Eigen::Vector2d(t.x(), 1 - t.y()); });
+        const auto flipped = [](const Eigen::Vector2d& t) { return Eigen::Vector2d(t.x(), 1 - t.y()); };
+        if (!texcoords.empty() && texcoordSets.size() == 1)
+            writeValues("TextureCoordinate", "point", texcoords, 2, flipped);
+        if (!texcoords.empty() && texcoordSets.size() > 1) {
+            indent(depth + 2);
+            out_ += "<MultiTextureCoordinate>\n";
+            for (std::size_t c = 0; c < texcoordSets.size(); ++c) {
+                const std::string node = "TextureCoordinate mapping='" + escapedMarkup(channels[c].mapping) + "'";
+                writeValues(node.c_str(), "point", texcoordSets[c], 2, flipped);
+            }
+            indent(depth + 2);
+            out_ += "</MultiTextureCoordinate>\n";
+        }
         if (!primitive.colors.empty()) writeValues("ColorRGBA", "color", primitive.colors, 4, same);
         indent(depth + 1);
         out_ += faceSet ? "</IndexedFaceSet>\n" : "</IndexedTriangleSet>\n";
@@ -563,6 +728,8 @@ private:
     std::set<int> textureWritten_;
     std::set<std::string> names_;
     std::map<int, std::string> nodeDef_;  // animated node -> its DEF
+    std::map<std::string, std::string> defs_;  // "mesh3", "material0", "texture2" -> its DEF (defOf)
+    bool version4_ = false;               // a material needs X3D 4.0 (x3d::needsX3d4)
 };
 
 std::string gzip(const std::string& text, const fs::path& file) {
@@ -595,8 +762,9 @@ std::uintmax_t x3dReferencedImageBytes(const Scene& scene) {
     const std::vector<int> sameImage = firstTextureOfSameImage(scene.textures);
     std::set<int> images;
     for (const Material& material : scene.materials)
-        if (const int t = material.baseColorTexture.texture; t >= 0 && x3dRefersToImageFile(scene.textures[t]))
-            images.insert(sameImage[std::size_t(t)]);
+        for (const x3d::TextureField& field : x3d::materialTextures(material).fields)
+            if (const int t = field.use->texture; x3dRefersToImageFile(scene.textures[std::size_t(t)]))
+                images.insert(sameImage[std::size_t(t)]);
     std::uintmax_t bytes = 0;
     for (int image : images) bytes += scene.textures[std::size_t(image)].bytes.size();
     return bytes;
