@@ -103,12 +103,6 @@ std::vector<std::string> describeSlots(const Scene& scene, const Material& m) {
     return out;
 }
 
-// Renders both files in headless Chromium (three.js for glTF, X_ITE for X3D): ../shared/bench/render.
-bool renderAvailable() {
-    return interopAvailable() && fs::exists(sharedDir() / "bench/render/node_modules") &&
-           runCommand("command -v chromium").status == 0;
-}
-
 }  // namespace
 
 TEST_CASE("An X3D 4 PhysicalMaterial with its textures is read into glTF's slots", "[io][x3d][materials]") {
