@@ -87,25 +87,32 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
     }
 
     std::vector<Tile> tiles;
-    std::unordered_map<std::uint32_t, std::uint32_t> tileOfRoot;
+    constexpr std::uint32_t kNone = 0xffffffffu;
+    std::vector<std::uint32_t> tileOfRoot(weldedTriangles.size(), kNone);
     for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t) {
         const std::uint32_t root = sets.find(t);
-        auto [entry, inserted] = tileOfRoot.try_emplace(root, static_cast<std::uint32_t>(tiles.size()));
-        if (inserted) {
+        if (tileOfRoot[root] == kNone) {
+            tileOfRoot[root] = static_cast<std::uint32_t>(tiles.size());
             tiles.emplace_back();
             tiles.back().material = materials[t];
         }
-        Tile& tile = tiles[entry->second];
+        Tile& tile = tiles[tileOfRoot[root]];
         tile.sources.push_back(sources[t]);
         tile.mesh.triangles.push_back(weldedTriangles[t]);  // global indices for now, compacted below
     }
-    for (Tile& tile : tiles) {
-        std::unordered_map<std::uint32_t, std::uint32_t> local;
+    // Local indices in the order of first use; `local` is shared by the tiles (a tile's entries are those
+    // stamped with its number).
+    std::vector<std::uint32_t> local(positions.size()), stamp(positions.size(), kNone);
+    for (std::uint32_t k = 0; k < tiles.size(); ++k) {
+        Tile& tile = tiles[k];
         for (Triangle& triangle : tile.mesh.triangles)
             for (std::uint32_t& index : triangle) {
-                auto [entry, inserted] = local.try_emplace(index, static_cast<std::uint32_t>(tile.mesh.positions.size()));
-                if (inserted) tile.mesh.positions.push_back(positions[index]);
-                index = entry->second;
+                if (stamp[index] != k) {
+                    stamp[index] = k;
+                    local[index] = static_cast<std::uint32_t>(tile.mesh.positions.size());
+                    tile.mesh.positions.push_back(positions[index]);
+                }
+                index = local[index];
             }
     }
     return tiles;
