@@ -83,6 +83,11 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
     const TileShape& shape = analysis.classification.shapes[c.prototype];
     StorageCosts& costs = context.costs;
     const PlanOptions& options = context.options;
+    if (c.members.size() == 1 && !(options.regions && shape.symmetry.order() > 1)) {
+        // A single copy with no symmetry to use: stored as it is (most classes of a big scene).
+        if (!drawn[c.prototype]) plan.tilesAsTheyAre.push_back(c.prototype);
+        return;
+    }
     const Primitive prototype = tilePrimitive(tiles[c.prototype], analysis.soup);
     // Indices into c.members drawn from the prototype's mesh (members already drawn are left out).
     std::vector<std::size_t> placed;
@@ -189,10 +194,22 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
 CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>& drawn) {
     CompressionPlan plan;
     const TileClassification& classification = context.analysis.classification;
+    // The classes are independent (StorageCosts is safe to share: a class measures its own mesh, the kinds'
+    // measures are taken under a lock): planned in parallel, each into its own plan, then appended in order.
+    std::vector<CompressionPlan> ofClass(classification.classes.size());
+    withThreads(context.analysis.options.threads, [&] {
+        tbb::parallel_for(std::size_t(0), classification.classes.size(),
+                          [&](std::size_t k) { planClass(context, k, drawn, ofClass[k]); });
+    });
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         ++plan.classes;
         if (classification.shapes[classification.classes[k].prototype].symmetry.order() > 1) ++plan.symmetricClasses;
-        planClass(context, k, drawn, plan);
+        CompressionPlan& one = ofClass[k];
+        for (SharedPart& part : one.shared) plan.shared.push_back(std::move(part));
+        plan.tilesAsTheyAre.insert(plan.tilesAsTheyAre.end(), one.tilesAsTheyAre.begin(), one.tilesAsTheyAre.end());
+        plan.attributeMismatches += one.attributeMismatches;
+        plan.notWorthInstancing += one.notWorthInstancing;
+        one = CompressionPlan();
     }
     return plan;
 }

@@ -87,6 +87,7 @@ StorageCosts::Attributes StorageCosts::attributesOf(std::size_t t) const {
 
 const StorageCosts::KindCosts& StorageCosts::kindOf(std::size_t t) {
     const Attributes attributes = attributesOf(t);
+    const std::lock_guard<std::mutex> lock(kindsMutex_);  // std::map keeps its entries where they are
     if (const auto known = kinds_.find(attributes); known != kinds_.end()) return known->second;
     std::vector<std::size_t> same;
     std::size_t triangles = 0;
