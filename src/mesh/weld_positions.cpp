@@ -22,12 +22,17 @@ struct CellHash {
 };
 constexpr std::uint32_t kNone = 0xffffffffu;
 
-}  // namespace
+// Positions as a list of points or of pointers to them.
+inline const Eigen::Vector3d& at(const Eigen::Vector3d& p) { return p; }
+inline const Eigen::Vector3d& at(const Eigen::Vector3d* p) { return *p; }
 
-std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& positions, double tolerance) {
-    std::vector<std::uint32_t> representative(positions.size());
-    if (positions.empty()) return representative;
-    const Eigen::AlignedBox3d bounds = boundsOf(positions);
+template <typename Point>
+std::vector<std::uint32_t> weld(const std::vector<Point>& points, double tolerance) {
+    std::vector<std::uint32_t> representative(points.size());
+    if (points.empty()) return representative;
+    Eigen::AlignedBox3d bounds;
+    for (const Point& p : points) bounds.extend(at(p));
+    auto positions = [&](std::size_t i) -> const Eigen::Vector3d& { return at(points[i]); };
     // A grid of cells kCellsPerTolerance times the tolerance: a point's partners lie in its own cell, or in
     // a neighbouring one only when the point is within the tolerance of that side, so most points need one
     // lookup. Exact welding (tolerance 0) uses a fine grid and exact equality. Cells count from the box's
@@ -43,17 +48,17 @@ std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& pos
         std::uint32_t first = kNone, last = kNone;
     };
     std::size_t capacity = 16;
-    while (capacity < 2 * positions.size()) capacity *= 2;
+    while (capacity < 2 * points.size()) capacity *= 2;
     std::vector<Slot> table(capacity);
-    std::vector<std::uint32_t> next(positions.size(), kNone);
+    std::vector<std::uint32_t> next(points.size(), kNone);
     const CellHash hash;
     auto cellOf = [&](const Eigen::Vector3d& p) -> Cell { return ((p - bounds.min()).array() / cellSize).floor().cast<long long>(); };
     auto slotOf = [&](const Cell& cell) -> Slot& {  // the cell's slot, or the empty one where it would go
         for (std::size_t s = hash(cell) & (capacity - 1);; s = (s + 1) & (capacity - 1))
-            if (table[s].first == kNone || (cellOf(positions[table[s].first]) == cell).all()) return table[s];
+            if (table[s].first == kNone || (cellOf(positions(table[s].first)) == cell).all()) return table[s];
     };
-    for (std::uint32_t i = 0; i < positions.size(); ++i) {
-        const Eigen::Vector3d& p = positions[i];
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+        const Eigen::Vector3d& p = positions(i);
         const Eigen::Array3d scaled = (p - bounds.min()).array() / cellSize;
         const Cell cell = scaled.floor().cast<long long>();  // as cellOf(p)
         // Per axis, the neighbouring cells within reach: -1 and/or +1 only near the cell's sides.
@@ -65,7 +70,7 @@ std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& pos
                 for (int dz = -low.z(); dz <= high.z() && found == i; ++dz) {
                     const Slot& bucket = slotOf(cell + Cell(dx, dy, dz));
                     for (std::uint32_t candidate = bucket.first; candidate != kNone; candidate = next[candidate])
-                        if ((positions[candidate] - p).squaredNorm() <= toleranceSquared) {
+                        if ((positions(candidate) - p).squaredNorm() <= toleranceSquared) {
                             found = candidate;
                             break;
                         }
@@ -81,6 +86,16 @@ std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& pos
         own.last = i;
     }
     return representative;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> weldPositions(const std::vector<Eigen::Vector3d>& positions, double tolerance) {
+    return weld(positions, tolerance);
+}
+
+std::vector<std::uint32_t> weldPositions(const std::vector<const Eigen::Vector3d*>& positions, double tolerance) {
+    return weld(positions, tolerance);
 }
 
 }  // namespace symcompress
