@@ -80,6 +80,12 @@ double StorageCosts::meshOf(const std::vector<std::size_t>& tiles, bool overhead
     return bytes;
 }
 
+void StorageCosts::measureKinds() {
+    std::set<Attributes> seen;
+    for (std::size_t t = 0; t < analysis_.tiles.size(); ++t)
+        if (seen.insert(attributesOf(t)).second) kindOf(t);
+}
+
 StorageCosts::Attributes StorageCosts::attributesOf(std::size_t t) const {
     const WorldPrimitive& from = analysis_.soup[analysis_.tiles[t].sources.front().primitive];
     return {!from.primitive.normals.empty(), !from.primitive.texcoords.empty(), !from.primitive.colors.empty()};

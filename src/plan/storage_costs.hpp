@@ -41,6 +41,9 @@ public:
     // A mesh of these tiles: their triangles, and with `overhead` that of a primitive per material and
     // attributes.
     double meshOf(const std::vector<std::size_t>& tiles, bool overhead = true);
+    // Measures every kind of tile (its attributes) now, which `merged` and `regionMayPay` would measure when
+    // first asked: run beside other work, so that the first question does not wait for the writer.
+    void measureKinds();
 
 private:
     static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
