@@ -58,6 +58,7 @@ struct WriteOptions {
     double instanceTranslationDeviation = 1.0 / (1 << 17);
     // Written as glTF asset.extras / X3D MetadataSet, e.g. the digest of the original scene.
     std::string extrasJson;
+    int threads = 0;  // glTF: the primitives' Draco encodings on this many threads (0: all cores)
 };
 
 // Writes atomically (temporary file in the same folder, then rename). Refuses to overwrite any of

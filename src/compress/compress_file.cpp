@@ -129,6 +129,7 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     if (options.htmlReport.empty()) analysisOptions.groupCosts = costModelFor(formatFromExtension(output), options.write);
     const SceneAnalysis analysis = analyzeScene(scene, analysisOptions);
     WriteOptions write = options.write;
+    write.threads = options.threads;
     PlanOptions planOptions = planOptionsOf(options);
     if (!options.fixedPositionBits) {
         // Of the budget, a share for the rounding of GPU-instanced rotations and one for their translations and

@@ -112,6 +112,11 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
     std::vector<std::unique_ptr<TileProbe>> prototypeProbes;
     auto sameInvariants = [&](const TileShape& shape, std::size_t k, double epsilon) {
         const TileShape& prototype = result.shapes[result.classes[k].prototype];
+        // The RMS radii's relative difference is one of the terms whose largest descriptorDifference is: beyond
+        // epsilon, so is the whole (most classes in the area window of a large scene are rejected here).
+        const double x = prototype.descriptor.rmsRadius, y = shape.descriptor.rmsRadius;
+        const double larger = std::max(std::abs(x), std::abs(y));
+        if ((larger > 0 ? std::abs(x - y) / larger : 0.0) > epsilon) return false;
         return prototype.material == shape.material && descriptorDifference(prototype.descriptor, shape.descriptor) <= epsilon &&
                samePrincipalMoments(prototype, shape, epsilon);
     };

@@ -116,8 +116,28 @@ private:
     std::size_t fallbackBytes_ = 0;
 };
 
-// Appends the glTF primitives that store `primitive` (one, or with Draco two when edgebreaker would drop
-// some triangles) to `primitives`.
+// One Draco-compressed glTF primitive, encoded but not yet in the builder: its bytes, its accessors (name and
+// description, in the order they are added) and KHR_draco_mesh_compression's attribute ids.
+struct DracoPart {
+    int material = -1;
+    std::vector<unsigned char> bytes;
+    std::vector<std::pair<std::string, Json>> accessors;
+    Json dracoAttributes = Json::object();
+    Json indices;
+};
+
+// What stores a primitive, made without the builder (so that a scene's primitives can be encoded in
+// parallel): plain accessors (written when added), or one Draco part, or two when edgebreaker would drop
+// some triangles.
+struct EncodedPrimitive {
+    bool plain = false;
+    std::vector<DracoPart> parts;
+};
+EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions& options, const std::filesystem::path& file);
+// Appends the glTF primitives of `encoded` (made from `primitive`) to `primitives`, and their data to the builder.
+void addPrimitive(GltfBuilder& builder, const Primitive& primitive, const EncodedPrimitive& encoded, Json& primitives);
+
+// Both: appends the glTF primitives that store `primitive` to `primitives`.
 void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
                     const std::filesystem::path& file, Json& primitives);
 

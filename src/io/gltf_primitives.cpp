@@ -130,9 +130,10 @@ enum class DracoMethod {
 };
 
 // Encodes one primitive with Draco and describes it in glTF: the accessors carry counts and bounds
-// (decoded from our own output, since Draco merges equal corners) but no buffer view.
-std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options,
-                                        const fs::path& file, DracoMethod method) {
+// (decoded from our own output, since Draco merges equal corners) but no buffer view. Nothing touches the
+// builder here (the primitives of a scene are encoded in parallel); `addDracoPart` adds it.
+std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const WriteOptions& options, const fs::path& file,
+                                              DracoMethod method) {
     refuseBeyondDracoRange(primitive, primitive.positions, "POSITION", file);
     refuseBeyondDracoRange(primitive, primitive.normals, "NORMAL", file);
     refuseBeyondDracoRange(primitive, primitive.texcoords, "TEXCOORD_0", file);
@@ -197,10 +198,10 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
         throw FileError(file, "Draco lost " + std::to_string(primitive.triangles.size() - result->num_faces()) +
                                   " triangles of a primitive; write with --no-draco");
 
-    const int view = builder.addBufferView(encoded.data(), encoded.size());
-    Json attributes = Json::object(), dracoAttributes = Json::object();
-    auto describe = [&](const char* name, int sourceId, draco::GeometryAttribute::Type type, int components,
-                        const char* accessorType) {
+    DracoPart part;
+    part.material = primitive.material;
+    part.bytes.assign(encoded.data(), encoded.data() + encoded.size());
+    auto describe = [&](const char* name, int sourceId, draco::GeometryAttribute::Type type, const char* accessorType) {
         if (sourceId < 0) return;
         const draco::PointAttribute* attribute = result->GetNamedAttribute(type);
         Json accessor = {{"componentType", kFloat}, {"count", result->num_points()}, {"type", accessorType}};
@@ -210,29 +211,35 @@ std::optional<Json> writeDracoPrimitive(GltfBuilder& builder, const Primitive& p
                 attribute->ConvertValue<float>(attribute->mapped_index(p), 3, &flat[p.value() * 3]);
             GltfBuilder::addBounds(accessor, flat, 3);
         }
-        (void)components;
-        attributes[name] = builder.addAccessor(std::move(accessor));
-        dracoAttributes[name] = attribute->unique_id();
+        part.accessors.emplace_back(name, std::move(accessor));
+        part.dracoAttributes[name] = attribute->unique_id();
     };
-    describe("POSITION", ids.position, draco::GeometryAttribute::POSITION, 3, "VEC3");
-    describe("NORMAL", ids.normal, draco::GeometryAttribute::NORMAL, 3, "VEC3");
-    describe("TEXCOORD_0", ids.texcoord, draco::GeometryAttribute::TEX_COORD, 2, "VEC2");
-    describe("COLOR_0", ids.color, draco::GeometryAttribute::COLOR, 4, "VEC4");
+    describe("POSITION", ids.position, draco::GeometryAttribute::POSITION, "VEC3");
+    describe("NORMAL", ids.normal, draco::GeometryAttribute::NORMAL, "VEC3");
+    describe("TEXCOORD_0", ids.texcoord, draco::GeometryAttribute::TEX_COORD, "VEC2");
+    describe("COLOR_0", ids.color, draco::GeometryAttribute::COLOR, "VEC4");
     for (std::size_t a = 0; a < primitive.attributes.size(); ++a) {
         const VertexAttribute& source = primitive.attributes[a];
         const draco::PointAttribute* attribute = result->GetAttributeByUniqueId(mesh->attribute(ids.others[a])->unique_id());
         if (!attribute) throw FileError(file, "Draco lost the attribute " + source.name + " of a primitive");
-        attributes[source.name] = builder.addAccessor({{"componentType", source.isJoints() ? kUnsignedShort : kFloat},
-                                                       {"count", result->num_points()},
-                                                       {"type", accessorType(source.components)}});
-        dracoAttributes[source.name] = attribute->unique_id();
+        part.accessors.emplace_back(source.name, Json{{"componentType", source.isJoints() ? kUnsignedShort : kFloat},
+                                                      {"count", result->num_points()},
+                                                      {"type", accessorType(source.components)}});
+        part.dracoAttributes[source.name] = attribute->unique_id();
     }
     const int indexType = result->num_points() <= 65535 ? kUnsignedShort : kUnsignedInt;
-    Json out = {
-        {"attributes", attributes},
-        {"indices",
-         builder.addAccessor({{"componentType", indexType}, {"count", result->num_faces() * 3}, {"type", "SCALAR"}})},
-        {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", dracoAttributes}}}}}};
+    part.indices = {{"componentType", indexType}, {"count", result->num_faces() * 3}, {"type", "SCALAR"}};
+    return part;
+}
+
+// The glTF primitive of an encoded part: its buffer view, then its accessors in the order they were described.
+Json addDracoPart(GltfBuilder& builder, const DracoPart& part) {
+    const int view = builder.addBufferView(part.bytes.data(), part.bytes.size());
+    Json attributes = Json::object();
+    for (const auto& [name, accessor] : part.accessors) attributes[name] = builder.addAccessor(accessor);
+    Json out = {{"attributes", attributes},
+                {"indices", builder.addAccessor(part.indices)},
+                {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", part.dracoAttributes}}}}}};
     return out;
 }
 
@@ -319,12 +326,7 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
 
 }  // namespace
 
-void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options, const fs::path& file,
-                    Json& primitives) {
-    auto add = [&](Json out, int material) {
-        if (material >= 0) out["material"] = material;
-        primitives.push_back(std::move(out));
-    };
+EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions& options, const fs::path& file) {
     refuseBeyondFloat(primitive.positions, "POSITION", file);
     refuseBeyondFloat(primitive.normals, "NORMAL", file);
     refuseBeyondFloat(primitive.texcoords, "TEXCOORD_0", file);
@@ -332,20 +334,39 @@ void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const Writ
     for (const VertexAttribute& attribute : primitive.attributes) refuseBeyondFloat(attribute, file);
     for (const MorphTarget& target : primitive.targets)
         for (const VertexAttribute& attribute : target) refuseBeyondFloat(attribute, file);
+    EncodedPrimitive encoded;
     // Morph targets stay plain accessors, which Draco's reordering of the vertices would no longer match.
     if (!options.draco || !primitive.targets.empty()) {
-        add(writePlainPrimitive(builder, primitive), primitive.material);
-        return;
+        encoded.plain = true;
+        return encoded;
     }
-    if (auto whole = writeDracoPrimitive(builder, primitive, options, file, DracoMethod::EdgebreakerOrNothing)) {
-        add(std::move(*whole), primitive.material);
-        return;
+    if (auto whole = encodeDracoPrimitive(primitive, options, file, DracoMethod::EdgebreakerOrNothing)) {
+        encoded.parts.push_back(std::move(*whole));
+        return encoded;
     }
     // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
     const auto [kept, collapsing] = splitCollapsingTriangles(primitive, positionBitsFor(primitive, options));
     for (const auto& [part, method] :
          {std::pair{&kept, DracoMethod::EdgebreakerElseSequential}, std::pair{&collapsing, DracoMethod::Sequential}})
-        if (!part->triangles.empty()) add(*writeDracoPrimitive(builder, *part, options, file, method), part->material);
+        if (!part->triangles.empty()) encoded.parts.push_back(*encodeDracoPrimitive(*part, options, file, method));
+    return encoded;
+}
+
+void addPrimitive(GltfBuilder& builder, const Primitive& primitive, const EncodedPrimitive& encoded, Json& primitives) {
+    auto add = [&](Json out, int material) {
+        if (material >= 0) out["material"] = material;
+        primitives.push_back(std::move(out));
+    };
+    if (encoded.plain) {
+        add(writePlainPrimitive(builder, primitive), primitive.material);
+        return;
+    }
+    for (const DracoPart& part : encoded.parts) add(addDracoPart(builder, part), part.material);
+}
+
+void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options, const fs::path& file,
+                    Json& primitives) {
+    addPrimitive(builder, primitive, encodePrimitive(primitive, options, file), primitives);
 }
 
 }  // namespace symcompress

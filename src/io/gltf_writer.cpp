@@ -5,6 +5,7 @@
 // smaller) unless WriteOptions::gpuInstancing is false. Geometry is
 // compressed with KHR_draco_mesh_compression unless WriteOptions::draco is false.
 #include "common/image_size.hpp"
+#include "common/with_threads.hpp"
 #include "common/number_text.hpp"
 #include "gltf_builder.hpp"
 #include "gltf_gpu_instancing.hpp"
@@ -16,6 +17,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
@@ -24,6 +27,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <optional>
 #include <set>
 
@@ -430,13 +434,41 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     // reference to them from nodes.
     std::vector<int> meshIndex(scene.meshes.size(), -1);
     bool usedDraco = false;
+    // Every primitive encoded first, in parallel (Draco's work: each on its own), then added to the buffer in
+    // order; an encoding's error is thrown where writing one after the other would have thrown it.
+    struct Encoding {
+        const Primitive* primitive;
+        WriteOptions options;
+        EncodedPrimitive encoded;
+        std::exception_ptr error;
+    };
+    std::vector<Encoding> encodings;
+    for (const Mesh& mesh : scene.meshes)
+        for (const Primitive& primitive : mesh.primitives) {
+            if (primitive.triangles.empty()) continue;
+            WriteOptions forPrimitive = options;
+            forPrimitive.texcoordBits = texcoordBitsFor(scene, primitive, options.texcoordBits);
+            encodings.push_back({&primitive, std::move(forPrimitive), {}, nullptr});
+        }
+    withThreads(options.threads, [&] {
+        tbb::parallel_for(std::size_t(0), encodings.size(), [&](std::size_t e) {
+            Encoding& encoding = encodings[e];
+            try {
+                encoding.encoded = encodePrimitive(*encoding.primitive, encoding.options, file);
+            } catch (...) {
+                encoding.error = std::current_exception();
+            }
+        });
+    });
+    std::size_t next = 0;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         Json primitives = Json::array();
         for (const Primitive& primitive : scene.meshes[m].primitives) {
             if (primitive.triangles.empty()) continue;
-            WriteOptions forPrimitive = options;
-            forPrimitive.texcoordBits = texcoordBitsFor(scene, primitive, options.texcoordBits);
-            writePrimitive(builder, primitive, forPrimitive, file, primitives);
+            Encoding& encoding = encodings[next++];
+            if (encoding.error) std::rethrow_exception(encoding.error);
+            addPrimitive(builder, primitive, encoding.encoded, primitives);
+            encoding.encoded = {};  // its bytes are in the buffer now
             usedDraco = options.draco;
         }
         if (primitives.empty()) continue;

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <numeric>
-#include <unordered_map>
 
 namespace symcompress {
 
@@ -29,83 +28,100 @@ private:
     std::vector<std::uint32_t> parent_;
 };
 
-struct EdgeOfMaterial {
-    std::uint64_t edge;  // the two welded vertex indices, smaller first
-    int material;
-    bool operator==(const EdgeOfMaterial& other) const { return edge == other.edge && material == other.material; }
-};
-struct EdgeOfMaterialHash {
-    std::size_t operator()(const EdgeOfMaterial& key) const {
-        return std::hash<std::uint64_t>()(key.edge * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(key.material));
-    }
-};
-
 }  // namespace
 
 std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const TileOptions& options) {
-    // All positions in one array, so that welding works across primitives of one material.
-    std::vector<Eigen::Vector3d> positions;
-    std::vector<std::uint32_t> firstVertex;
+    // All positions as one list (pointers into the soup, not a copy), so that welding works across primitives
+    // of one material.
+    std::vector<const Eigen::Vector3d*> positions;
     Eigen::AlignedBox3d bounds;
+    std::size_t triangleCount = 0;
     for (const WorldPrimitive& world : soup) {
-        firstVertex.push_back(static_cast<std::uint32_t>(positions.size()));
         for (const Triangle& triangle : world.primitive.triangles)
             for (std::uint32_t index : triangle) bounds.extend(world.primitive.positions[index]);
-        positions.insert(positions.end(), world.primitive.positions.begin(), world.primitive.positions.end());
+        for (const Eigen::Vector3d& p : world.primitive.positions) positions.push_back(&p);
+        triangleCount += world.primitive.triangles.size();
     }
     const double diagonal = bounds.isEmpty() ? 0.0 : bounds.diagonal().norm();
     const std::vector<std::uint32_t> welded = weldPositions(positions, options.weldTolerance * diagonal);
 
-    std::vector<TriangleSource> sources;
+    // Every triangle's welded corners, in the soup's order.
     std::vector<Triangle> weldedTriangles;
-    std::vector<int> materials;
-    for (std::uint32_t p = 0; p < soup.size(); ++p) {
-        const Primitive& primitive = soup[p].primitive;
-        for (std::uint32_t t = 0; t < primitive.triangles.size(); ++t) {
-            const Triangle& triangle = primitive.triangles[t];
-            sources.push_back({p, t});
-            weldedTriangles.push_back({welded[firstVertex[p] + triangle[0]], welded[firstVertex[p] + triangle[1]],
-                                       welded[firstVertex[p] + triangle[2]]});
-            materials.push_back(primitive.material);
+    weldedTriangles.reserve(triangleCount);
+    {
+        std::uint32_t first = 0;
+        for (const WorldPrimitive& world : soup) {
+            for (const Triangle& triangle : world.primitive.triangles)
+                weldedTriangles.push_back({welded[first + triangle[0]], welded[first + triangle[1]], welded[first + triangle[2]]});
+            first += static_cast<std::uint32_t>(world.primitive.positions.size());
         }
     }
+    std::vector<int> materials;  // by triangle
+    materials.reserve(triangleCount);
+    for (const WorldPrimitive& world : soup) materials.insert(materials.end(), world.primitive.triangles.size(), world.primitive.material);
 
-    // Triangles that share an undirected edge (and a material) are in one tile.
+    // Triangles that share an undirected edge (and a material) are in one tile: for each edge a-b (a != b), the
+    // triangles at a that also have b as a corner (every two distinct corners of a triangle are an edge). The
+    // sets' roots are their first triangles whatever order they are united in.
     DisjointSets sets(weldedTriangles.size());
-    std::unordered_map<EdgeOfMaterial, std::uint32_t, EdgeOfMaterialHash> firstTriangleOfEdge;
-    firstTriangleOfEdge.reserve(weldedTriangles.size() * 3 / 2);
-    for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t) {
-        for (int corner = 0; corner < 3; ++corner) {
-            std::uint32_t a = weldedTriangles[t][corner], b = weldedTriangles[t][(corner + 1) % 3];
-            if (a == b) continue;  // a collapsed edge connects nothing
-            if (a > b) std::swap(a, b);
-            // The material is part of the key: tiles never cross materials.
-            const EdgeOfMaterial key{static_cast<std::uint64_t>(a) << 32 | b, materials[t]};
-            auto [entry, inserted] = firstTriangleOfEdge.try_emplace(key, t);
-            if (!inserted) sets.unite(entry->second, t);
+    {
+        std::vector<std::uint32_t> start(positions.size() + 1, 0), incident(weldedTriangles.size() * 3);
+        for (const Triangle& triangle : weldedTriangles)
+            for (std::uint32_t v : triangle) ++start[v + 1];
+        for (std::size_t v = 0; v < positions.size(); ++v) start[v + 1] += start[v];
+        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+        for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t)
+            for (std::uint32_t v : weldedTriangles[t]) incident[fill[v]++] = t;
+        for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t) {
+            const Triangle& triangle = weldedTriangles[t];
+            for (int corner = 0; corner < 3; ++corner) {
+                const std::uint32_t a = triangle[corner], b = triangle[(corner + 1) % 3];
+                if (a == b) continue;  // a collapsed edge connects nothing
+                for (std::uint32_t i = start[a]; i < start[a + 1]; ++i) {
+                    const std::uint32_t u = incident[i];
+                    if (u >= t) continue;  // each pair once; a triangle listed twice at a (a collapsed corner) is harmless
+                    const Triangle& other = weldedTriangles[u];
+                    // The material is part of the key: tiles never cross materials.
+                    if ((other[0] == b || other[1] == b || other[2] == b) && materials[u] == materials[t]) sets.unite(u, t);
+                }
+            }
         }
     }
 
     std::vector<Tile> tiles;
-    std::unordered_map<std::uint32_t, std::uint32_t> tileOfRoot;
-    for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t) {
-        const std::uint32_t root = sets.find(t);
-        auto [entry, inserted] = tileOfRoot.try_emplace(root, static_cast<std::uint32_t>(tiles.size()));
-        if (inserted) {
-            tiles.emplace_back();
-            tiles.back().material = materials[t];
+    constexpr std::uint32_t kNone = 0xffffffffu;
+    std::vector<std::uint32_t> tileOfRoot(weldedTriangles.size(), kNone);
+    {
+        std::uint32_t p = 0, local = 0;  // the triangle's source: primitive p, its triangle `local`
+        for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t, ++local) {
+            while (local == soup[p].primitive.triangles.size()) ++p, local = 0;
+            const std::uint32_t root = sets.find(t);
+            if (tileOfRoot[root] == kNone) {
+                tileOfRoot[root] = static_cast<std::uint32_t>(tiles.size());
+                tiles.emplace_back();
+                tiles.back().material = materials[t];
+            }
+            Tile& tile = tiles[tileOfRoot[root]];
+            tile.sources.push_back({p, local});
+            tile.mesh.triangles.push_back(weldedTriangles[t]);  // global indices for now, compacted below
         }
-        Tile& tile = tiles[entry->second];
-        tile.sources.push_back(sources[t]);
-        tile.mesh.triangles.push_back(weldedTriangles[t]);  // global indices for now, compacted below
     }
-    for (Tile& tile : tiles) {
-        std::unordered_map<std::uint32_t, std::uint32_t> local;
+    std::vector<std::uint32_t>().swap(tileOfRoot);
+    std::vector<Triangle>().swap(weldedTriangles);
+    std::vector<int>().swap(materials);
+    // Local indices in the order of first use; `local` is shared by the tiles (a tile's entries are those
+    // stamped with its number).
+    std::vector<std::uint32_t> local(positions.size()), stamp(positions.size(), kNone);
+    for (std::uint32_t k = 0; k < tiles.size(); ++k) {
+        Tile& tile = tiles[k];
         for (Triangle& triangle : tile.mesh.triangles)
             for (std::uint32_t& index : triangle) {
-                auto [entry, inserted] = local.try_emplace(index, static_cast<std::uint32_t>(tile.mesh.positions.size()));
-                if (inserted) tile.mesh.positions.push_back(positions[index]);
-                index = entry->second;
+                if (stamp[index] != k) {
+                    stamp[index] = k;
+                    local[index] = static_cast<std::uint32_t>(tile.mesh.positions.size());
+                    tile.mesh.positions.push_back(*positions[index]);
+                }
+                index = local[index];
             }
     }
     return tiles;

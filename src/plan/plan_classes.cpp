@@ -4,13 +4,33 @@
 #include "plan/member_check.hpp"
 #include "plan/planners.hpp"
 #include "plan/region_choice.hpp"
+#include "common/with_threads.hpp"
+
+#include <tbb/parallel_for.h>
 
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <tuple>
 
 namespace symcompress {
 namespace {
+
+// The prototype's surface with its hierarchy, built by the first member check that needs it (members are
+// checked in parallel).
+class LazySurface {
+public:
+    explicit LazySurface(const Primitive& primitive) : primitive_(primitive) {}
+    const TileSurface& get() {
+        std::call_once(once_, [&] { surface_ = std::make_unique<TileSurface>(primitive_); });
+        return *surface_;
+    }
+
+private:
+    const Primitive& primitive_;
+    std::once_flag once_;
+    std::unique_ptr<TileSurface> surface_;
+};
 
 // The placement of the prototype onto member i that the member check accepts, if any, and the member's
 // deviation under it (relative to the diagonal): every J g (g in the prototype's group) places the geometry
@@ -18,8 +38,7 @@ namespace {
 // otherwise is checked as a surface (surfaceDeviation), its deviation then measured.
 std::optional<std::pair<Isometry, double>> acceptedPlacement(const PlanContext& context, const CongruenceClass& c,
                                                              std::size_t i, const Primitive& prototype,
-                                                             const Primitive& member,
-                                                             std::unique_ptr<TileSurface>& prototypeSurface) {
+                                                             const Primitive& member, LazySurface& prototypeSurface) {
     const TileShape& shape = context.analysis.classification.shapes[c.prototype];
     std::vector<Isometry> candidates;
     for (const Symmetry& g : shape.symmetry.elements) {
@@ -31,11 +50,10 @@ std::optional<std::pair<Isometry, double>> acceptedPlacement(const PlanContext& 
             return std::pair{candidate, c.deviations[i]};
         candidates.push_back(candidate);
     }
-    if (!prototypeSurface) prototypeSurface = std::make_unique<TileSurface>(prototype);
     const TileSurface memberSurface(member);
     const double diagonal = context.analysis.diagonal;
     for (const Isometry& candidate : candidates)
-        if (const auto deviation = surfaceDeviation(*prototypeSurface, memberSurface, candidate, context.tolerance(),
+        if (const auto deviation = surfaceDeviation(prototypeSurface.get(), memberSurface, candidate, context.tolerance(),
                                                     context.options.geometryOnly))
             return std::pair{candidate, diagonal > 0 ? *deviation / diagonal : 0};
     return std::nullopt;
@@ -65,19 +83,31 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
     const TileShape& shape = analysis.classification.shapes[c.prototype];
     StorageCosts& costs = context.costs;
     const PlanOptions& options = context.options;
+    if (c.members.size() == 1 && !(options.regions && shape.symmetry.order() > 1)) {
+        // A single copy with no symmetry to use: stored as it is (most classes of a big scene).
+        if (!drawn[c.prototype]) plan.tilesAsTheyAre.push_back(c.prototype);
+        return;
+    }
     const Primitive prototype = tilePrimitive(tiles[c.prototype], analysis.soup);
     // Indices into c.members drawn from the prototype's mesh (members already drawn are left out).
     std::vector<std::size_t> placed;
     if (!drawn[c.prototype]) placed.push_back(0);
     std::vector<Isometry> placements = c.placements;
     std::vector<double> deviations = c.deviations;
-    std::unique_ptr<TileSurface> prototypeSurface;  // built for the first member tessellated otherwise
+    // The member checks are independent: in parallel, their verdicts then taken in the members' order.
+    LazySurface prototypeSurface(prototype);  // built for the first member tessellated otherwise
+    std::vector<std::optional<std::pair<Isometry, double>>> accepted(c.members.size());
+    withThreads(analysis.options.threads, [&] {
+        tbb::parallel_for(std::size_t(1), std::max<std::size_t>(1, c.members.size()), [&](std::size_t i) {
+            if (drawn[c.members[i]]) return;
+            accepted[i] = acceptedPlacement(context, c, i, prototype, tilePrimitive(tiles[c.members[i]], analysis.soup),
+                                            prototypeSurface);
+        });
+    });
     for (std::size_t i = 1; i < c.members.size(); ++i) {
         if (drawn[c.members[i]]) continue;
-        if (const auto placement = acceptedPlacement(context, c, i, prototype,
-                                                     tilePrimitive(tiles[c.members[i]], analysis.soup),
-                                                     prototypeSurface)) {
-            std::tie(placements[i], deviations[i]) = *placement;
+        if (accepted[i]) {
+            std::tie(placements[i], deviations[i]) = *accepted[i];
             placed.push_back(i);
         } else {
             ++plan.attributeMismatches;
@@ -165,10 +195,22 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
 CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>& drawn) {
     CompressionPlan plan;
     const TileClassification& classification = context.analysis.classification;
+    // The classes are independent (StorageCosts is safe to share: a class measures its own mesh, the kinds'
+    // measures are taken under a lock): planned in parallel, each into its own plan, then appended in order.
+    std::vector<CompressionPlan> ofClass(classification.classes.size());
+    withThreads(context.analysis.options.threads, [&] {
+        tbb::parallel_for(std::size_t(0), classification.classes.size(),
+                          [&](std::size_t k) { planClass(context, k, drawn, ofClass[k]); });
+    });
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         ++plan.classes;
         if (classification.shapes[classification.classes[k].prototype].symmetry.order() > 1) ++plan.symmetricClasses;
-        planClass(context, k, drawn, plan);
+        CompressionPlan& one = ofClass[k];
+        for (SharedPart& part : one.shared) plan.shared.push_back(std::move(part));
+        plan.tilesAsTheyAre.insert(plan.tilesAsTheyAre.end(), one.tilesAsTheyAre.begin(), one.tilesAsTheyAre.end());
+        plan.attributeMismatches += one.attributeMismatches;
+        plan.notWorthInstancing += one.notWorthInstancing;
+        one = CompressionPlan();
     }
     return plan;
 }

@@ -2,6 +2,9 @@
 // sequences that run the stages (docs/compression-plan.md).
 #include "plan/member_check.hpp"
 #include "plan/planners.hpp"
+#include "common/with_threads.hpp"
+
+#include <tbb/task_group.h>
 
 #include <chrono>
 
@@ -43,15 +46,28 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
     StorageCosts costs(analysis, options.costs);
     const PlanContext context{input, analysis, options, costs};
     std::vector<bool> drawn(analysis.tiles.size(), false);  // by the scene's symmetry or a repeated assembly
-    if (options.assemblies) {
-        if (std::optional<SharedPart> part = planSceneSymmetry(context)) {
-            for (std::size_t t : part->tiles) drawn[t] = true;
-            plan.sceneGroup = part->group;
-            plan.shared.push_back(std::move(*part));
+    CompressionPlan classes = withThreads(analysis.options.threads, [&] {
+        // The kinds' measures (the writer on a sample of up to 20000 triangles) beside the planners, which
+        // ask for them under StorageCosts' lock.
+        tbb::task_group measuring;
+        measuring.run([&] { costs.measureKinds(); });
+        try {
+            if (options.assemblies) {
+                if (std::optional<SharedPart> part = planSceneSymmetry(context)) {
+                    for (std::size_t t : part->tiles) drawn[t] = true;
+                    plan.sceneGroup = part->group;
+                    plan.shared.push_back(std::move(*part));
+                }
+                for (SharedPart& part : planAssemblies(context, drawn)) plan.shared.push_back(std::move(part));
+            }
+            CompressionPlan planned = planClasses(context, drawn);
+            measuring.wait();
+            return planned;
+        } catch (...) {
+            measuring.wait();  // costs outlives the measure
+            throw;
         }
-        for (SharedPart& part : planAssemblies(context, drawn)) plan.shared.push_back(std::move(part));
-    }
-    CompressionPlan classes = planClasses(context, drawn);
+    });
     for (SharedPart& part : classes.shared) plan.shared.push_back(std::move(part));
     plan.tilesAsTheyAre = std::move(classes.tilesAsTheyAre);
     plan.classes = classes.classes;

@@ -4,6 +4,9 @@
 
 #include "geometry/bounds.hpp"
 #include "plan/storage_costs.hpp"
+#include "common/with_threads.hpp"
+
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <chrono>
@@ -103,7 +106,19 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
             costs.emplace(analysis, *options.groupCosts);
             congruenceOptions.groupUsable = [&](std::size_t tile) { return costs->regionMayPay(tile); };
         }
-        analysis.classification = classifyTiles(analysis.tiles, congruenceOptions);
+        analysis.classification = withThreads(options.threads, [&] {
+            // The kinds' measures that regionMayPay asks for (the writer on a sample), beside the classification.
+            tbb::task_group measuring;
+            if (costs) measuring.run([&] { costs->measureKinds(); });
+            try {
+                TileClassification classification = classifyTiles(analysis.tiles, congruenceOptions);
+                measuring.wait();
+                return classification;
+            } catch (...) {
+                measuring.wait();
+                throw;
+            }
+        });
         analysis.absoluteTolerance = analysis.classification.absoluteTolerance;
     } else {
         analysis.absoluteTolerance = options.tolerance * tilesDiagonal(analysis.tiles);

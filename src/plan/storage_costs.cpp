@@ -80,6 +80,12 @@ double StorageCosts::meshOf(const std::vector<std::size_t>& tiles, bool overhead
     return bytes;
 }
 
+void StorageCosts::measureKinds() {
+    std::set<Attributes> seen;
+    for (std::size_t t = 0; t < analysis_.tiles.size(); ++t)
+        if (seen.insert(attributesOf(t)).second) kindOf(t);
+}
+
 StorageCosts::Attributes StorageCosts::attributesOf(std::size_t t) const {
     const WorldPrimitive& from = analysis_.soup[analysis_.tiles[t].sources.front().primitive];
     return {!from.primitive.normals.empty(), !from.primitive.texcoords.empty(), !from.primitive.colors.empty()};
@@ -87,6 +93,7 @@ StorageCosts::Attributes StorageCosts::attributesOf(std::size_t t) const {
 
 const StorageCosts::KindCosts& StorageCosts::kindOf(std::size_t t) {
     const Attributes attributes = attributesOf(t);
+    const std::lock_guard<std::mutex> lock(kindsMutex_);  // std::map keeps its entries where they are
     if (const auto known = kinds_.find(attributes); known != kinds_.end()) return known->second;
     std::vector<std::size_t> same;
     std::size_t triangles = 0;

@@ -9,6 +9,7 @@
 
 #include <limits>
 #include <map>
+#include <mutex>
 #include <set>
 #include <tuple>
 #include <vector>
@@ -40,6 +41,9 @@ public:
     // A mesh of these tiles: their triangles, and with `overhead` that of a primitive per material and
     // attributes.
     double meshOf(const std::vector<std::size_t>& tiles, bool overhead = true);
+    // Measures every kind of tile (its attributes) now, which `merged` and `regionMayPay` would measure when
+    // first asked: run beside other work, so that the first question does not wait for the writer.
+    void measureKinds();
 
 private:
     static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
@@ -57,6 +61,7 @@ private:
     const StorageCostModel& model_;
     std::vector<std::size_t> classOf_, memberOf_;  // a tile's class, and its index among the class's members
     std::vector<double> classMesh_;                // < 0: not measured yet
+    std::mutex kindsMutex_;  // the classes are planned in parallel: kinds_ is measured under it
     std::map<Attributes, KindCosts> kinds_;
 };
 
