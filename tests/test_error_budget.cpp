@@ -378,3 +378,45 @@ TEST_CASE("Hundreds of small parts verify within the budget: the area may change
         }
     }
 }
+
+TEST_CASE("Draco's size is not monotonic in the position bits: more bits within the bound are tried, the smallest kept",
+          "[budget][writers]") {
+    const Primitive points = pointsOnSphere(3);
+    WriteOptions options;
+    options.maxPositionError = 1e-3;
+    const int fewest = positionBitsFor(points, options);
+    const std::vector<int> more = positionBitsWorthTrying(points, options);
+    CHECK(more.size() <= 2);
+    for (std::size_t k = 0; k < more.size(); ++k) CHECK(more[k] == fewest + 1 + int(k));
+    Primitive onGrid = points;
+    onGrid.positionGrid = QuantizationGrid{};
+    CHECK(positionBitsWorthTrying(onGrid, options).empty());
+    CHECK(positionBitsWorthTrying(points, WriteOptions{}).empty());  // fixed bits
+
+    // The grass cards' scene (731 cards of 8 triangles, stored as they are, in one mesh per material as the plan
+    // stores them): smaller than at the fewest bits alone, and within the bound.
+    CompressOptions asTheyAre;
+    asTheyAre.instancing = false;
+    TemporaryFolder folder;
+    compressFile(modelPath("cge_grass_flowers/grass_flowers.x3d"), folder / "grass.glb", asTheyAre);
+    const Scene grass = readScene(folder / "grass.glb");
+    Scene merged;
+    merged.meshes.push_back({});
+    Primitive& all = merged.meshes[0].primitives.emplace_back();
+    for (const Primitive& primitive : grass.meshes[0].primitives)
+        if (primitive.triangles.size() > all.triangles.size()) all = primitive;
+    all.material = -1;  // the texture coordinates kept, the scene's materials not
+    merged.nodes.push_back({});
+    merged.nodes[0].mesh = 0;
+    merged.roots = {0};
+    REQUIRE(all.triangles.size() <= 20000);
+    WriteOptions bounded;
+    bounded.maxPositionError = 5e-5 * boundsOfCorners(all.positions, all.triangles).diagonal().norm();
+    WriteOptions fixed;
+    fixed.positionBits = positionBitsFor(all, bounded);
+    REQUIRE_FALSE(positionBitsWorthTrying(all, bounded).empty());
+    writeScene(merged, folder / "tried.glb", bounded);
+    writeScene(merged, folder / "fewest.glb", fixed);
+    CHECK(std::filesystem::file_size(folder / "tried.glb") < std::filesystem::file_size(folder / "fewest.glb"));
+    CHECK(largestMove(all, readScene(folder / "tried.glb").meshes[0].primitives[0]) <= bounded.maxPositionError);
+}

@@ -151,6 +151,7 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     if (!mesh) throw FileError(file, "Draco could not build a mesh from a primitive");
 
     // The decoded mesh, or nothing when the encoder refuses (edgebreaker: "all triangles are degenerate").
+    int positionBits = primitive.positionGrid ? primitive.positionGrid->bits : positionBitsFor(primitive, options);
     auto encode = [&](int encoding, draco::EncoderBuffer& encoded) -> std::unique_ptr<draco::Mesh> {
         draco::ExpertEncoder encoder(*mesh);
         const int speed = std::clamp(10 - options.compressionLevel, 0, 10);
@@ -160,7 +161,7 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
             const float origin[3] = {float(grid->origin.x()), float(grid->origin.y()), float(grid->origin.z())};
             encoder.SetAttributeExplicitQuantization(ids.position, grid->bits, 3, origin, float(grid->range));
         } else {
-            encoder.SetAttributeQuantization(ids.position, positionBitsFor(primitive, options));
+            encoder.SetAttributeQuantization(ids.position, positionBits);
         }
         const std::pair<int, int> quantized[] = {
             {ids.normal, options.normalBits}, {ids.texcoord, options.texcoordBits}, {ids.color, options.colorBits}};
@@ -189,6 +190,16 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     if (method != DracoMethod::Sequential) {
         result = encode(draco::MESH_EDGEBREAKER_ENCODING, encoded);
         if (!complete(result) && method == DracoMethod::EdgebreakerOrNothing) return std::nullopt;
+        // More bits within the bound may encode smaller (positionBitsWorthTrying): the smallest is kept.
+        for (const int more : complete(result) ? positionBitsWorthTrying(primitive, options) : std::vector<int>{}) {
+            positionBits = more;
+            draco::EncoderBuffer trial;
+            std::unique_ptr<draco::Mesh> decoded = encode(draco::MESH_EDGEBREAKER_ENCODING, trial);
+            if (complete(decoded) && trial.size() < encoded.size()) {
+                encoded = std::move(trial);
+                result = std::move(decoded);
+            }
+        }
     }
     if (!complete(result)) {
         encoded.Clear();

@@ -12,6 +12,9 @@ namespace symcompress {
 namespace {
 
 constexpr int kMostPositionBits = 24;  // a float32's mantissa: more bits cannot place a corner closer
+// The most triangles of a primitive encoded again with more bits (positionBitsWorthTrying): each trial is an
+// encoding, and the plan measures parts by the writer.
+constexpr std::size_t kMostTriedTriangles = 20000;
 
 // The largest distance a corner moves through Draco's position quantization at `bits`, over the corners of the
 // triangles.
@@ -49,6 +52,17 @@ double positionErrorBound(const Primitive& primitive, const WriteOptions& option
     if (!(options.maxRelativePositionError > 0) || primitive.triangles.empty()) return bound;
     return std::min(bound, options.maxRelativePositionError *
                                boundsOfCorners(primitive.positions, primitive.triangles).diagonal().norm());
+}
+
+std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const WriteOptions& options) {
+    std::vector<int> more;
+    if (primitive.positionGrid || primitive.triangles.size() > kMostTriedTriangles) return more;
+    const double bound = positionErrorBound(primitive, options);
+    if (!(bound > 0)) return more;
+    const int fewest = positionBitsFor(primitive, options);
+    for (int bits = fewest + 1; bits <= std::min(fewest + 2, kMostPositionBits); ++bits)
+        if (largestQuantizationError(primitive, bits) <= bound) more.push_back(bits);
+    return more;
 }
 
 int positionBitsFor(const Primitive& primitive, const WriteOptions& options) {
