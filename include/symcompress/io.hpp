@@ -81,11 +81,11 @@ int positionBitsFor(const Primitive& primitive, const WriteOptions& options);
 // diagonal, whichever is smaller; 0 where the first is not set (fixed bits).
 double positionErrorBound(const Primitive& primitive, const WriteOptions& options);
 
-// Position bits beyond positionBitsFor's that also keep every corner within the bound, up to two more, for a
+// Position bits beyond `fewest` (positionBitsFor's) that also keep every corner within the bound, up to two more, for a
 // primitive of at most 20000 triangles without a grid: Draco's size is not monotonic in the bits (merged corners,
 // other predictions; the grass cards' scene 19390 bytes at 14 bits, 16578 at 15), so the writer encodes with
 // these too and keeps the smallest.
-std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const WriteOptions& options);
+std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const WriteOptions& options, int fewest);
 
 void writeGltf(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);  // .gltf/.glb
 // What storing `primitive` as a mesh of its own adds to a glTF file written with `options`: its data (Draco's

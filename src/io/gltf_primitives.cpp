@@ -191,7 +191,8 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
         result = encode(draco::MESH_EDGEBREAKER_ENCODING, encoded);
         if (!complete(result) && method == DracoMethod::EdgebreakerOrNothing) return std::nullopt;
         // More bits within the bound may encode smaller (positionBitsWorthTrying): the smallest is kept.
-        for (const int more : complete(result) ? positionBitsWorthTrying(primitive, options) : std::vector<int>{}) {
+        for (const int more :
+             complete(result) ? positionBitsWorthTrying(primitive, options, positionBits) : std::vector<int>{}) {
             positionBits = more;
             draco::EncoderBuffer trial;
             std::unique_ptr<draco::Mesh> decoded = encode(draco::MESH_EDGEBREAKER_ENCODING, trial);

@@ -54,12 +54,11 @@ double positionErrorBound(const Primitive& primitive, const WriteOptions& option
                                boundsOfCorners(primitive.positions, primitive.triangles).diagonal().norm());
 }
 
-std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const WriteOptions& options) {
+std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const WriteOptions& options, int fewest) {
     std::vector<int> more;
     if (primitive.positionGrid || primitive.triangles.size() > kMostTriedTriangles) return more;
     const double bound = positionErrorBound(primitive, options);
     if (!(bound > 0)) return more;
-    const int fewest = positionBitsFor(primitive, options);
     for (int bits = fewest + 1; bits <= std::min(fewest + 2, kMostPositionBits); ++bits)
         if (largestQuantizationError(primitive, bits) <= bound) more.push_back(bits);
     return more;
