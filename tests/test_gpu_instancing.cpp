@@ -66,6 +66,28 @@ Eigen::Matrix4d placed(double angle, const Eigen::Vector3d& axis, const Eigen::V
     return t.matrix();
 }
 
+// The tetrahedron with each face cut in four, 16 triangles: a part small enough that a node of its own costs
+// more than its triangles among others, while an instance in a batch costs less.
+Primitive cutTetrahedron() {
+    Primitive part = tetrahedron();
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middleOf;  // each edge cut once
+    auto middle = [&](std::uint32_t a, std::uint32_t b) {
+        const auto [at, added] = middleOf.emplace(std::minmax(a, b), std::uint32_t(part.positions.size()));
+        if (added)  // pushed out from the corner at the origin, unevenly: no symmetry
+            part.positions.push_back((part.positions[a] + part.positions[b]) / 2 * (1.1 + 0.03 * double(a + 2 * b)));
+        return at->second;
+    };
+    for (std::size_t face = 0; face < 4; ++face) {  // each face cut in four
+        const Triangle t = part.triangles[face];
+        const std::uint32_t m0 = middle(t[0], t[1]), m1 = middle(t[1], t[2]), m2 = middle(t[2], t[0]);
+        part.triangles.push_back({t[0], m0, m2});
+        part.triangles.push_back({t[1], m1, m0});
+        part.triangles.push_back({t[2], m2, m1});
+        part.triangles[face] = {m0, m1, m2};
+    }
+    return part;
+}
+
 // `rigid` turned copies, `mirrored` mirrored ones and one sheared copy of the tetrahedron, each a named root.
 Scene copiesScene(int rigid, int mirrored, bool sheared, const Primitive& part = tetrahedron()) {
     Scene scene;
@@ -87,6 +109,22 @@ Scene copiesScene(int rigid, int mirrored, bool sheared, const Primitive& part =
         shear(0, 1) = 0.5;
         shear.topRightCorner<3, 1>() = Eigen::Vector3d(-1, 0, 0);
         add("sheared", shear);
+    }
+    return scene;
+}
+
+// `copies` of `part` turned about the vertical (grass cards, trees), each baked into a mesh of its own, drawn
+// by a root named `name` and its number (unnamed when `name` is empty).
+Scene bakedCopies(const Primitive& part, int copies, const std::string& name = "") {
+    Scene scene;
+    for (int i = 0; i < copies; ++i) {
+        const Eigen::Matrix4d at = placed(0.7 * i, {0, 0, 1}, {0.5 * (i % 20), 0.5 * (i / 20), 0});
+        scene.meshes.push_back({"", {transformPrimitive(part, at)}, "", {}});
+        Node node;
+        node.mesh = i;
+        if (!name.empty()) node.name = name + std::to_string(i);
+        scene.roots.push_back(i);
+        scene.nodes.push_back(node);
     }
     return scene;
 }
@@ -420,5 +458,57 @@ TEST_CASE("Compressed copies come out GPU-instanced, smaller, verified, and coun
     if (renderAvailable()) {
         // Mirrored instances drawn the right way out: as the same scene written a node per instance.
         checkRendersSame(folder / "apart.glb", folder / "batched.glb");
+    }
+}
+
+TEST_CASE(
+    "The plan prices a class's nodes as the batch they become: small parts baked many times are one stored "
+    "copy and a batch, and stay as they are without the extension",
+    "[io][gpu][compress]") {
+    // 200 copies of a 16-triangle part turned about the vertical (grass cards, trees), each baked into a mesh of
+    // its own: a node apiece (some 80 bytes of JSON) costs more than its triangles among the others (some 40), an
+    // instance in a batch (some 20) less.
+    TemporaryFolder folder;
+    const auto input = folder / "baked.glb";
+    writeScene(bakedCopies(cutTetrahedron(), 200), input);
+    CompressOptions options;
+    const CompressionReport batched = compressFile(input, folder / "batched.glb", options);
+    CHECK(batched.gpuInstancing.instances == 200);
+    CHECK(batched.stats.trianglesStored == 16);
+    CHECK(decompressFile(folder / "batched.glb", folder / "flat.glb", input).verified);
+    options.write.gpuInstancing = false;
+    const CompressionReport apart = compressFile(input, folder / "apart.glb", options);
+    CHECK(apart.gpuInstancing.batches == 0);
+    CHECK(apart.stats.trianglesStored == 3200);
+    CHECK(batched.outputBytes < apart.outputBytes);
+}
+
+TEST_CASE(
+    "Copies whose names alone make sharing cost more than storing them as they are (which loses the names "
+    "too) are shared without their names, with a warning, and names that fit are kept",
+    "[io][gpu][compress]") {
+    TemporaryFolder folder;
+    const auto names = [&](const std::filesystem::path& file) {
+        const nlohmann::json root = glbJson(file);
+        std::size_t count = 0;
+        for (const nlohmann::json* batch : batchNodes(root))
+            if (batch->contains("extras")) count += (*batch)["extras"]["instanceNames"].size();
+        return count;
+    };
+    SECTION("a 16-triangle part with long names: shared, its names dropped") {
+        writeScene(bakedCopies(cutTetrahedron(), 200, "a tuft of grass, card number "), folder / "named.glb");
+        const CompressionReport report = compressFile(folder / "named.glb", folder / "out.glb");
+        CHECK(report.gpuInstancing.instances == 200);
+        CHECK(names(folder / "out.glb") == 0);
+        CHECK(std::any_of(report.warnings.begin(), report.warnings.end(), [](const std::string& warning) {
+            return warning.find("200 node names") != std::string::npos;
+        }));
+        CHECK(decompressFile(folder / "out.glb", folder / "flat.glb", folder / "named.glb").verified);
+    }
+    SECTION("a 352-triangle part: shared with its names") {
+        writeScene(bakedCopies(blob(), 20, "part "), folder / "named.glb");
+        const CompressionReport report = compressFile(folder / "named.glb", folder / "out.glb");
+        CHECK(report.gpuInstancing.instances == 20);
+        CHECK(names(folder / "out.glb") == 20);
     }
 }

@@ -312,12 +312,11 @@ double gpuBatchBytes(const std::vector<Node>& nodes, const WriteOptions& options
     // has; translations within the allowance of their own extent, no larger than the scene's.
     BatchAllowance allowance{options.draco, options.instanceTranslationDeviation * extent.diagonal().norm(),
                              shortRotationError(rotations), 0, std::vector<double>(nodes.size(), 1.0)};
+    // Priced as the file's only batch, with every view and extension name its own: the plan weighs one mesh's
+    // nodes at a time, and a small scene's batch pays for them all.
     StreamsInUse inUse;
-    // Plain views are taken as there already, as the plan weighs one mesh's nodes among others.
-    for (int a = 0; a < 3; ++a)
-        for (int type : {kFloat, kShort}) inUse.streams.insert({a, std::string(), type});
     const double encodedBytes = chosenEncodings(instances, allowance, inUse).second;
-    return batchBytes(instances, names, mirrored, encodedBytes);
+    return batchBytes(instances, names, mirrored, encodedBytes) + fileBytesOfFirstBatch();
 }
 
 void writeGpuBatches(const GpuInstancingPlan& plan, const Scene& scene, const std::vector<int>& meshIndex,

@@ -160,6 +160,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     std::map<int, int> keptMesh;   // input mesh -> output mesh
     PrimitivesByKind unique;       // what is stored as it is
     std::set<std::string> merged;      // names of the input nodes whose parts are merged into `unique`
+    std::set<std::string> dropped;     // names of the input nodes whose tiles unnamed nodes draw
     const Node* mergedSource = nullptr;  // one of them
     for (const KeptInstance& kept : analysis.keptInstances) {
         if (!plan.shareInputInstances && tilesCanCarry(input.meshes[std::size_t(kept.mesh)])) {
@@ -184,6 +185,10 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         deviation.back() = part.deviation * analysis.diagonal;
         for (const PlacedCopy& node : part.nodes)
             result.instanceNodes.push_back(addRootNode(out, mesh, node.transform, node.source));
+        if (!part.named)
+            for (std::size_t t : part.tiles)
+                if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())
+                    dropped.insert(source->name);
         count(part, stats);
     }
     for (std::size_t t : plan.tilesAsTheyAre) {
@@ -203,6 +208,10 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(),
                     merged.size() == 1 ? mergedSource : nullptr);
     }
+    if (!dropped.empty())
+        out.warnings.push_back(std::to_string(dropped.size()) + " node names (e.g. '" + *dropped.begin() +
+                               "') not kept: their copies are drawn by instances without names, smaller than "
+                               "storing them as they are, which would lose them too");
     deviation.resize(out.meshes.size(), 0);
     if (plan.maxError > 0)
         shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceShare * analysis.diagonal,

@@ -36,6 +36,7 @@ double StorageCosts::node(const Eigen::Matrix4d& transform, const Node* source) 
 double StorageCosts::nodes(const std::vector<PlacedCopy>& copies) const {
     std::vector<Node> drawing(copies.size());
     for (std::size_t i = 0; i < copies.size(); ++i) {
+        drawing[i].mesh = 0;  // they draw one mesh (a node that draws none cannot be an instance)
         drawing[i].transform = copies[i].transform;
         if (!copies[i].source) continue;
         drawing[i].name = copies[i].source->name;

@@ -125,6 +125,9 @@ struct SharedPart {
     std::size_t copies = 0;          // copies of the part (class members, assembly copies, group elements)
     std::string group;               // SceneSymmetry: the scene's symmetry group, whose elements the nodes are
     double deviation = 0;            // the largest of a rebuilt tile from its original, relative to the diagonal
+    // false: the nodes leave out the names and extras of the input nodes their tiles came from (stored as they
+    // are, merged into one mesh per material, the tiles would lose them too; emitScene warns).
+    bool named = true;
 };
 
 // A plan: what is stored once and drawn by nodes, and what is stored as it is. Turned into a Scene by
