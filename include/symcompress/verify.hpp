@@ -21,7 +21,7 @@ struct SurfaceDigest {
     Eigen::AlignedBox3d bounds;
     double tolerance = 0;                                                  // relative to the bounds' diagonal
     double maxError = 0;  // the error budget the file was written within (relative), 0 when it had none
-    std::string json() const;                                              // {"symcompress_digest": {...}}
+    std::string json() const;  // {"symcompress_digest": [triangles, area, max error, tolerance, min, max]}
     static bool fromJson(const std::string& text, SurfaceDigest& digest);  // false when absent
 };
 

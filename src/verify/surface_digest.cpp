@@ -5,6 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace symcompress {
 
 namespace {
@@ -36,16 +39,17 @@ SurfaceDigest digestOf(const std::vector<WorldPrimitive>& soup, double tolerance
 }
 
 std::string SurfaceDigest::json() const {
-    // Nine digits: far below any tolerance the digest is checked with, and half the text of seventeen.
-    auto number = [](double x) { return rounded(x, 9); };
-    auto vector = [&](const Eigen::Vector3d& v) { return nlohmann::json{number(v.x()), number(v.y()), number(v.z())}; };
-    // The budget where there is one (what the decoder verifies against), else the tolerance.
-    nlohmann::json digest{{"triangles", triangles}, {"area", number(area)}};
-    if (maxError > 0)
-        digest["max_error"] = number(maxError);
-    else
-        digest["tolerance"] = number(tolerance);
-    if (!bounds.isEmpty()) digest["bbox"] = {{"min", vector(bounds.min())}, {"max", vector(bounds.max())}};
+    // One array, [triangles, area, budget, tolerance, min x y z, max x y z] (the budget where there is one,
+    // what the decoder verifies against, else 0 and the tolerance): the digest is in every file, whose JSON is
+    // most of a small one. The area to 7 digits and the bounds to a millionth of the diagonal: the decoder
+    // allows at least 2^-13 of either.
+    nlohmann::json digest{triangles, rounded(area, 7), rounded(maxError, 9),
+                          maxError > 0 ? 0.0 : rounded(tolerance, 9)};
+    if (!bounds.isEmpty()) {
+        const double step = std::pow(10.0, std::floor(std::log10(std::max(bounds.diagonal().norm(), 1e-300) * 1e-6)));
+        for (const Eigen::Vector3d& corner : {bounds.min(), bounds.max()})
+            for (int axis = 0; axis < 3; ++axis) digest.push_back(rounded(std::round(corner[axis] / step) * step, 15));
+    }
     return nlohmann::json{{"symcompress_digest", digest}}.dump();
 }
 
@@ -54,6 +58,19 @@ bool SurfaceDigest::fromJson(const std::string& text, SurfaceDigest& digest) {
     if (root.is_discarded() || !root.is_object() || !root.contains("symcompress_digest")) return false;
     const auto& d = root["symcompress_digest"];
     try {
+        if (d.is_array()) {
+            if (d.size() != 4 && d.size() != 10) return false;
+            digest.triangles = d[0].get<std::size_t>();
+            digest.area = d[1].get<double>();
+            digest.maxError = d[2].get<double>();
+            digest.tolerance = d[3].get<double>();
+            if (d.size() == 10)
+                digest.bounds =
+                    Eigen::AlignedBox3d(Eigen::Vector3d(d[4].get<double>(), d[5].get<double>(), d[6].get<double>()),
+                                        Eigen::Vector3d(d[7].get<double>(), d[8].get<double>(), d[9].get<double>()));
+            return true;
+        }
+        // The object of files written before 2026-12-03: {"triangles", "area", "max_error" or "tolerance", "bbox"}.
         digest.triangles = d.at("triangles").get<std::size_t>();
         digest.area = d.at("area").get<double>();
         digest.maxError = d.value("max_error", 0.0);
