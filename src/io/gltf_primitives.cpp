@@ -152,9 +152,10 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
 
     // The decoded mesh, or nothing when the encoder refuses (edgebreaker: "all triangles are degenerate").
     int positionBits = primitive.positionGrid ? primitive.positionGrid->bits : positionBitsFor(primitive, options);
+    const std::vector<int> speeds = dracoSpeedsWorthTrying(primitive, options);
+    int speed = speeds.front();
     auto encode = [&](int encoding, draco::EncoderBuffer& encoded) -> std::unique_ptr<draco::Mesh> {
         draco::ExpertEncoder encoder(*mesh);
-        const int speed = std::clamp(10 - options.compressionLevel, 0, 10);
         encoder.SetSpeedOptions(speed, speed);
         encoder.SetEncodingMethod(encoding);
         if (const auto& grid = primitive.positionGrid) {
@@ -190,16 +191,26 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     if (method != DracoMethod::Sequential) {
         result = encode(draco::MESH_EDGEBREAKER_ENCODING, encoded);
         if (!complete(result) && method == DracoMethod::EdgebreakerOrNothing) return std::nullopt;
-        // More bits within the bound may encode smaller (positionBitsWorthTrying): the smallest is kept.
-        for (const int more :
-             complete(result) ? positionBitsWorthTrying(primitive, options, positionBits) : std::vector<int>{}) {
-            positionBits = more;
+        // Other speeds (dracoSpeedsWorthTrying), then more bits within the bound at the best of them
+        // (positionBitsWorthTrying), may encode smaller: the smallest is kept.
+        auto tryEncoding = [&] {
             draco::EncoderBuffer trial;
             std::unique_ptr<draco::Mesh> decoded = encode(draco::MESH_EDGEBREAKER_ENCODING, trial);
-            if (complete(decoded) && trial.size() < encoded.size()) {
-                encoded = std::move(trial);
-                result = std::move(decoded);
-            }
+            if (!complete(decoded) || trial.size() >= encoded.size()) return false;
+            encoded = std::move(trial);
+            result = std::move(decoded);
+            return true;
+        };
+        if (complete(result)) {
+            int bestSpeed = speed;
+            for (std::size_t s = 1; s < speeds.size(); ++s)
+                if (speed = speeds[s]; tryEncoding()) bestSpeed = speed;
+            speed = bestSpeed;
+            const int fewestBits = positionBits;
+            int bestBits = fewestBits;
+            for (const int more : positionBitsWorthTrying(primitive, options, fewestBits))
+                if (positionBits = more; tryEncoding()) bestBits = more;
+            positionBits = bestBits;
         }
     }
     if (!complete(result)) {

@@ -1,6 +1,6 @@
 // The position bits of a Draco-compressed primitive: fixed (WriteOptions::positionBits), or the fewest that
 // keep every corner within an error bound and collapse no triangle, found by quantizing the corners as Draco
-// does (DracoGrid).
+// does (DracoGrid); and the other bits and speeds worth encoding a small primitive with.
 #include "draco_grid.hpp"
 #include "geometry/bounds.hpp"
 #include "symcompress/io.hpp"
@@ -12,8 +12,8 @@ namespace symcompress {
 namespace {
 
 constexpr int kMostPositionBits = 24;  // a float32's mantissa: more bits cannot place a corner closer
-// The most triangles of a primitive encoded again with more bits (positionBitsWorthTrying): each trial is an
-// encoding, and the plan measures parts by the writer.
+// The most triangles of a primitive encoded again with more bits or at other speeds (positionBitsWorthTrying,
+// dracoSpeedsWorthTrying): each trial is an encoding, and the plan measures parts by the writer.
 constexpr std::size_t kMostTriedTriangles = 20000;
 
 // The largest distance a corner moves through Draco's position quantization at `bits`, over the corners of the
@@ -62,6 +62,13 @@ std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const Write
     for (int bits = fewest + 1; bits <= std::min(fewest + 2, kMostPositionBits); ++bits)
         if (largestQuantizationError(primitive, bits) <= bound) more.push_back(bits);
     return more;
+}
+
+std::vector<int> dracoSpeedsWorthTrying(const Primitive& primitive, const WriteOptions& options) {
+    const int asked = std::clamp(10 - options.compressionLevel, 0, 10);
+    if (asked != 0 || primitive.triangles.size() > kMostTriedTriangles) return {asked};
+    // Speeds 2-3 and 8-10 encode alike (measured on the shared models); speed 0 first, the best on most.
+    return {0, 1, 2, 5, 8};
 }
 
 int positionBitsFor(const Primitive& primitive, const WriteOptions& options) {
