@@ -420,3 +420,22 @@ TEST_CASE("Draco's size is not monotonic in the position bits: more bits within 
     CHECK(std::filesystem::file_size(folder / "tried.glb") < std::filesystem::file_size(folder / "fewest.glb"));
     CHECK(largestMove(all, readScene(folder / "tried.glb").meshes[0].primitives[0]) <= bounded.maxPositionError);
 }
+
+TEST_CASE(
+    "A corner's move is measured to what float32 tells apart: a bound a fraction of a unit in the last place "
+    "below the move keeps the bits, a whole unit below does not",
+    "[budget][writers]") {
+    const Primitive points = pointsOnSphere(4);
+    TemporaryFolder folder;
+    WriteOptions fixed;
+    fixed.positionBits = 12;
+    writeScene(sceneOf(points), folder / "fixed.glb", fixed);
+    const double move = largestMove(points, readScene(folder / "fixed.glb").meshes[0].primitives[0]);
+    // Half a unit in the last place of a float32 coordinate near 13 (the points lie within 3 of (10, -4, 2)).
+    const double halfUlp = std::ldexp(1.0, -24) * 8;
+    WriteOptions bounded;
+    bounded.maxPositionError = move - halfUlp / 4;
+    CHECK(positionBitsFor(points, bounded) == 12);
+    bounded.maxPositionError = move - 4 * halfUlp;
+    CHECK(positionBitsFor(points, bounded) == 13);
+}
