@@ -9,6 +9,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -18,9 +20,21 @@ namespace symcompress {
 
 using Json = nlohmann::json;
 
+// Whole numbers as integers: 1 for 1.0, as glTF readers take any JSON number; two bytes each, in every factor,
+// transform and bound of a small file.
+inline void writeWholeNumbersAsIntegers(Json& json) {
+    if (json.is_number_float()) {
+        const double x = json.get<double>();
+        if (std::abs(x) < 0x1p53 && x == std::trunc(x)) json = static_cast<std::int64_t>(x);
+    } else if (json.is_structured()) {
+        for (Json& item : json) writeWholeNumbersAsIntegers(item);
+    }
+}
+
 // The JSON's text. Names come from files that need not be UTF-8 (X3D's DEFs, OBJ's groups): bytes that are
 // not UTF-8 are written as U+FFFD instead of making dump() throw.
-inline std::string jsonText(const Json& json, int indent = -1) {
+inline std::string jsonText(Json json, int indent = -1) {
+    writeWholeNumbersAsIntegers(json);
     return json.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
