@@ -56,8 +56,6 @@ bool sameOrientation(const Primitive& prototype, const Primitive& member, const 
     return difference <= 0.5 * size;
 }
 
-enum class Reproduction { Reproduced, Differs, CutOtherwise };
-
 Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitive& member, const Isometry& j,
                                       double tolerance, double* deviation) {
     if (prototype.triangles.size() != member.triangles.size() ||
@@ -244,12 +242,16 @@ std::optional<double> surfaceDeviation(const TileSurface& prototype, const TileS
     return std::max(*there, *back);
 }
 
+Reproduction reproduction(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance,
+                          bool geometryOnly, double* deviation) {
+    return geometryOnly ? reproducesWithAttributes(geometryOf(prototype), geometryOf(member), j, tolerance, deviation)
+                        : reproducesWithAttributes(prototype, member, j, tolerance, deviation);
+}
+
 bool reproduces(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance,
                 bool geometryOnly, double* deviation) {
-    const Reproduction reproduction =
-        geometryOnly ? reproducesWithAttributes(geometryOf(prototype), geometryOf(member), j, tolerance, deviation)
-                     : reproducesWithAttributes(prototype, member, j, tolerance, deviation);
-    if (reproduction != Reproduction::CutOtherwise) return reproduction == Reproduction::Reproduced;
+    const Reproduction corners = reproduction(prototype, member, j, tolerance, geometryOnly, deviation);
+    if (corners != Reproduction::CutOtherwise) return corners == Reproduction::Reproduced;
     // The same corners cut into other triangles: the same surface where it is within the tolerance of the
     // other's and its attributes agree as fields.
     const TileSurface prototypeSurface(prototype), memberSurface(member);

@@ -12,6 +12,15 @@
 
 namespace symcompress {
 
+enum class Reproduction { Reproduced, Differs, CutOtherwise };
+
+// Whether `prototype` placed by j reproduces `member` triangle for triangle, corner by corner, within
+// `tolerance` (a distance), facing the same way (with `geometryOnly`, positions and faces only), or has the same
+// corners cut into other triangles (a quad's other diagonal), for the surface check to decide. With `deviation`,
+// the largest distance of a member vertex from its match.
+Reproduction reproduction(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance,
+                          bool geometryOnly, double* deviation = nullptr);
+
 // Whether `prototype` placed by j reproduces `member` triangle for triangle, corner by corner, within
 // `tolerance` (a distance), facing the same way; with `geometryOnly`, positions and faces only, else normals,
 // texture coordinates and colours too. Where the same corners are cut into other triangles (a quad's other

@@ -35,8 +35,9 @@ private:
 
 // The placement of the prototype onto member i that the member check accepts, if any, and the member's
 // deviation under it (relative to the diagonal): every J g (g in the prototype's group) places the geometry
-// (paper property 4); the attributes and the faces' orientation pick among them. A member tessellated
-// otherwise is checked as a surface (surfaceDeviation), its deviation then measured.
+// (paper property 4); the attributes and the faces' orientation pick among them, a placement that reproduces
+// the member corner by corner first. A member tessellated otherwise, or whose corners are cut into other
+// triangles, is checked as a surface (surfaceDeviation, its surfaces built once), its deviation then measured.
 std::optional<std::pair<Isometry, double>> acceptedPlacement(const PlanContext& context, const CongruenceClass& c,
                                                              std::size_t i, const Primitive& prototype,
                                                              const Primitive& member, LazySurface& prototypeSurface) {
@@ -47,7 +48,8 @@ std::optional<std::pair<Isometry, double>> acceptedPlacement(const PlanContext& 
         candidate.linear = c.placements[i].linear * g.linear;
         candidate.translation = c.placements[i].linear * (shape.moments.centroid - g.linear * shape.moments.centroid) +
                                 c.placements[i].translation;
-        if (reproduces(prototype, member, candidate, context.tolerance(), context.options.geometryOnly))
+        if (reproduction(prototype, member, candidate, context.tolerance(), context.options.geometryOnly) ==
+            Reproduction::Reproduced)
             return std::pair{candidate, c.deviations[i]};
         candidates.push_back(candidate);
     }
