@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace symcompress {
 namespace {
@@ -92,17 +93,36 @@ Symmetry describeOrthogonal(const Eigen::Matrix3d& linear) {
 }
 
 std::vector<Eigen::Matrix3d> closeGroup(std::vector<Eigen::Matrix3d> generators, std::size_t limit) {
-    std::vector<Eigen::Matrix3d> group{Eigen::Matrix3d::Identity()};
-    auto contains = [&](const Eigen::Matrix3d& m) {
-        return std::any_of(group.begin(), group.end(), [&](const Eigen::Matrix3d& g) { return (g - m).norm() < kSameElement; });
+    std::vector<Eigen::Matrix3d> group;
+    // The elements by one projection of their entries (weights of unit length): two within kSameElement of
+    // each other project within kSameElement (Cauchy-Schwarz), so only those need comparing. The detector
+    // closes the group again at every map it accepts, and a linear search made that quadratic in the group's
+    // order (the house's round parts: a fifth of its time).
+    std::multimap<double, std::size_t> byProjection;
+    auto projection = [](const Eigen::Matrix3d& m) {
+        static const Eigen::Matrix3d weights =
+            (Eigen::Matrix3d() << 0.31, -0.47, 0.12, 0.58, 0.23, -0.19, -0.36, 0.27, 0.21).finished().normalized();
+        return weights.cwiseProduct(m).sum();
     };
+    auto contains = [&](const Eigen::Matrix3d& m) {
+        const double at = projection(m);
+        const auto last = byProjection.upper_bound(at + kSameElement);
+        for (auto it = byProjection.lower_bound(at - kSameElement); it != last; ++it)
+            if ((group[it->second] - m).norm() < kSameElement) return true;
+        return false;
+    };
+    auto add = [&](const Eigen::Matrix3d& m) {
+        byProjection.emplace(projection(m), group.size());
+        group.push_back(m);
+    };
+    add(Eigen::Matrix3d::Identity());
     for (const auto& g : generators)
-        if (!contains(g)) group.push_back(g);
+        if (!contains(g)) add(g);
     // Products of everything with the generators until nothing new appears.
     for (std::size_t i = 0; i < group.size() && group.size() <= limit; ++i)
         for (const auto& g : generators) {
             const Eigen::Matrix3d product = group[i] * g;
-            if (!contains(product)) group.push_back(product);
+            if (!contains(product)) add(product);
             if (group.size() > limit) break;
         }
     return group;
