@@ -167,8 +167,9 @@ TEST_CASE("gltfMeshBytes and x3dMeshBytes are what a mesh of its own adds to the
         const auto measure = [&](const Primitive& p) { return double(x3d ? x3dMeshBytes(p, options) : gltfMeshBytes(p, options)); };
         CHECK(measure(part) == Approx(added).margin(c.margin));
         CHECK(measure(part) < added);
-        // Normals and texture coordinates are measured: a bare bolt costs far fewer bytes.
-        CHECK(measure(bare) < 0.7 * measure(part));
+        // Normals and texture coordinates are measured: a bare bolt costs far fewer bytes (0.73 of them, the
+        // texture coordinates written as float32 text).
+        CHECK(measure(bare) < 0.75 * measure(part));
     }
 }
 

@@ -76,10 +76,16 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
         for (const Primitive& primitive : mesh.primitives) {
             // X3D writes the texture coordinate sets its material's textures read (x3d_materials.hpp).
             std::set<std::string> written;
-            if (format == FileFormat::X3d && primitive.material >= 0)
-                for (const x3d::TexcoordChannel& channel :
-                     x3d::materialTextures(scene.materials[std::size_t(primitive.material)]).channels)
+            // And TANGENT, as X3D 4's Tangent, where a normal texture reads it (with the normals).
+            if (format == FileFormat::X3d && primitive.material >= 0) {
+                const x3d::MaterialTextures textures =
+                    x3d::materialTextures(scene.materials[std::size_t(primitive.material)]);
+                for (const x3d::TexcoordChannel& channel : textures.channels)
                     written.insert("TEXCOORD_" + std::to_string(channel.set));
+                for (const x3d::TextureField& field : textures.fields)
+                    if (std::string(field.field) == "normalTexture" && !primitive.normals.empty())
+                        written.insert("TANGENT");
+            }
             for (const VertexAttribute& attribute : primitive.attributes)
                 if (!written.count(attribute.name)) attributes.insert(attribute.name);
         }

@@ -306,9 +306,14 @@ int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::
         candidate.doubleSided = existing.doubleSided;
         return candidate == existing;
     });
-    if (same != scene_.materials.end()) return entry->second = static_cast<int>(same - scene_.materials.begin());
+    if (same != scene_.materials.end()) {
+        entry->second = static_cast<int>(same - scene_.materials.begin());
+        if (physical) physicalMaterials_.insert(entry->second);
+        return entry->second;
+    }
     scene_.materials.push_back(material);
     entry->second = static_cast<int>(scene_.materials.size()) - 1;
+    if (physical) physicalMaterials_.insert(entry->second);
     return entry->second;
 }
 

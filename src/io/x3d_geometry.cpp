@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <tuple>
 
 namespace symcompress {
@@ -15,6 +16,25 @@ namespace {
 
 // More texture coordinate sets than a material's five textures can use are not kept (TEXCOORD_0 to _7).
 constexpr std::size_t kMaxTexcoordSets = 8;
+
+// A face of an IndexedFaceSet whose `convex` is TRUE (the default) as the browser cuts it: a fan from its first
+// corner (X_ITE's triangulateConvexPolygon). Where a diagonal lies matters: a non-planar quad bends along it,
+// and the texture of a small alpha-blended card is sampled otherwise along it (the grass's cards: 1.5% of their
+// pixels). Triangles of zero area are left out; none where the face is not convex after all (a fan triangle
+// turns against the face's Newell normal), which triangulatePolygon then cuts correctly.
+std::optional<std::vector<Triangle>> convexFan(const std::vector<Eigen::Vector3d>& polygon) {
+    Eigen::Vector3d newell = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < polygon.size(); ++k) newell += polygon[k].cross(polygon[(k + 1) % polygon.size()]);
+    if (!(newell.norm() > 0)) return std::nullopt;
+    std::vector<Triangle> fan;
+    for (std::uint32_t k = 1; k + 1 < polygon.size(); ++k) {
+        const Eigen::Vector3d normal = (polygon[k] - polygon[0]).cross(polygon[k + 1] - polygon[0]);
+        const double along = normal.dot(newell);
+        if (along < -1e-12 * normal.norm() * newell.norm()) return std::nullopt;
+        if (normal.norm() > 0 && along > 0) fan.push_back({0, k, k + 1});
+    }
+    return fan;
+}
 
 }  // namespace
 
@@ -60,6 +80,8 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
     const std::size_t pointCount = points.size() / 3;
     const pugi::xml_node normalNode = child({"Normal"});
     const pugi::xml_node colorNode = child({"Color", "ColorRGBA"});
+    // X3D 4's Tangent (xyz and the handedness w, as glTF's TANGENT), indexed as the normals are.
+    const pugi::xml_node tangentNode = child({"Tangent"});
     // Texture coordinate sets: one TextureCoordinate, or a MultiTextureCoordinate's (X3D 4 materials pick theirs
     // by mapping); the first is TEXCOORD_0, the others TEXCOORD_1, ... All are indexed as the first is.
     std::vector<std::vector<double>> texcoordSets;
@@ -96,12 +118,14 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
         }
     std::vector<double> normalValues = normalNode ? numbers(normalNode, "vector") : std::vector<double>();
     const std::vector<double> colorValues = colorNode ? numbers(colorNode, "color") : std::vector<double>();
+    const std::vector<double> tangentValues = tangentNode ? numbers(tangentNode, "vector") : std::vector<double>();
     const int colorComponents = colorNode && std::strcmp(colorNode.name(), "ColorRGBA") == 0 ? 4 : 3;
     const std::vector<double> texcoordValues = texcoordSets.empty() ? std::vector<double>() : texcoordSets[0];
     if (!texcoordValues.empty())
         for (std::size_t set = 1; set < texcoordSets.size(); ++set)
             out.attributes.push_back({"TEXCOORD_" + std::to_string(set), 2, {}});
     const bool ccw = boolean(geometry, "ccw", true);
+    const bool convex = indexedFaces && boolean(geometry, "convex", true);
     const bool normalPerVertex = boolean(geometry, "normalPerVertex", true);
     const bool colorPerVertex = boolean(geometry, "colorPerVertex", true);
 
@@ -146,9 +170,10 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
     };
 
     struct CornerKey {
-        std::int64_t point, normal, color, texcoord;
+        std::int64_t point, normal, color, texcoord, tangent;
         bool operator<(const CornerKey& o) const {
-            return std::tie(point, normal, color, texcoord) < std::tie(o.point, o.normal, o.color, o.texcoord);
+            return std::tie(point, normal, color, texcoord, tangent) <
+                   std::tie(o.point, o.normal, o.color, o.texcoord, o.tangent);
         }
     };
     std::map<CornerKey, std::uint32_t> vertexOf;
@@ -161,7 +186,12 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
         if (creaseAngle > 0) std::tie(normalValues, madeNormalOfCorner) = creasedNormals(faces, points, creaseAngle, ccw);
     }
     const bool hasNormals = !normalValues.empty(), hasColors = !colorValues.empty(),
-               hasTexcoords = !texcoordValues.empty();
+               hasTexcoords = !texcoordValues.empty(), hasTangents = !tangentValues.empty();
+    const std::size_t tangentAttribute = out.attributes.size();
+    if (hasTangents) {
+        if (tangentValues.size() % 4) fail(tangentNode, "the number of vector values is not a multiple of 4");
+        out.attributes.push_back({"TANGENT", 4, {}});
+    }
     std::size_t cornerInCoordIndex = 0, corner = 0;
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
@@ -172,19 +202,21 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
             if (point < 0 || static_cast<std::size_t>(point) >= pointCount)
                 fail(geometry, "coordinate index " + std::to_string(point) + " out of range (" +
                                    std::to_string(pointCount) + " points)");
-            CornerKey key{point, -1, -1, -1};
+            CornerKey key{point, -1, -1, -1, -1};
             if (hasNormals)
                 key.normal = !madeNormalOfCorner.empty()
                                  ? madeNormalOfCorner[corner]
                                  : attributeIndex(normalIndex, normalPerVertex, f, cornerInCoordIndex, point);
             if (hasColors) key.color = attributeIndex(colorIndex, colorPerVertex, f, cornerInCoordIndex, point);
             if (hasTexcoords) key.texcoord = attributeIndex(texcoordIndex, true, f, cornerInCoordIndex, point);
+            if (hasTangents) key.tangent = attributeIndex(normalIndex, normalPerVertex, f, cornerInCoordIndex, point);
             auto check = [&](std::int64_t index, std::size_t available, const char* what) {
                 if (index < 0 || static_cast<std::size_t>(index) >= available)
                     fail(geometry, std::string(what) + " index " + std::to_string(index) + " out of range");
             };
             if (hasNormals) check(key.normal, normalValues.size() / 3, "normal");
             if (hasColors) check(key.color, colorValues.size() / colorComponents, "colour");
+            if (hasTangents) check(key.tangent, tangentValues.size() / 4, "tangent");
             if (hasTexcoords)
                 for (const std::vector<double>& set : texcoordSets)
                     check(key.texcoord, set.size() / 2, "texture coordinate");
@@ -194,6 +226,10 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
                 if (hasNormals)
                     out.normals.emplace_back(normalValues[3 * key.normal], normalValues[3 * key.normal + 1],
                                              normalValues[3 * key.normal + 2]);
+                if (hasTangents)
+                    out.attributes[tangentAttribute].values.insert(out.attributes[tangentAttribute].values.end(),
+                                                                   tangentValues.begin() + 4 * key.tangent,
+                                                                   tangentValues.begin() + 4 * key.tangent + 4);
                 if (hasColors) {
                     Eigen::Vector4d color(1, 1, 1, 1);
                     for (int c = 0; c < colorComponents; ++c) color[c] = colorValues[colorComponents * key.color + c];
@@ -212,7 +248,9 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
             polygon.push_back(out.positions[entry->second]);
         }
         ++cornerInCoordIndex;  // the -1 that ended the face
-        const auto triangles = triangulatePolygon(polygon);
+        std::optional<std::vector<Triangle>> fan;
+        if (convex && polygon.size() > 3) fan = convexFan(polygon);
+        const std::vector<Triangle> triangles = fan ? *fan : triangulatePolygon(polygon);
         if (triangles.empty()) ++degenerateFaces_;
         for (const Triangle& t : triangles)
             out.triangles.push_back(ccw ? Triangle{local[t[0]], local[t[1]], local[t[2]]}

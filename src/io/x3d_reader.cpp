@@ -1,6 +1,7 @@
 // X3D reader (XML encoding, X3D 3.x and 4.0). Keeps the node hierarchy with local transforms; a USE of
 // a Shape or geometry reuses the same symcompress Mesh, so that the file's instancing survives.
 #include "x3d_reader.hpp"
+#include "common/color_space.hpp"
 #include "common/mime_type.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/detail/triangulate_polygon.hpp"
@@ -338,9 +339,11 @@ void X3dReader::readInline(const pugi::xml_node& source, std::vector<int>& into)
         if (inlineStack_.count(target)) fail(node, "Inline of '" + url + "' includes itself");
         inlineStack_.insert(target);
         X3dReader inlined(target, scene_, inlineStack_);
+        inlined.usedMaterials_ = usedMaterials_;  // the scene's materials, which its shapes may share
         Node group;
         group.name = node.attribute("DEF").value();
         group.children = inlined.read();
+        usedMaterials_ = inlined.usedMaterials_;
         inlineStack_.erase(target);
         scene_.nodes.push_back(group);
         into.push_back(static_cast<int>(scene_.nodes.size()) - 1);
@@ -369,15 +372,58 @@ int X3dReader::readShape(const pugi::xml_node& shape) {
     std::vector<std::string> texcoordMappings;
     if (!readGeometry(geometry, primitive, texcoordMappings)) return -1;
     // After the geometry: an X3D 4 material's textures name its texture coordinate sets by their mapping.
-    const int material = readMaterial(shape, texcoordMappings);
+    int material = readMaterial(shape, texcoordMappings);
+    // Double-sidedness is the geometry's (solid='false'): a material shared with shapes of the other kind is
+    // drawn from a copy that differs in it alone, so that a solid shape's back faces stay culled (the Chevy's
+    // roof rails, drawn with a material that a box with solid='false' also uses).
+    if (material >= 0) material = withSidedness(material, !boolean(geometry, "solid", true));
     primitive.material = material;
-    if (material >= 0 && !boolean(geometry, "solid", true)) scene_.materials[material].doubleSided = true;
+    if (!primitive.colors.empty()) vertexColorsAsGltf(primitive);
     Mesh mesh;
     mesh.name = shape.attribute("DEF").value();
     mesh.primitives.push_back(std::move(primitive));
     scene_.meshes.push_back(std::move(mesh));
     entry->second = static_cast<int>(scene_.meshes.size()) - 1;
     return entry->second;
+}
+
+int X3dReader::withSidedness(int material, bool doubleSided) {
+    // A material no shape draws yet takes the sidedness of the first that does.
+    if (usedMaterials_.insert(material).second) scene_.materials[std::size_t(material)].doubleSided = doubleSided;
+    if (scene_.materials[std::size_t(material)].doubleSided == doubleSided) return material;
+    Material wanted = scene_.materials[std::size_t(material)];
+    wanted.doubleSided = doubleSided;
+    const auto same = std::find(scene_.materials.begin(), scene_.materials.end(), wanted);
+    const int index = static_cast<int>(same - scene_.materials.begin());
+    if (same == scene_.materials.end()) scene_.materials.push_back(wanted);
+    if (physicalMaterials_.count(material)) physicalMaterials_.insert(index);
+    usedMaterials_.insert(index);
+    return index;
+}
+
+// X3D's Color takes the place of Phong's diffuse colour (and of UnlitMaterial's emissive colour, and is drawn as
+// it is without a material), sRGB-encoded as that colour is; glTF's COLOR_0 is linear and multiplies the base
+// colour. So each value is decoded and divided by the base colour (where a channel of it is 0, glTF cannot draw
+// the colour: decoded only, with a note). With PhysicalMaterial, Color is glTF's COLOR_0: linear, multiplying.
+void X3dReader::vertexColorsAsGltf(Primitive& primitive) {
+    if (physicalMaterials_.count(primitive.material)) return;
+    const Eigen::Vector3d base =
+        primitive.material >= 0
+            ? Eigen::Vector3d(scene_.materials[std::size_t(primitive.material)].baseColorFactor.head<3>())
+            : Eigen::Vector3d::Ones();
+    bool lost = false;
+    for (Eigen::Vector4d& color : primitive.colors)
+        for (int c = 0; c < 3; ++c) {
+            color[c] = srgbToLinear(color[c]);
+            if (base[c] > 0)
+                color[c] /= base[c];
+            else
+                lost = lost || color[c] > 0;
+        }
+    if (lost)
+        notes_.insert(
+            "vertex colours on a Material whose diffuseColor has a channel at 0: glTF multiplies its "
+            "COLOR_0 by that channel, which draws it black");
 }
 
 Scene readX3d(const fs::path& file) {

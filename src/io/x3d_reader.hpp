@@ -58,6 +58,10 @@ private:
     bool readGeometry(const pugi::xml_node& geometry, Primitive& out, std::vector<std::string>& texcoordMappings);
     void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces,
                      std::vector<std::string>& texcoordMappings);
+    // `material`, or the material that differs from it in its double-sidedness alone (found or added).
+    int withSidedness(int material, bool doubleSided);
+    // A shape's Color values as glTF's COLOR_0, once its material is known (docs/scene-model.md, "Colour spaces").
+    void vertexColorsAsGltf(Primitive& primitive);
     void readInline(const pugi::xml_node& node, std::vector<int>& into);
     void readAnimations();
     int readViewpoint(const pugi::xml_node& viewpoint);
@@ -72,6 +76,8 @@ private:
     std::map<std::string, pugi::xml_node> definitions_;
     std::map<std::string, std::vector<int>> nodesOfTransform_;  // a DEF'd Transform's scene nodes (one per USE)
     std::map<const void*, int> meshOfShape_, materialOfAppearance_, textureOfNode_;
+    std::set<int> physicalMaterials_;  // materials read from a PhysicalMaterial (vertexColorsAsGltf)
+    std::set<int> usedMaterials_;      // materials a shape draws (withSidedness)
     std::map<std::string, int> skippedGeometry_;
     std::map<std::string, int> notKept_;  // other nodes with nothing to carry them in the scene model
     std::set<std::string> useStack_;

@@ -3,15 +3,16 @@
 // and a USE afterwards; node transforms become Transforms (any affine matrix, mirrors included, through
 // rotation, scale and scaleOrientation); animations become a TimeSensor, interpolators and ROUTEs. `.x3dz`
 // is the same, gzip-compressed.
+#include "common/color_space.hpp"
+#include "common/markup_text.hpp"
+#include "common/number_text.hpp"
+#include "image_reference.hpp"
+#include "rotation_and_scale.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
-#include "image_reference.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "x3d_crease_normals.hpp"
 #include "x3d_materials.hpp"
-#include "rotation_and_scale.hpp"
-#include "common/markup_text.hpp"
-#include "common/number_text.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -633,6 +634,15 @@ private:
             for (std::size_t v = 0; v < texcoords.size(); ++v) texcoords[v] = channelTexcoord(primitive, channel, v);
         }
         const std::vector<Eigen::Vector2d>& texcoords = texcoordSets[0];
+        // glTF's TANGENT as X3D 4's Tangent where a normal texture reads it (the file is X3D 4 then): the browser
+        // would make other tangents from the texture coordinates' derivatives, and bend the normals otherwise.
+        const VertexAttribute* tangents = nullptr;
+        if (primitive.material >= 0 && !primitive.normals.empty())
+            for (const x3d::TextureField& field :
+                 x3d::materialTextures(scene_.materials[std::size_t(primitive.material)]).fields)
+                if (std::string(field.field) == "normalTexture")
+                    for (const VertexAttribute& attribute : primitive.attributes)
+                        if (attribute.name == "TANGENT" && attribute.components == 4) tangents = &attribute;
         // The browser makes its normals from the positions as written: where those the budget's places give
         // would turn them too far, up to two places more, cheaper than the normals' text.
         const std::optional<int> fewest = positionDecimals(primitive, options_);
@@ -644,7 +654,8 @@ private:
                 for (Eigen::Vector3d& p : positions)
                     p = p.unaryExpr([&](double x) { return roundedDecimals(x, *fewest + more); });
             // Points join vertices with the same coordinates of one set only.
-            if (texcoordSets.size() == 1) creased = asCreasedFaceSet(primitive, positions, texcoords);
+            // Tangents go beside the normals, vertex by vertex.
+            if (texcoordSets.size() == 1 && !tangents) creased = asCreasedFaceSet(primitive, positions, texcoords);
         }
         if (!creased && fewest)
             for (Eigen::Vector3d& p : positions) p = p.unaryExpr([&](double x) { return roundedDecimals(x, *fewest); });
@@ -698,7 +709,22 @@ private:
             writeValues("Normal", "vector", primitive.normals, 3, [](const Eigen::Vector3d& n) -> Eigen::Vector3d {
                 return n.unaryExpr([](double x) { return roundedDecimals(x, kNormalDecimals); });
             });
-        const auto flipped = [](const Eigen::Vector2d& t) { return Eigen::Vector2d(t.x(), 1 - t.y()); };
+        if (tangents) {
+            std::vector<Eigen::Vector4d> values(primitive.positions.size());
+            for (std::size_t v = 0; v < values.size(); ++v)
+                values[v] = Eigen::Map<const Eigen::Vector4d>(tangents->values.data() + 4 * v);
+            // Unit directions to the normals' decimals, the handedness as it is.
+            writeValues("Tangent", "vector", values, 4, [](const Eigen::Vector4d& t) -> Eigen::Vector4d {
+                Eigen::Vector4d out = t;
+                for (int c = 0; c < 3; ++c) out[c] = roundedDecimals(t[c], kNormalDecimals);
+                return out;
+            });
+        }
+        // v flipped back to X3D's, each value as float32 (as glTF stores it and browsers draw it), printed as the
+        // shortest float: 1 - (1 - 0.0015) as 0.0015, not 0.0014999999999999458.
+        const auto flipped = [](const Eigen::Vector2d& t) {
+            return Eigen::Vector2d(asFloat32(t.x()), asFloat32(1 - t.y()));
+        };
         if (!texcoords.empty() && texcoordSets.size() == 1)
             writeValues("TextureCoordinate", "point", texcoords, 2, flipped);
         if (!texcoords.empty() && texcoordSets.size() > 1) {
@@ -711,11 +737,40 @@ private:
             indent(depth + 2);
             out_ += "</MultiTextureCoordinate>\n";
         }
-        if (!primitive.colors.empty()) writeValues("ColorRGBA", "color", primitive.colors, 4, same);
+        if (!primitive.colors.empty()) writeColors(primitive, written, depth + 2);
         indent(depth + 1);
         out_ += faceSet ? "</IndexedFaceSet>\n" : "</IndexedTriangleSet>\n";
         indent(depth);
         out_ += "</Shape>\n";
+    }
+
+    // glTF's COLOR_0 (linear, multiplying the base colour) as X3D's Color, or ColorRGBA where an alpha is below 1:
+    // as it is for PhysicalMaterial, which multiplies it the same; for Phong's Material and UnlitMaterial, whose
+    // colour it takes the place of, the base colour multiplied in and sRGB-encoded as that colour is, each value
+    // the shortest that the reader's decoding and division by the base colour (vertexColorsAsGltf) give back.
+    void writeColors(const Primitive& primitive, const std::vector<std::uint32_t>& written, int depth) {
+        const Material* material =
+            primitive.material >= 0 ? &scene_.materials[std::size_t(primitive.material)] : nullptr;
+        const bool linear = material && x3d::needsPhysicalMaterial(*material);
+        const Eigen::Vector3d base =
+            material ? Eigen::Vector3d(material->baseColorFactor.head<3>()) : Eigen::Vector3d::Ones();
+        const bool rgba =
+            std::any_of(written.begin(), written.end(), [&](std::uint32_t v) { return primitive.colors[v][3] != 1; });
+        indent(depth);
+        out_ += rgba ? "<ColorRGBA color='" : "<Color color='";
+        for (std::size_t i = 0; i < written.size(); ++i) {
+            if (i) out_ += ' ';
+            Eigen::Vector4d color = primitive.colors[written[i]];
+            if (!linear)
+                for (int c = 0; c < 3; ++c) {
+                    const double b = base[c], l = color[c];
+                    color[c] = b > 0 ? shortestReadingBack(linearToSrgb(l * b), l,
+                                                           [b](double s) { return srgbToLinear(s) / b; })
+                                     : 0;
+                }
+            appendVector(out_, color, rgba ? 4 : 3);
+        }
+        out_ += "'/>\n";
     }
 
     const Scene& scene_;

@@ -30,7 +30,11 @@ Primitive withFaceNormals(const Primitive& part) {
 }  // namespace
 
 void PrimitivesByKind::add(const Primitive& part) {
-    append(parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty()}], part);
+    std::string attributes;
+    for (const VertexAttribute& attribute : part.attributes)
+        attributes += attribute.name + ":" + std::to_string(attribute.components) + ";";
+    append(parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty(), attributes}],
+           part);
 }
 
 void PrimitivesByKind::append(Primitive& into, const Primitive& part) {
@@ -40,14 +44,23 @@ void PrimitivesByKind::append(Primitive& into, const Primitive& part) {
     into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
     into.texcoords.insert(into.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
     into.colors.insert(into.colors.end(), part.colors.begin(), part.colors.end());
+    if (into.attributes.empty())
+        for (const VertexAttribute& attribute : part.attributes)
+            into.attributes.push_back({attribute.name, attribute.components, {}});
+    for (std::size_t a = 0; a < part.attributes.size(); ++a)
+        into.attributes[a].values.insert(into.attributes[a].values.end(), part.attributes[a].values.begin(),
+                                         part.attributes[a].values.end());
     for (const Triangle& t : part.triangles) into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
 void PrimitivesByKind::moveInto(Mesh& mesh) {
     // A small flat part beside its material's smooth one is drawn by it, shaded as before.
     for (auto part = parts_.begin(); part != parts_.end();) {
-        const auto [material, normals, texcoords, colors] = part->first;
-        const auto smooth = normals ? parts_.end() : parts_.find({material, true, texcoords, colors});
+        const auto [material, normals, texcoords, colors, attributes] = part->first;
+        // (withFaceNormals keeps no other attribute.)
+        const auto smooth = normals || !attributes.empty()
+                                ? parts_.end()
+                                : parts_.find({material, true, texcoords, colors, attributes});
         if (smooth == parts_.end() || part->second.triangles.size() > kSmallFlatPart) {
             ++part;
             continue;

@@ -5,6 +5,7 @@
 #include "symcompress/scene.hpp"
 
 #include <map>
+#include <string>
 #include <tuple>
 
 namespace symcompress {
@@ -20,7 +21,8 @@ public:
     void moveInto(Mesh& mesh);
 
 private:
-    std::map<std::tuple<int, bool, bool, bool>, Primitive> parts_;
+    // Material, normals, texture coordinates, colours, and the other attributes' names and sizes.
+    std::map<std::tuple<int, bool, bool, bool, std::string>, Primitive> parts_;
 };
 
 // Triangle t of the part on its own: its three vertices with their attributes (writers store every vertex

@@ -124,6 +124,11 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
         analysis.absoluteTolerance = options.tolerance * tilesDiagonal(analysis.tiles);
     }
     analysis.diagonal = options.tolerance > 0 ? analysis.absoluteTolerance / options.tolerance : 0;
+    // No tiles (every mesh set aside, with attributes the tiles cannot carry yet, as the cat's X3D tangents): the
+    // whole drawing's diagonal, as the digest (and symdecompress's check) measures it, so that the kept meshes are
+    // still written within the budget instead of to every digit.
+    if (!(analysis.diagonal > 0) && !analysis.digest.bounds.isEmpty())
+        analysis.diagonal = analysis.digest.bounds.diagonal().norm();
     analysis.secondsClasses = since(start);
     return analysis;
 }

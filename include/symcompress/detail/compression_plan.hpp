@@ -99,6 +99,9 @@ struct PlanOptions {
     bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
     bool regions = true;        // fundamental regions where they pay
     bool assemblies = true;     // the scene's symmetry and repeated assemblies
+    // A kept mesh (KeptInstance) that one node draws at a rigid placement stored in world space with the parts
+    // stored as they are (false: its own mesh and node; the job measures both where there are such meshes).
+    bool mergeKeptMeshes = true;
     // > 0: the error budget (relative to the diagonal) that each stored mesh's quantization shares with the
     // deviation of the copies it rebuilds (CompressOptions::maxError); 0: the writer's fixed bits.
     double maxError = 0;
@@ -134,6 +137,7 @@ struct SharedPart {
 // emitScene.
 struct CompressionPlan {
     bool shareInputInstances = true;          // false: the input's own shared meshes stored as they are too
+    bool mergeKeptMeshes = true;              // PlanOptions::mergeKeptMeshes
     std::vector<SharedPart> shared;           // in the order they are written
     std::vector<std::size_t> tilesAsTheyAre;  // in the order they are merged (one mesh per material)
     std::size_t classes = 0, symmetricClasses = 0, attributeMismatches = 0, notWorthInstancing = 0;
