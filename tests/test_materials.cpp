@@ -2,6 +2,7 @@
 // and KHR_texture_transform, samplers, material extensions with their textures, extensionsRequired, extras
 // and unreadable images, the attributes beyond the core ones (tangents, more texture coordinate sets, joints
 // and weights), skins and morph targets, compared by value between the input and what comes out.
+#include "io/gltf_builder.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
@@ -52,8 +53,10 @@ std::string describe(const Scene& scene, const Material& m) {
     const auto refs = m.textureRefs();
     for (int s = 0; s < 5; ++s) out << "\n  " << slots[s] << ": " << describeUse(scene, *refs[std::size_t(s)]);
     for (const MaterialExtension& extension : m.extensions) {
-        out << "\n  " << extension.name << (extension.required ? " (required) " : " ")
-            << nlohmann::json::parse(extension.json).dump();
+        // By value: the writer prints whole numbers as integers (1 for 1.0).
+        nlohmann::json values = nlohmann::json::parse(extension.json);
+        writeWholeNumbersAsIntegers(values);
+        out << "\n  " << extension.name << (extension.required ? " (required) " : " ") << values.dump();
         for (const auto& [key, use] : extension.textures) out << "\n    " << key << ": " << describeUse(scene, use);
     }
     return out.str();
