@@ -65,14 +65,21 @@ std::optional<std::pair<Isometry, double>> acceptedPlacement(const PlanContext& 
 // The prototype's symmetries that also carry its attributes onto themselves: the group its fundamental
 // region may use (a textured part is rarely symmetric in its texture coordinates).
 std::vector<Eigen::Matrix3d> attributeGroup(const PlanContext& context, const TileShape& shape,
-                                            const Primitive& prototype) {
+                                            const Primitive& prototype, LazySurface& surface) {
     const Eigen::Vector3d center = shape.moments.centroid;
+    const double tolerance = context.tolerance();
+    const bool geometryOnly = context.options.geometryOnly;
     std::vector<Eigen::Matrix3d> group;
     for (const Symmetry& g : shape.symmetry.elements) {
         Isometry about;
         about.linear = g.linear;
         about.translation = center - g.linear * center;
-        if (reproduces(prototype, prototype, about, context.tolerance(), context.options.geometryOnly))
+        // As `reproduces` decides, the surface's hierarchy built once for every element whose image cuts the
+        // same corners otherwise (a quad's diagonal turned the other way), not twice for each.
+        const Reproduction corners = reproduction(prototype, prototype, about, tolerance, geometryOnly);
+        if (corners == Reproduction::Reproduced ||
+            (corners == Reproduction::CutOtherwise &&
+             surfaceDeviation(surface.get(), surface.get(), about, tolerance, geometryOnly)))
             group.push_back(g.linear);
     }
     return group;
@@ -154,7 +161,7 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
     if (placed.size() > 1 || (options.regions && shape.symmetry.order() > 1))
         instanced = costs.alone(c.prototype) + costs.nodes(nodesOf({atCenter}, true));
     if (options.regions && shape.symmetry.order() > 1) {
-        const std::vector<Eigen::Matrix3d> group = attributeGroup(context, shape, prototype);
+        const std::vector<Eigen::Matrix3d> group = attributeGroup(context, shape, prototype, prototypeSurface);
         auto regionNodes = [&](const FundamentalRegion& r) { return costs.nodes(nodesOf(regionCopies(r), true)); };
         const double alone = costs.alone(c.prototype), perNode = (instanced - alone) / copies;
         double placedDeviation = 0;
