@@ -386,3 +386,17 @@ TEST_CASE("glTF: an image or buffer URI naming a folder is not a file, where tin
     writeTextFile(folder / "buffer_folder.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 36, "uri": "images"}]})");
     CHECK_THAT(readError(folder / "buffer_folder.gltf"), Catch::Contains("buffer_folder.gltf"));
 }
+
+TEST_CASE("Writers: a whole-number bound beyond a 32-bit int reads back, where written as an integer it was refused",
+          "[io][fuzz]") {
+    // Found by fuzz_obj, fuzz_ply and fuzz_stl: a vertex at z = 12147483648, its accessor's "max" printed as an
+    // integer, which the reader takes for an index out of int's range.
+    const Scene scene = readScene(regressionInput("obj_coordinate_beyond_int.obj"));
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    for (const WriteOptions& options : {WriteOptions{}, plain}) {
+        writeScene(scene, folder / "big.glb", options);
+        CHECK(readScene(folder / "big.glb").meshes.size() == scene.meshes.size());
+    }
+}

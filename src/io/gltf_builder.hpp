@@ -21,11 +21,12 @@ namespace symcompress {
 using Json = nlohmann::json;
 
 // Whole numbers as integers: 1 for 1.0, as glTF readers take any JSON number; two bytes each, in every factor,
-// transform and bound of a small file.
+// transform and bound of a small file. Only within a 32-bit int: readers (tinygltf, ours) refuse or cut down
+// larger integers, which they take for indices (a bound of 12147483648 would not read back).
 inline void writeWholeNumbersAsIntegers(Json& json) {
     if (json.is_number_float()) {
         const double x = json.get<double>();
-        if (std::abs(x) < 0x1p53 && x == std::trunc(x)) json = static_cast<std::int64_t>(x);
+        if (std::abs(x) <= 2147483647.0 && x == std::trunc(x)) json = static_cast<std::int64_t>(x);
     } else if (json.is_structured()) {
         for (Json& item : json) writeWholeNumbersAsIntegers(item);
     }
