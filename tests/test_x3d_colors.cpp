@@ -17,6 +17,14 @@ namespace {
 // IEC 61966-2-1, written out here so that the test does not check the code against itself.
 double expectedLinear(double srgb) { return srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4); }
 
+// `mesh` as the scene's only mesh, drawn by one root node.
+void drawOnce(Scene& scene, Mesh mesh) {
+    scene.meshes = {std::move(mesh)};
+    scene.nodes.resize(1);
+    scene.nodes[0].mesh = 0;
+    scene.roots = {0};
+}
+
 // Two quads side by side with vertex colours (one alpha below 1), the first on `phong` (not metal: written as
 // Phong's Material), the second on `physical` (metal: written as PhysicalMaterial).
 Scene colouredQuads(const Eigen::Vector4d& phongBase) {
@@ -38,10 +46,7 @@ Scene colouredQuads(const Eigen::Vector4d& phongBase) {
         quad.material = k;
         mesh.primitives.push_back(quad);
     }
-    scene.meshes = {mesh};
-    scene.nodes.resize(1);
-    scene.nodes[0].mesh = 0;
-    scene.roots = {0};
+    drawOnce(scene, std::move(mesh));
     return scene;
 }
 
@@ -160,10 +165,7 @@ TEST_CASE("Vertex colours as X3D render in X_ITE as the glTF's in three.js", "[i
         quad.material = k / 3;
         mesh.primitives.push_back(quad);
     }
-    scene.meshes = {mesh};
-    scene.nodes.resize(1);
-    scene.nodes[0].mesh = 0;
-    scene.roots = {0};
+    drawOnce(scene, std::move(mesh));
     TemporaryFolder folder;
     WriteOptions plain;
     plain.draco = false;
