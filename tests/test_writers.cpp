@@ -2,7 +2,9 @@
 // translations, 1e-7 for rotations), and defaults left out; the file reads back to the same scene. And its
 // measure of a mesh, which the compression plan weighs its choices with.
 #include "common/number_text.hpp"
+#include "io/primitive_encodings.hpp"
 #include "sample_scenes.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
@@ -171,6 +173,47 @@ TEST_CASE("gltfMeshBytes and x3dMeshBytes are what a mesh of its own adds to the
         // texture coordinates written as float32 text).
         CHECK(measure(bare) < 0.75 * measure(part));
     }
+}
+
+TEST_CASE("Draco encodings kept for reuse write the same file byte for byte, and a changed part is encoded anew",
+          "[io]") {
+    Primitive part = samples::makeBolt();
+    for (const Eigen::Vector3d& p : part.positions) part.normals.push_back(p.normalized());
+    Scene scene = samples::singleMeshScene("bolt", part, {0.8, 0.2, 0.1, 1});
+    TemporaryFolder folder;
+    const auto written = [&](const Scene& s, const WriteOptions& options, const char* name) {
+        writeScene(s, folder / name, options);
+        return readFileBytes(folder / name);
+    };
+    WriteOptions plain;
+    plain.maxPositionError = 1e-4;
+    WriteOptions reusing = plain;
+    reusing.encodings = makePrimitiveEncodings();
+    const Primitive& stored = scene.meshes[0].primitives[0];
+    CHECK_FALSE(reusing.encodings->find(fingerprintOf(stored, reusing)));
+    const auto expected = written(scene, plain, "plain.glb");
+    CHECK(written(scene, reusing, "first.glb") == expected);
+    CHECK(reusing.encodings->find(fingerprintOf(stored, reusing)));  // kept
+    CHECK(written(scene, reusing, "again.glb") == expected);         // and reused
+    // One coordinate moved, a normal turned, another material, another bound: none is taken for the kept one.
+    std::vector<Scene> changed(4, scene);
+    changed[0].meshes[0].primitives[0].positions[7].x() += 1e-9;
+    changed[1].meshes[0].primitives[0].normals[3] = -changed[1].meshes[0].primitives[0].normals[3];
+    changed[2].materials.push_back(changed[2].materials[0]);
+    changed[2].meshes[0].primitives[0].material = 1;
+    changed[3].meshes[0].primitives[0].maxPositionError = 1e-5;
+    for (std::size_t c = 0; c < changed.size(); ++c) {
+        INFO("change " << c);
+        const Primitive& other = changed[c].meshes[0].primitives[0];
+        CHECK(fingerprintOf(other, reusing) != fingerprintOf(stored, reusing));
+        CHECK(written(changed[c], reusing, "changed.glb") == written(changed[c], plain, "changed_plain.glb"));
+    }
+    WriteOptions finer = reusing;
+    finer.maxPositionError = 1e-5;
+    CHECK(fingerprintOf(stored, finer) != fingerprintOf(stored, reusing));
+    WriteOptions plainFiner = plain;
+    plainFiner.maxPositionError = 1e-5;
+    CHECK(written(scene, finer, "finer.glb") == written(scene, plainFiner, "finer_plain.glb"));
 }
 
 TEST_CASE("gltfNodeBytes and x3dNodeBytes are what a node drawing a stored mesh adds to the written file", "[io]") {

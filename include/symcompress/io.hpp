@@ -4,6 +4,7 @@
 #include "symcompress/scene.hpp"
 
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,6 +19,10 @@ public:
 };
 
 enum class FileFormat { Gltf, Glb, X3d, Obj, Ply, Stl };
+
+// Draco encodings kept for reuse (WriteOptions::encodings): thread-safe, and made by makePrimitiveEncodings.
+class PrimitiveEncodings;
+std::shared_ptr<PrimitiveEncodings> makePrimitiveEncodings();
 
 // The format named by the extension (case-insensitive); throws FileError for an unknown one.
 FileFormat formatFromExtension(const std::filesystem::path& file);
@@ -60,6 +65,9 @@ struct WriteOptions {
     // Written as glTF asset.extras / X3D MetadataSet, e.g. the digest of the original scene.
     std::string extrasJson;
     int threads = 0;  // glTF: the primitives' Draco encodings on this many threads (0: all cores)
+    // Where set, the glTF writer keeps each primitive's Draco encoding here and reuses it for the same primitive
+    // written with the same options (a compression job writes the same primitives in every plan it measures).
+    std::shared_ptr<PrimitiveEncodings> encodings;
 };
 
 // Writes atomically (temporary file in the same folder, then rename). Refuses to overwrite any of

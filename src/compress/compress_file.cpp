@@ -126,10 +126,17 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
 
     AnalysisOptions analysisOptions = analysisOptionsOf(options);
     // Groups no plan could use are not sought; the HTML report shows every class's group.
-    if (options.htmlReport.empty()) analysisOptions.groupCosts = costModelFor(formatFromExtension(output), options.write);
+    // The cost models and the plans measured below write many of the same primitives: each is encoded once.
+    const std::shared_ptr<PrimitiveEncodings> encodings = makePrimitiveEncodings();
+    if (options.htmlReport.empty()) {
+        WriteOptions groupWrite = options.write;
+        groupWrite.encodings = encodings;
+        analysisOptions.groupCosts = costModelFor(formatFromExtension(output), groupWrite);
+    }
     const SceneAnalysis analysis = analyzeScene(scene, analysisOptions);
     WriteOptions write = options.write;
     write.threads = options.threads;
+    write.encodings = encodings;
     PlanOptions planOptions = planOptionsOf(options);
     if (!options.fixedPositionBits) {
         // Of the budget, a share for the rounding of GPU-instanced rotations and one for their translations and

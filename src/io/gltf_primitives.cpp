@@ -2,6 +2,7 @@
 // sequential primitive of their own) or plain accessors.
 #include "draco_grid.hpp"
 #include "gltf_builder.hpp"
+#include "primitive_encodings.hpp"
 
 #include "geometry/bounds.hpp"
 
@@ -150,11 +151,11 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     std::unique_ptr<draco::Mesh> mesh = soup.Finalize();
     if (!mesh) throw FileError(file, "Draco could not build a mesh from a primitive");
 
-    // The decoded mesh, or nothing when the encoder refuses (edgebreaker: "all triangles are degenerate").
     int positionBits = primitive.positionGrid ? primitive.positionGrid->bits : positionBitsFor(primitive, options);
     const std::vector<int> speeds = dracoSpeedsWorthTrying(primitive, options);
     int speed = speeds.front();
-    auto encode = [&](int encoding, draco::EncoderBuffer& encoded) -> std::unique_ptr<draco::Mesh> {
+    // False when the encoder refuses (edgebreaker: "all triangles are degenerate").
+    auto encode = [&](int encoding, draco::EncoderBuffer& encoded) {
         draco::ExpertEncoder encoder(*mesh);
         encoder.SetSpeedOptions(speed, speed);
         encoder.SetEncodingMethod(encoding);
@@ -172,10 +173,11 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
             if (const int bits = quantizationBits(primitive.attributes[a].name, options); bits > 0)
                 encoder.SetAttributeQuantization(ids.others[a], bits);
         const draco::Status status = encoder.EncodeToBuffer(&encoded);
-        if (!status.ok()) {
-            if (encoding == draco::MESH_EDGEBREAKER_ENCODING) return nullptr;
+        if (!status.ok() && encoding != draco::MESH_EDGEBREAKER_ENCODING)
             throw FileError(file, "Draco encoding failed: " + status.error_msg_string());
-        }
+        return status.ok();
+    };
+    auto decode = [&](const draco::EncoderBuffer& encoded) {
         draco::DecoderBuffer decoderBuffer;
         decoderBuffer.Init(encoded.data(), encoded.size());
         auto decoded = draco::Decoder().DecodeMeshFromBuffer(&decoderBuffer);
@@ -189,14 +191,15 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     draco::EncoderBuffer encoded;
     std::unique_ptr<draco::Mesh> result;
     if (method != DracoMethod::Sequential) {
-        result = encode(draco::MESH_EDGEBREAKER_ENCODING, encoded);
+        if (encode(draco::MESH_EDGEBREAKER_ENCODING, encoded)) result = decode(encoded);
         if (!complete(result) && method == DracoMethod::EdgebreakerOrNothing) return std::nullopt;
         // Other speeds (dracoSpeedsWorthTrying), then more bits within the bound at the best of them
-        // (positionBitsWorthTrying), may encode smaller: the smallest is kept.
+        // (positionBitsWorthTrying), may encode smaller: the smallest is kept (decoded only when smaller).
         auto tryEncoding = [&] {
             draco::EncoderBuffer trial;
-            std::unique_ptr<draco::Mesh> decoded = encode(draco::MESH_EDGEBREAKER_ENCODING, trial);
-            if (!complete(decoded) || trial.size() >= encoded.size()) return false;
+            if (!encode(draco::MESH_EDGEBREAKER_ENCODING, trial) || trial.size() >= encoded.size()) return false;
+            std::unique_ptr<draco::Mesh> decoded = decode(trial);
+            if (!complete(decoded)) return false;
             encoded = std::move(trial);
             result = std::move(decoded);
             return true;
@@ -215,7 +218,8 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     }
     if (!complete(result)) {
         encoded.Clear();
-        result = encode(draco::MESH_SEQUENTIAL_ENCODING, encoded);
+        encode(draco::MESH_SEQUENTIAL_ENCODING, encoded);
+        result = decode(encoded);
     }
     if (result->num_faces() != primitive.triangles.size())
         throw FileError(file, "Draco lost " + std::to_string(primitive.triangles.size() - result->num_faces()) +
@@ -363,15 +367,21 @@ EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions&
         encoded.plain = true;
         return encoded;
     }
+    std::optional<PrimitiveFingerprint> key;
+    if (options.encodings) {
+        key = fingerprintOf(primitive, options);
+        if (std::optional<EncodedPrimitive> found = options.encodings->find(*key)) return std::move(*found);
+    }
     if (auto whole = encodeDracoPrimitive(primitive, options, file, DracoMethod::EdgebreakerOrNothing)) {
         encoded.parts.push_back(std::move(*whole));
-        return encoded;
+    } else {
+        // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
+        const auto [kept, collapsing] = splitCollapsingTriangles(primitive, positionBitsFor(primitive, options));
+        for (const auto& [part, method] : {std::pair{&kept, DracoMethod::EdgebreakerElseSequential},
+                                           std::pair{&collapsing, DracoMethod::Sequential}})
+            if (!part->triangles.empty()) encoded.parts.push_back(*encodeDracoPrimitive(*part, options, file, method));
     }
-    // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
-    const auto [kept, collapsing] = splitCollapsingTriangles(primitive, positionBitsFor(primitive, options));
-    for (const auto& [part, method] :
-         {std::pair{&kept, DracoMethod::EdgebreakerElseSequential}, std::pair{&collapsing, DracoMethod::Sequential}})
-        if (!part->triangles.empty()) encoded.parts.push_back(*encodeDracoPrimitive(*part, options, file, method));
+    if (key) options.encodings->insert(*key, encoded);
     return encoded;
 }
 
