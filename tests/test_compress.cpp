@@ -2,13 +2,14 @@
 // the report's keys, instancing where it pays, the Khronos validator on the output.
 #include "sample_scenes.hpp"
 #include "symcompress/compress.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/detail/compression_plan.hpp"
 #include "symcompress/detail/solids.hpp"
-#include "symcompress/io.hpp"
-#include "symcompress/tiles.hpp"
 #include "symcompress/detail/weld_positions.hpp"
-#include "symcompress/verify.hpp"
+#include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "symcompress/tiles.hpp"
+#include "symcompress/verify.hpp"
 #include "test_support.hpp"
 
 #include <Eigen/Geometry>
@@ -182,6 +183,29 @@ TEST_CASE("Copies turned over face the way they do: flat cards, and a rebuild tu
     const auto result = nlohmann::json::parse(check.output.substr(check.output.find('{')));
     CHECK(result["flipped_area"].get<double>() == Approx(0.5).margin(0.01));
     CHECK(result["verified"] == false);
+}
+
+TEST_CASE("A plan that takes another plan's assemblies and scene symmetry is the plan that seeks them itself",
+          "[compress]") {
+    // The room (scene symmetry: a mirror) and the room with a box that breaks it (repeated assemblies).
+    Scene broken = samples::makeRoomScene();
+    samples::appendMesh(broken.meshes[0].primitives[0], samples::boxMesh({1.3, 0.7, 0.9}, {0.2, 0.3, 0.1}));
+    for (const Scene& scene : {samples::makeRoomScene(), broken}) {
+        const SceneAnalysis analysis = analyzeScene(scene);
+        PlanOptions options;
+        CompressionPlan full;
+        compressAnalyzed(scene, analysis, options, &full);
+        REQUIRE(std::any_of(full.shared.begin(), full.shared.end(),
+                            [](const SharedPart& part) { return part.mechanism != SharedPart::Mechanism::Class; }));
+        options.regions = false;
+        const CompressedScene sought = compressAnalyzed(scene, analysis, options);
+        options.sharedPartsFrom = &full;
+        const CompressedScene taken = compressAnalyzed(scene, analysis, options);
+        TemporaryFolder folder;
+        writeScene(sought.scene, folder / "sought.glb");
+        writeScene(taken.scene, folder / "taken.glb");
+        CHECK(readFileBytes(folder / "sought.glb") == readFileBytes(folder / "taken.glb"));
+    }
 }
 
 TEST_CASE("Tiles that recur together are stored once per group: the room's bookshelves", "[compress]") {

@@ -53,7 +53,16 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
         tbb::task_group measuring;
         measuring.run([&] { costs.measureKinds(); });
         try {
-            if (options.assemblies) {
+            if (options.assemblies && options.sharedPartsFrom) {
+                const CompressionPlan& from = *options.sharedPartsFrom;
+                plan.sceneGroup = from.sceneGroup;
+                for (const SharedPart& part : from.shared)
+                    if (part.mechanism == SharedPart::Mechanism::SceneSymmetry ||
+                        part.mechanism == SharedPart::Mechanism::Assembly) {
+                        for (std::size_t t : part.tiles) drawn[t] = true;
+                        plan.shared.push_back(part);
+                    }
+            } else if (options.assemblies) {
                 if (std::optional<SharedPart> part = planSceneSymmetry(context)) {
                     for (std::size_t t : part->tiles) drawn[t] = true;
                     plan.sceneGroup = part->group;

@@ -94,6 +94,8 @@ bool tilesCanCarry(const Mesh& mesh);
 // x3dMeshBytes and their node measures), and for Draco glTF the seams' grid.
 StorageCostModel costModelFor(FileFormat format, const WriteOptions& write);
 
+struct CompressionPlan;
+
 struct PlanOptions {
     bool instancing = true;     // false: every tile stored as it is (Draco alone)
     bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
@@ -111,6 +113,10 @@ struct PlanOptions {
     double instanceShare = 0;
     StorageCostModel costs;
     ProgressCallback progress;
+    // A plan made from the same analysis with the same costs (and assemblies on): its scene symmetry and
+    // repeated assemblies are taken as they are instead of sought again (they do not depend on `regions` or
+    // `mergeKeptMeshes`, the options the job's other plans change).
+    const CompressionPlan* sharedPartsFrom = nullptr;
 };
 
 // A node drawing a stored mesh.
