@@ -121,3 +121,32 @@ TEST_CASE("The member check takes a mirrored placement's reversed winding, and t
     for (Eigen::Vector2d& uv : turned.texcoords) uv = Eigen::Vector2d(uv.y(), 1 - uv.x());
     CHECK_FALSE(reproduces(grid(false), turned, Isometry{}, 1e-6, false));
 }
+
+TEST_CASE("The surface check rejects corners cut otherwise where the surfaces part by more than the tolerance",
+          "[plan][congruence]") {
+    // 4 x 4 quads whose corners alternate in height: no quad is flat, so its two diagonals fold it into two
+    // different surfaces. A triangle's centroid lies on the other fold's edge, 0.4 above or below it: the
+    // distance between the surfaces there is less, but of that order.
+    auto folded = [](bool otherDiagonal) {
+        Primitive square;
+        for (int y = 0; y <= 4; ++y)
+            for (int x = 0; x <= 4; ++x) square.positions.push_back({double(x), double(y), 0.6 * ((x + y) % 2)});
+        for (std::uint32_t y = 0; y < 4; ++y)
+            for (std::uint32_t x = 0; x < 4; ++x) {
+                const std::uint32_t a = y * 5 + x, b = a + 1, c = a + 6, d = a + 5;
+                const Triangle first = otherDiagonal ? Triangle{a, b, d} : Triangle{a, b, c};
+                const Triangle second = otherDiagonal ? Triangle{b, c, d} : Triangle{a, c, d};
+                square.triangles.push_back(first);
+                square.triangles.push_back(second);
+            }
+        return square;
+    };
+    const Primitive one = folded(false), other = folded(true);
+    CHECK(reproduction(one, other, Isometry{}, 1e-3, true) == Reproduction::CutOtherwise);
+    CHECK_FALSE(reproduces(one, other, Isometry{}, 1e-3, true));
+    double deviation = -1;
+    CHECK(reproduces(one, other, Isometry{}, 1, true, &deviation));
+    CHECK(deviation > 0.1);
+    CHECK(deviation <= 0.4);
+    CHECK(reproduces(one, folded(false), Isometry{}, 1e-3, true));
+}

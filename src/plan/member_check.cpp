@@ -16,12 +16,7 @@ constexpr double kNormalCosine = 0.999;  // normals within 2.6 degrees are the s
 constexpr double kTexcoordTolerance = 1e-4;
 constexpr double kColorTolerance = 1e-3;
 
-// The surface's orientation, independent of how it is cut into triangles: its vector area S = ∫ n dA and
-// M = ∫ n (x - c)^T dA about its area centroid c (for a closed part, its volume times the identity).
-struct OrientedMoments {
-    Eigen::Vector3d area = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d first = Eigen::Matrix3d::Zero();
-};
+}  // namespace
 
 OrientedMoments orientedMoments(const Primitive& part) {
     double total = 0;
@@ -43,12 +38,13 @@ OrientedMoments orientedMoments(const Primitive& part) {
     return moments;
 }
 
+namespace {
+
 // Whether the member faces the way the prototype placed by j does (a mirrored placement is drawn with its
 // winding reversed, as glTF and X3D viewers do for a negative determinant, so both map as j): a flat part
 // turned over matches its copy as a point set, not in orientation. Parts that look the same both ways
 // (two-faced sheets) pass.
-bool sameOrientation(const Primitive& prototype, const Primitive& member, const Isometry& j, double radius) {
-    const OrientedMoments p = orientedMoments(prototype), m = orientedMoments(member);
+bool sameOrientation(const OrientedMoments& p, const OrientedMoments& m, const Isometry& j, double radius) {
     const Eigen::Vector3d expectedArea = j.linear * p.area;
     const Eigen::Matrix3d expectedFirst = j.linear * p.first * j.linear.transpose();
     const double difference = (m.area - expectedArea).norm() + (m.first - expectedFirst).norm() / radius;
@@ -106,25 +102,32 @@ Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitiv
     };
     const std::size_t offset = prototype.positions.size();
     double largest = 0;
+    bool attributesDiffer = false;  // at some triangle's corners: the others are only asked for their places
     for (const Triangle& t : member.triangles) {
         const Corners corners = keyed(t, offset, false);
         const auto [first, last] = prototypeAt.equal_range(places(corners, offset));
-        if (first == last)
-            return Reproduction::CutOtherwise;  // the same corners, other triangles (a quad's
-                                                // other diagonal)
+        if (first == last)  // the same corners, other triangles (a quad's other diagonal)
+            return attributesDiffer ? Reproduction::Differs : Reproduction::CutOtherwise;
+        if (attributesDiffer) continue;
         const auto match = std::find_if(first, last, [&](const auto& entry) {
             for (int k = 0; k < 3; ++k)
                 if (!same(entry.second[k], corners[k])) return false;
             return true;
         });
-        if (match == last) return Reproduction::Differs;
+        if (match == last) {
+            attributesDiffer = true;
+            continue;
+        }
         for (int k = 0; k < 3; ++k)
             largest = std::max(largest, (both[match->second[k]] - member.positions[corners[k]]).norm());
     }
+    if (attributesDiffer) return Reproduction::AttributesDiffer;
     if (deviation) *deviation = largest;
     const Eigen::AlignedBox3d box = boundsOf(member.positions);
-    return sameOrientation(prototype, member, j, std::max(box.diagonal().norm(), tolerance)) ? Reproduction::Reproduced
-                                                                                             : Reproduction::Differs;
+    return sameOrientation(orientedMoments(prototype), orientedMoments(member), j,
+                           std::max(box.diagonal().norm(), tolerance))
+               ? Reproduction::Reproduced
+               : Reproduction::Differs;
 }
 
 // The barycentric coordinates of p (on or near the triangle abc) in it.
@@ -179,7 +182,7 @@ std::optional<double> oneWay(const TileSurface& from, const TileSurface& onto, c
             a.normals.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(map.linear * a.normals[v]);
         const double squared = onto.closest(map.linear * a.positions[v] + map.translation, bound, triangle, weights,
                                             a.normals.empty() || geometryOnly ? nullptr : &normal);
-        if (squared > bound) return std::nullopt;
+        if (squared >= bound) return std::nullopt;
         largest = std::max(largest, squared);
         if (attributes &&
             !sameAttributes(a, {v, v, v}, Eigen::Vector3d(1, 0, 0), map.linear, b, b.triangles[triangle], weights))
@@ -192,7 +195,7 @@ std::optional<double> oneWay(const TileSurface& from, const TileSurface& onto, c
         const Eigen::Vector3d facing = map.linear * (q - p).cross(r - p);
         const double squared = onto.closest(map.linear * (p + q + r) / 3 + map.translation, bound, triangle, weights,
                                             attributes && facing.squaredNorm() > 0 ? &facing : nullptr);
-        if (squared > bound) return std::nullopt;
+        if (squared >= bound) return std::nullopt;
         largest = std::max(largest, squared);
         if (attributes && !sameAttributes(a, t, third, map.linear, b, b.triangles[triangle], weights))
             return std::nullopt;
@@ -211,7 +214,11 @@ Primitive geometryOf(Primitive primitive) {
 }  // namespace
 
 TileSurface::TileSurface(const Primitive& primitive)
-    : primitive_(primitive), mesh_{primitive.positions, primitive.triangles}, bvh_(mesh_) {}
+    : primitive_(primitive),
+      mesh_{primitive.positions, primitive.triangles},
+      bvh_(mesh_),
+      moments_(orientedMoments(primitive)),
+      diagonal_(boundsOf(primitive.positions).diagonal().norm()) {}
 
 double TileSurface::closest(const Eigen::Vector3d& p, double bound, std::uint32_t& triangle, Eigen::Vector3d& weights,
                             const Eigen::Vector3d* facing) const {
@@ -230,6 +237,9 @@ std::optional<double> surfaceDeviation(const TileSurface& prototype, const TileS
     if (!geometryOnly && (p.normals.empty() != m.normals.empty() || p.texcoords.empty() != m.texcoords.empty() ||
                           p.colors.empty() != m.colors.empty()))
         return std::nullopt;
+    // The orientation first: it costs a product of 3x3 matrices, the rest two searches per sample point.
+    if (!sameOrientation(prototype.moments(), member.moments(), j, std::max(member.diagonal(), tolerance)))
+        return std::nullopt;
     Isometry inverse;
     inverse.linear = j.linear.transpose();
     inverse.translation = -(inverse.linear * j.translation);
@@ -237,8 +247,6 @@ std::optional<double> surfaceDeviation(const TileSurface& prototype, const TileS
     if (!there) return std::nullopt;
     const std::optional<double> back = oneWay(member, prototype, inverse, tolerance, geometryOnly);
     if (!back) return std::nullopt;
-    const Eigen::AlignedBox3d box = boundsOf(m.positions);
-    if (!sameOrientation(p, m, j, std::max(box.diagonal().norm(), tolerance))) return std::nullopt;
     return std::max(*there, *back);
 }
 

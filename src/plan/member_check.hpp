@@ -12,12 +12,15 @@
 
 namespace symcompress {
 
-enum class Reproduction { Reproduced, Differs, CutOtherwise };
+// AttributesDiffer: every triangle of the member is one of the prototype's at the same places, but a corner's
+// normal, texture coordinates or colour differ (the surface check, comparing the same places, cannot pass them:
+// drawn from the prototype, that corner would look otherwise).
+enum class Reproduction { Reproduced, Differs, CutOtherwise, AttributesDiffer };
 
 // Whether `prototype` placed by j reproduces `member` triangle for triangle, corner by corner, within
 // `tolerance` (a distance), facing the same way (with `geometryOnly`, positions and faces only), or has the same
-// corners cut into other triangles (a quad's other diagonal), for the surface check to decide. With `deviation`,
-// the largest distance of a member vertex from its match.
+// corners cut into other triangles (a quad's other diagonal), for the surface check to decide, or the same
+// triangles with other attributes. With `deviation`, the largest distance of a member vertex from its match.
 Reproduction reproduction(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance,
                           bool geometryOnly, double* deviation = nullptr);
 
@@ -29,6 +32,14 @@ Reproduction reproduction(const Primitive& prototype, const Primitive& member, c
 bool reproduces(const Primitive& prototype, const Primitive& member, const Isometry& j, double tolerance,
                 bool geometryOnly, double* deviation = nullptr);
 
+// The surface's orientation, independent of how it is cut into triangles: its vector area S = ∫ n dA and
+// M = ∫ n (x - c)^T dA about its area centroid c (for a closed part, its volume times the identity).
+struct OrientedMoments {
+    Eigen::Vector3d area = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d first = Eigen::Matrix3d::Zero();
+};
+OrientedMoments orientedMoments(const Primitive& part);
+
 // A tile's surface with its triangles' hierarchy, built once for the surface check of many placements.
 class TileSurface {
 public:
@@ -37,6 +48,8 @@ public:
     TileSurface& operator=(const TileSurface&) = delete;
 
     const Primitive& primitive() const { return primitive_; }
+    const OrientedMoments& moments() const { return moments_; }
+    double diagonal() const { return diagonal_; }  // of its positions' bounding box
     // The closest point of the surface to p within sqrt(bound) (a squared distance), with `facing` only on
     // the triangles whose normal points its way: its squared distance (bound when none), its triangle and its
     // barycentric coordinates there.
@@ -47,6 +60,8 @@ private:
     const Primitive& primitive_;
     TriangleMesh mesh_;
     TriangleBvh bvh_;
+    OrientedMoments moments_;
+    double diagonal_ = 0;
 };
 
 // The check for copies tessellated each on its own (docs/compression-plan.md, "The member check"): whether

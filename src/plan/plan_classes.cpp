@@ -42,17 +42,18 @@ std::optional<std::pair<Isometry, double>> acceptedPlacement(const PlanContext& 
                                                              std::size_t i, const Primitive& prototype,
                                                              const Primitive& member, LazySurface& prototypeSurface) {
     const TileShape& shape = context.analysis.classification.shapes[c.prototype];
-    std::vector<Isometry> candidates;
+    std::vector<Isometry> candidates;  // for the surface check
     for (const Symmetry& g : shape.symmetry.elements) {
         Isometry candidate;
         candidate.linear = c.placements[i].linear * g.linear;
         candidate.translation = c.placements[i].linear * (shape.moments.centroid - g.linear * shape.moments.centroid) +
                                 c.placements[i].translation;
-        if (reproduction(prototype, member, candidate, context.tolerance(), context.options.geometryOnly) ==
-            Reproduction::Reproduced)
-            return std::pair{candidate, c.deviations[i]};
-        candidates.push_back(candidate);
+        const Reproduction corners =
+            reproduction(prototype, member, candidate, context.tolerance(), context.options.geometryOnly);
+        if (corners == Reproduction::Reproduced) return std::pair{candidate, c.deviations[i]};
+        if (corners != Reproduction::AttributesDiffer) candidates.push_back(candidate);
     }
+    if (candidates.empty()) return std::nullopt;
     const TileSurface memberSurface(member);
     const double diagonal = context.analysis.diagonal;
     for (const Isometry& candidate : candidates)
