@@ -35,6 +35,7 @@ struct RepeatedAssembly {
 // Copies are found within the classification's tolerance.
 struct AssemblyOptions {
     // Optional: whether tile `from`, placed by the isometry, may stand for tile `to` (e.g. attributes agree).
+    // Called from several threads at once.
     std::function<bool(std::size_t from, std::size_t to, const Isometry&)> accept;
 };
 

@@ -2,6 +2,8 @@
 // tiles that touch, under the isometries between those members.
 #include "symcompress/assembly.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -220,12 +222,17 @@ private:
             Isometry map;
             std::size_t tiles;
         };
-        std::vector<Copy> copies;
-        for (std::size_t i = 1; i < anchors.size(); ++i) {
+        // Every other anchor under every element of the group: too many trials, and the class anchors no more.
+        const std::vector<Symmetry>& group = groupOf(k);
+        trials += (anchors.size() - 1) * group.size();
+        if (trials > kMaxTrialsPerClass) return std::nullopt;
+        // Each other anchor's best map is its own (in parallel), the copies then taken in the anchors' order.
+        std::vector<Copy> bestOf(anchors.size(), Copy{0, {}, 0});
+        tbb::parallel_for(std::size_t(1), std::max<std::size_t>(1, anchors.size()), [&](std::size_t i) {
             const PlacedTile& to = placed_[anchors[i]];
-            Copy best{anchors[i], {}, 0};
-            for (const Symmetry& g : groupOf(k)) {
-                if (++trials > kMaxTrialsPerClass) return std::nullopt;
+            Copy& best = bestOf[i];
+            best.anchor = anchors[i];
+            for (const Symmetry& g : group) {
                 Isometry map;
                 map.linear = to.placement.linear * g.linear * from.placement.linear.transpose();
                 map.translation = to.centroid - map.linear * from.centroid;
@@ -236,8 +243,10 @@ private:
                 if (options_.accept && !options_.accept(a, anchors[i], map)) continue;
                 best = {anchors[i], map, grown};
             }
-            if (best.tiles > 0) copies.push_back(best);
-        }
+        });
+        std::vector<Copy> copies;
+        for (std::size_t i = 1; i < anchors.size(); ++i)
+            if (bestOf[i].tiles > 0) copies.push_back(bestOf[i]);
         std::size_t most = 0;
         for (const Copy& c : copies) most = std::max(most, c.tiles);
         if (most < 2) return std::nullopt;

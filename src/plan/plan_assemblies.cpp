@@ -6,6 +6,7 @@
 #include "symcompress/assembly.hpp"
 
 #include <algorithm>
+#include <mutex>
 
 namespace symcompress {
 
@@ -13,9 +14,11 @@ std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<b
     const SceneAnalysis& analysis = context.analysis;
     const std::vector<Tile>& tiles = analysis.tiles;
     const TileClassification& classification = analysis.classification;
+    // Each tile's primitive made by the first check that asks for it (the checks run in parallel).
     std::vector<std::optional<Primitive>> primitives(tiles.size());
+    std::vector<std::once_flag> made(tiles.size());
     auto primitiveOf = [&](std::size_t t) -> const Primitive& {
-        if (!primitives[t]) primitives[t] = tilePrimitive(tiles[t], analysis.soup);
+        std::call_once(made[t], [&] { primitives[t] = tilePrimitive(tiles[t], analysis.soup); });
         return *primitives[t];
     };
     AssemblyOptions assemblyOptions;
