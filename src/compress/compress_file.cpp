@@ -1,6 +1,7 @@
 // symcompress's whole job: read, analyse once, plan three ways (the full plan, instancing without regions,
 // every tile as it is; the second takes the first's assemblies), write and measure each, keep the smallest
 // file, and report.
+#include "common/with_threads.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/detail/compression_plan.hpp"
@@ -9,9 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <tbb/task_group.h>
+
 #include <chrono>
-#include <map>
 #include <fstream>
+#include <map>
+#include <optional>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -65,10 +69,11 @@ std::uintmax_t outputBytesOf(const Scene& scene, const fs::path& output) {
     return sceneBytes(output) + (format == FileFormat::X3d ? x3dReferencedImageBytes(scene) : 0);
 }
 
-// A plan written to a file beside the output, measured, and removed.
-std::uintmax_t measuredBytes(const CompressedScene& plan, const fs::path& output, const WriteOptions& write,
-                             const std::vector<fs::path>& inputs) {
-    const fs::path temporary = output.parent_path() / (".symcompress-ablation-" + output.filename().string());
+// A plan written to a file beside the output (named after it and the plan: plans are measured at once), measured,
+// and removed.
+std::uintmax_t measuredBytes(const CompressedScene& plan, const fs::path& output, const std::string& name,
+                             const WriteOptions& write, const std::vector<fs::path>& inputs) {
+    const fs::path temporary = output.parent_path() / (".symcompress-" + name + "-" + output.filename().string());
     writeScene(plan.scene, temporary, write, inputs);
     const std::uintmax_t size = outputBytesOf(plan.scene, temporary);  // with a .gltf's .bin
     std::error_code error;
@@ -152,48 +157,66 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     planOptions.costs = costModelFor(formatFromExtension(output), write);
     // The HTML report draws the plan's decisions: kept only when it is asked for.
     const bool keepPlans = !options.htmlReport.empty();
-    CompressionPlan fullPlan;  // the other plans are made from its decisions
-    CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions, &fullPlan);
     // The decoder verifies against the whole budget (without tiles, there is no diagonal to scale it by).
-    if (!options.fixedPositionBits && analysis.diagonal > 0) compressed.digest.maxError = options.maxError;
-    write.extrasJson = compressed.digest.json();
-    const auto writeStart = std::chrono::steady_clock::now();
-    if (options.progress) options.progress("writing", compressed.stats.trianglesStored, "triangles");
-    writeScene(compressed.scene, output, write, inputs);
-    report.secondsWrite = since(writeStart);
+    SurfaceDigest digest = analysis.digest;
+    if (!options.fixedPositionBits && analysis.diagonal > 0) digest.maxError = options.maxError;
+    write.extrasJson = digest.json();
 
     // The ablation: the same scene with every tile stored as it is (Draco alone), and with instancing but no
     // fundamental regions. The cost model only estimates: where a simpler plan's file is smaller, that file
     // is the output (the report says which plan it is).
     struct Variant {
-        const char* name;
+        const char* name = "";
         CompressedScene plan;
-        std::uintmax_t bytes;
+        std::uintmax_t bytes = 0;
         CompressionPlan decisions;  // only for the HTML report
     };
-    std::vector<Variant> variants;
-    auto measure = [&](const char* name, CompressedScene plan, CompressionPlan decisions) {
-        const std::uintmax_t bytes = measuredBytes(plan, output, write, inputs);
-        variants.push_back({name, std::move(plan), bytes, keepPlans ? std::move(decisions) : CompressionPlan()});
+    auto variantOf = [&](const char* name, CompressedScene plan, CompressionPlan decisions) {
+        const std::uintmax_t bytes = measuredBytes(plan, output, name, write, inputs);
+        return Variant{name, std::move(plan), bytes, keepPlans ? std::move(decisions) : CompressionPlan()};
     };
-    auto tryVariant = [&](const char* name, PlanOptions variant) {
+    CompressionPlan fullPlan;  // the other plans are made from its decisions
+    auto planned = [&](const char* name, PlanOptions variant) {
         variant.progress = nullptr;
-        variant.sharedPartsFrom = &fullPlan;
         CompressionPlan decisions;
         CompressedScene plan = compressAnalyzed(scene, analysis, variant, &decisions);
-        measure(name, std::move(plan), std::move(decisions));
+        return variantOf(name, std::move(plan), std::move(decisions));
     };
+    // Draco alone needs only the analysis: it is planned and measured beside the full plan.
+    std::optional<Variant> dracoAlone;
+    CompressedScene compressed = withThreads(options.threads, [&] {
+        tbb::task_group beside;
+        if (options.instancing)
+            beside.run([&] {
+                PlanOptions variant = planOptions;
+                variant.instancing = false;
+                dracoAlone = planned("draco_alone", variant);
+            });
+        try {
+            CompressedScene full = compressAnalyzed(scene, analysis, planOptions, &fullPlan);
+            const auto writeStart = std::chrono::steady_clock::now();
+            if (options.progress) options.progress("writing", full.stats.trianglesStored, "triangles");
+            writeScene(full.scene, output, write, inputs);
+            report.secondsWrite = since(writeStart);
+            beside.wait();
+            return full;
+        } catch (...) {
+            beside.wait();  // it refers to what unwinding destroys
+            throw;
+        }
+    });
+
     if (options.progress) options.progress("measuring the ablation", 0, "");
     const std::uintmax_t fullPlanBytes = outputBytesOf(compressed.scene, output);
-    if (options.instancing) {
-        PlanOptions dracoAlone = planOptions;
-        dracoAlone.instancing = false;
-        tryVariant("draco_alone", dracoAlone);
-        report.ablation.dracoAlone = variants.back().bytes;
+    std::vector<Variant> variants;
+    if (dracoAlone) {
+        report.ablation.dracoAlone = dracoAlone->bytes;
+        variants.push_back(std::move(*dracoAlone));
         if (options.regions) {
             PlanOptions instancingOnly = planOptions;
             instancingOnly.regions = false;
-            tryVariant("instancing", instancingOnly);
+            instancingOnly.sharedPartsFrom = &fullPlan;
+            variants.push_back(planned("instancing", instancingOnly));
             report.ablation.instancing = variants.back().bytes;
             report.ablation.instancingAndRegions = fullPlanBytes;
         } else {
@@ -211,7 +234,7 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         apart.mergeKeptMeshes = false;
         CompressedScene plan = emitScene(scene, analysis, apart);
         plan.stats.secondsPlan = compressed.stats.secondsPlan;
-        measure("kept_meshes_apart", std::move(plan), std::move(apart));
+        variants.push_back(variantOf("kept_meshes_apart", std::move(plan), std::move(apart)));
     }
     report.outputBytes = fullPlanBytes;
     const CompressionPlan* writtenPlan = &fullPlan;
