@@ -9,64 +9,93 @@
 
 namespace symcompress {
 
-std::pair<std::vector<double>, std::vector<std::int64_t>> creasedNormals(const std::vector<std::vector<std::int64_t>>& faces,
-                                                                          const std::vector<double>& points,
-                                                                          double creaseAngle, bool ccw) {
+namespace {
+
+// The browser's normal of every corner in face order, given to `visit(corner, normal)` (nullptr for a corner
+// whose point is out of range) until it returns false. Returns whether every corner was visited.
+template <typename Visit>
+bool visitCreasedNormals(const std::vector<std::vector<std::int64_t>>& faces, const std::vector<double>& points,
+                         double creaseAngle, bool ccw, Visit visit) {
     const std::size_t pointCount = points.size() / 3;
     auto point = [&](std::int64_t p) { return Eigen::Vector3d(points[3 * p], points[3 * p + 1], points[3 * p + 2]); };
-    // Newell's normal of each face.
-    std::vector<Eigen::Vector3d> faceNormal(faces.size(), Eigen::Vector3d::Zero());
+    // Newell's normal of each face, and its unit normal.
+    std::vector<Eigen::Vector3d> faceNormal(faces.size(), Eigen::Vector3d::Zero()), unit(faces.size());
     std::vector<std::vector<std::size_t>> facesAt(pointCount);
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
-        if (!std::all_of(face.begin(), face.end(), [&](std::int64_t p) { return p >= 0 && std::size_t(p) < pointCount; }))
-            continue;
-        for (std::size_t k = 0; k < face.size(); ++k) faceNormal[f] += point(face[k]).cross(point(face[(k + 1) % face.size()]));
-        if (!ccw) faceNormal[f] = -faceNormal[f];
-        for (std::int64_t p : face)
-            if (facesAt[std::size_t(p)].empty() || facesAt[std::size_t(p)].back() != f) facesAt[std::size_t(p)].push_back(f);
+        if (std::all_of(face.begin(), face.end(),
+                        [&](std::int64_t p) { return p >= 0 && std::size_t(p) < pointCount; })) {
+            for (std::size_t k = 0; k < face.size(); ++k)
+                faceNormal[f] += point(face[k]).cross(point(face[(k + 1) % face.size()]));
+            if (!ccw) faceNormal[f] = -faceNormal[f];
+            for (std::int64_t p : face)
+                if (facesAt[std::size_t(p)].empty() || facesAt[std::size_t(p)].back() != f)
+                    facesAt[std::size_t(p)].push_back(f);
+        }
+        unit[f] = faceNormal[f].normalized();
     }
     const double cosCrease = std::cos(std::min(creaseAngle, M_PI));
-    std::vector<double> normals;
-    std::vector<std::int64_t> cornerNormal;
-    std::vector<std::vector<std::pair<Eigen::Vector3d, std::int64_t>>> madeAt(pointCount);  // distinct, per point
+    std::size_t corner = 0;
     for (std::size_t f = 0; f < faces.size(); ++f) {
-        const Eigen::Vector3d own = faceNormal[f].normalized();
+        const Eigen::Vector3d& own = unit[f];
         for (std::int64_t p : faces[f]) {
             if (p < 0 || std::size_t(p) >= pointCount) {
-                cornerNormal.push_back(-1);
+                if (!visit(corner++, nullptr)) return false;
                 continue;
             }
             Eigen::Vector3d sum = Eigen::Vector3d::Zero();
             for (std::size_t g : facesAt[std::size_t(p)])
-                if (g == f || own.dot(faceNormal[g].normalized()) > cosCrease) sum += faceNormal[g].normalized();
-            Eigen::Vector3d normal = sum.norm() > 0 ? sum.normalized() : own.norm() > 0 ? own : Eigen::Vector3d::UnitZ();
-            auto& made = madeAt[std::size_t(p)];
-            const auto found = std::find_if(made.begin(), made.end(), [&](const auto& m) { return m.first == normal; });
-            if (found != made.end()) {
-                cornerNormal.push_back(found->second);
-                continue;
-            }
-            made.push_back({normal, std::int64_t(normals.size() / 3)});
-            cornerNormal.push_back(made.back().second);
-            normals.insert(normals.end(), {normal.x(), normal.y(), normal.z()});
+                if (g == f || own.dot(unit[g]) > cosCrease) sum += unit[g];
+            const Eigen::Vector3d normal = sum.norm() > 0   ? sum.normalized()
+                                           : own.norm() > 0 ? own
+                                                            : Eigen::Vector3d::UnitZ();
+            if (!visit(corner++, &normal)) return false;
         }
     }
-    return {normals, cornerNormal};
+    return true;
 }
 
+}  // namespace
+
+std::pair<std::vector<double>, std::vector<std::int64_t>> creasedNormals(
+    const std::vector<std::vector<std::int64_t>>& faces, const std::vector<double>& points, double creaseAngle,
+    bool ccw) {
+    std::vector<double> normals;
+    std::vector<std::int64_t> cornerNormal;
+    std::vector<std::vector<std::pair<Eigen::Vector3d, std::int64_t>>> madeAt(points.size() /
+                                                                              3);  // distinct, per point
+    std::vector<std::int64_t> pointOfCorner;
+    for (const auto& face : faces) pointOfCorner.insert(pointOfCorner.end(), face.begin(), face.end());
+    visitCreasedNormals(faces, points, creaseAngle, ccw, [&](std::size_t corner, const Eigen::Vector3d* normal) {
+        if (!normal) {
+            cornerNormal.push_back(-1);
+            return true;
+        }
+        auto& made = madeAt[std::size_t(pointOfCorner[corner])];
+        const auto found = std::find_if(made.begin(), made.end(), [&](const auto& m) { return m.first == *normal; });
+        if (found != made.end()) {
+            cornerNormal.push_back(found->second);
+            return true;
+        }
+        made.push_back({*normal, std::int64_t(normals.size() / 3)});
+        cornerNormal.push_back(made.back().second);
+        normals.insert(normals.end(), {normal->x(), normal->y(), normal->z()});
+        return true;
+    });
+    return {normals, cornerNormal};
+}
 
 bool creasedNormalsMatch(const std::vector<std::vector<std::int64_t>>& faces, const std::vector<double>& points,
                          const std::vector<Eigen::Vector3d>& cornerNormals, double creaseAngle) {
     constexpr double kMatch = 3.5e-3;
-    const auto [normals, normalOfCorner] = creasedNormals(faces, points, creaseAngle, true);
-    if (normalOfCorner.size() != cornerNormals.size()) return false;
-    for (std::size_t c = 0; c < cornerNormals.size(); ++c) {
-        const std::int64_t n = normalOfCorner[c];
-        if (n < 0 || (Eigen::Vector3d(normals[3 * n], normals[3 * n + 1], normals[3 * n + 2]) - cornerNormals[c]).norm() > kMatch)
-            return false;
-    }
-    return true;
+    std::size_t corners = 0;
+    for (const auto& face : faces) corners += face.size();
+    if (corners != cornerNormals.size()) return false;
+    // Stops at the first corner that differs: most angles tried fail at once.
+    return visitCreasedNormals(faces, points, creaseAngle, true,
+                               [&](std::size_t corner, const Eigen::Vector3d* normal) {
+                                   return normal && (*normal - cornerNormals[corner]).norm() <= kMatch;
+                               });
 }
 
 }  // namespace symcompress
