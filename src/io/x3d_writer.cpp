@@ -95,16 +95,18 @@ std::vector<std::uint32_t> pointsOfVertices(const Primitive& primitive, const st
     };
     for (const std::vector<std::uint32_t>& group : vertexGroups) {
         // As one point: each corner's normal is the mean of the faces of the group within the angle of its own.
-        bool asOne = true;
-        for (std::uint32_t v : group)
-            for (std::uint32_t f : facesOfVertex[v]) {
-                Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-                for (std::uint32_t w : group)
-                    for (std::uint32_t g : facesOfVertex[w])
-                        if (g == f || faceNormal[f].dot(faceNormal[g]) > cosCrease) sum += faceNormal[g];
-                asOne = asOne && (sum.normalized() - primitive.normals[v]).norm() < 3.5e-3;
-            }
-        if (asOne) {
+        auto asOne = [&] {
+            for (std::uint32_t v : group)
+                for (std::uint32_t f : facesOfVertex[v]) {
+                    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+                    for (std::uint32_t w : group)
+                        for (std::uint32_t g : facesOfVertex[w])
+                            if (g == f || faceNormal[f].dot(faceNormal[g]) > cosCrease) sum += faceNormal[g];
+                    if (!((sum.normalized() - primitive.normals[v]).norm() < 3.5e-3)) return false;
+                }
+            return true;
+        };
+        if (asOne()) {
             newPoint(group);
         } else {
             for (std::uint32_t v : group) newPoint({v});
@@ -118,7 +120,7 @@ std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive, const
     if (primitive.normals.empty() || primitive.triangles.empty()) return std::nullopt;
     std::vector<Eigen::Vector3d> faceNormal;
     std::vector<std::vector<std::uint32_t>> facesOfVertex(positions.size());
-    double smoothed = 0;  // the largest angle between two faces of one vertex: the crease angle lies above
+    double leastCosine = 1;  // between two faces of one vertex: the crease angle lies above its angle
     for (std::uint32_t f = 0; f < primitive.triangles.size(); ++f) {
         const Triangle& t = primitive.triangles[f];
         const Eigen::Vector3d normal = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
@@ -126,10 +128,11 @@ std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive, const
         faceNormal.push_back(normal.normalized());
         for (std::uint32_t v : t) {
             for (std::uint32_t g : facesOfVertex[v])
-                smoothed = std::max(smoothed, std::acos(std::clamp(faceNormal[f].dot(faceNormal[g]), -1.0, 1.0)));
+                leastCosine = std::min(leastCosine, faceNormal[f].dot(faceNormal[g]));
             facesOfVertex[v].push_back(f);
         }
     }
+    const double smoothed = std::acos(std::clamp(leastCosine, -1.0, 1.0));  // the largest angle
     std::map<std::array<double, 9>, std::vector<std::uint32_t>> atPlace;
     for (std::uint32_t v = 0; v < positions.size(); ++v) {
         std::array<double, 9> key{positions[v].x(), positions[v].y(), positions[v].z()};
