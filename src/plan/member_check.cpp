@@ -175,13 +175,20 @@ std::optional<double> oneWay(const TileSurface& from, const TileSurface& onto, c
     std::uint32_t triangle = 0;
     Eigen::Vector3d weights;
     const bool attributes = !geometryOnly && !(a.normals.empty() && a.texcoords.empty() && a.colors.empty());
+    // The squared distance of p from onto's surface (bound when nothing is closer). Without attributes (and then
+    // without `facing`) only the largest matters: a point no farther than the largest so far stops at the first
+    // triangle that close, not at the closest.
+    auto squaredTo = [&](const Eigen::Vector3d& p, const Eigen::Vector3d* facing) {
+        return attributes ? onto.closest(p, bound, triangle, weights, facing)
+                          : onto.squaredDistanceAbove(p, largest, bound);
+    };
     for (std::uint32_t v = 0; v < a.positions.size(); ++v) {
         // Where the vertex has a normal, on the triangles facing its way: at a crease (a cap's rim), the side
         // its normal belongs to.
         const Eigen::Vector3d normal =
             a.normals.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(map.linear * a.normals[v]);
-        const double squared = onto.closest(map.linear * a.positions[v] + map.translation, bound, triangle, weights,
-                                            a.normals.empty() || geometryOnly ? nullptr : &normal);
+        const double squared = squaredTo(map.linear * a.positions[v] + map.translation,
+                                         a.normals.empty() || geometryOnly ? nullptr : &normal);
         if (squared >= bound) return std::nullopt;
         largest = std::max(largest, squared);
         if (attributes &&
@@ -193,8 +200,8 @@ std::optional<double> oneWay(const TileSurface& from, const TileSurface& onto, c
         const Eigen::Vector3d &p = a.positions[t[0]], &q = a.positions[t[1]], &r = a.positions[t[2]];
         // On the triangles facing the way this one does (a thin part's other side lies within the tolerance).
         const Eigen::Vector3d facing = map.linear * (q - p).cross(r - p);
-        const double squared = onto.closest(map.linear * (p + q + r) / 3 + map.translation, bound, triangle, weights,
-                                            attributes && facing.squaredNorm() > 0 ? &facing : nullptr);
+        const double squared = squaredTo(map.linear * (p + q + r) / 3 + map.translation,
+                                         attributes && facing.squaredNorm() > 0 ? &facing : nullptr);
         if (squared >= bound) return std::nullopt;
         largest = std::max(largest, squared);
         if (attributes && !sameAttributes(a, t, third, map.linear, b, b.triangles[triangle], weights))
@@ -219,6 +226,10 @@ TileSurface::TileSurface(const Primitive& primitive)
       bvh_(mesh_),
       moments_(orientedMoments(primitive)),
       diagonal_(boundsOf(primitive.positions).diagonal().norm()) {}
+
+double TileSurface::squaredDistanceAbove(const Eigen::Vector3d& p, double enough, double bound) const {
+    return bvh_.squaredDistanceAbove(p, enough, bound);
+}
 
 double TileSurface::closest(const Eigen::Vector3d& p, double bound, std::uint32_t& triangle, Eigen::Vector3d& weights,
                             const Eigen::Vector3d* facing) const {

@@ -55,6 +55,9 @@ public:
     // barycentric coordinates there.
     double closest(const Eigen::Vector3d& p, double bound, std::uint32_t& triangle, Eigen::Vector3d& weights,
                    const Eigen::Vector3d* facing = nullptr) const;
+    // The squared distance from p to the surface where it is above `enough`, else some value up to it
+    // (TriangleBvh::squaredDistanceAbove): the largest of many distances, faster.
+    double squaredDistanceAbove(const Eigen::Vector3d& p, double enough, double bound) const;
 
 private:
     const Primitive& primitive_;
