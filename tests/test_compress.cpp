@@ -19,6 +19,7 @@
 #include <iterator>
 #include <map>
 #include <random>
+#include <set>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -183,6 +184,25 @@ TEST_CASE("Copies turned over face the way they do: flat cards, and a rebuild tu
     const auto result = nlohmann::json::parse(check.output.substr(check.output.find('{')));
     CHECK(result["flipped_area"].get<double>() == Approx(0.5).margin(0.01));
     CHECK(result["verified"] == false);
+}
+
+TEST_CASE("The plans measured beside the output leave no file behind, in every output format", "[compress]") {
+    // The bolts: instancing and its ablation plans are measured, each written beside the output and removed.
+    const Scene scene = samples::makeBoltsScene();
+    const std::vector<std::pair<std::string, std::set<std::string>>> cases = {
+        {"out.glb", {"out.glb"}}, {"out.gltf", {"out.gltf", "out.bin"}},
+        {"out.x3d", {"out.x3d"}}, {"out.obj", {"out.obj", "out.mtl"}},
+        {"out.ply", {"out.ply"}},
+    };
+    for (const auto& [name, expected] : cases) {
+        INFO(name);
+        TemporaryFolder folder;
+        compressToFile(scene, folder / name);
+        std::set<std::string> left;
+        for (const auto& entry : std::filesystem::directory_iterator(folder.path()))
+            left.insert(entry.path().filename().string());
+        CHECK(left == expected);
+    }
 }
 
 TEST_CASE("A plan that takes another plan's assemblies and scene symmetry is the plan that seeks them itself",

@@ -78,8 +78,10 @@ std::uintmax_t measuredBytes(const CompressedScene& plan, const fs::path& output
     const std::uintmax_t size = outputBytesOf(plan.scene, temporary);  // with a .gltf's .bin
     std::error_code error;
     fs::remove(temporary, error);
-    if (formatFromExtension(temporary) == FileFormat::Gltf)
-        fs::remove(fs::path(temporary).replace_extension(".bin"), error);
+    // And the file written beside it: a .gltf's buffer, an OBJ's material library.
+    if (const FileFormat format = formatFromExtension(temporary);
+        format == FileFormat::Gltf || format == FileFormat::Obj)
+        fs::remove(fs::path(temporary).replace_extension(format == FileFormat::Gltf ? ".bin" : ".mtl"), error);
     return size;
 }
 
