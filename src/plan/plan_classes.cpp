@@ -92,6 +92,59 @@ std::vector<Eigen::Matrix3d> attributeGroup(const PlanContext& context, const Ti
     return group;
 }
 
+// The placed member with the fewest triangles, where it has fewer than the prototype and reproduces every placed
+// member as the member check decides (corner by corner, else as a surface), each under its placement composed
+// with the inverse of the stand-in's: copies tessellated each on its own then store the lightest (issue 17).
+// Its index into c.members, and each placed member's placement from it and deviation (relative).
+struct StandIn {
+    std::size_t member = 0;
+    Primitive primitive;  // its tile's
+    std::vector<Isometry> placements;
+    std::vector<double> deviations;
+};
+std::optional<StandIn> lightestStandIn(const PlanContext& context, const CongruenceClass& c,
+                                       const std::vector<std::size_t>& placed,
+                                       const std::vector<Isometry>& placements) {
+    const SceneAnalysis& analysis = context.analysis;
+    auto trianglesOf = [&](std::size_t i) { return analysis.classification.shapes[c.members[i]].triangles; };
+    std::size_t lightest = placed.front();
+    for (std::size_t i : placed)
+        if (trianglesOf(i) < trianglesOf(lightest)) lightest = i;
+    if (!(trianglesOf(lightest) < analysis.classification.shapes[c.prototype].triangles)) return std::nullopt;
+    StandIn result{lightest, tilePrimitive(analysis.tiles[c.members[lightest]], analysis.soup), placements,
+                   std::vector<double>(c.members.size(), 0)};
+    const Primitive& standIn = result.primitive;
+    Isometry fromStandIn;  // the inverse of its placement: from the stand-in to the prototype
+    fromStandIn.linear = placements[lightest].linear.transpose();
+    fromStandIn.translation = -(fromStandIn.linear * placements[lightest].translation);
+    LazySurface standInSurface(standIn);
+    std::vector<char> reproduced(c.members.size(), 0);
+    withThreads(analysis.options.threads, [&] {
+        tbb::parallel_for(std::size_t(0), placed.size(), [&](std::size_t p) {
+            const std::size_t i = placed[p];
+            Isometry& placement = result.placements[i];
+            placement.linear = placements[i].linear * fromStandIn.linear;
+            placement.translation = placements[i].linear * fromStandIn.translation + placements[i].translation;
+            const Primitive member = tilePrimitive(analysis.tiles[c.members[i]], analysis.soup);
+            double deviation = 0;
+            const Reproduction corners =
+                reproduction(standIn, member, placement, context.tolerance(), context.options.geometryOnly, &deviation);
+            std::optional<double> surface;
+            if (corners == Reproduction::Reproduced)
+                surface = deviation;
+            else if (corners != Reproduction::AttributesDiffer)
+                surface = surfaceDeviation(standInSurface.get(), TileSurface(member), placement, context.tolerance(),
+                                           context.options.geometryOnly);
+            if (!surface) return;
+            reproduced[i] = 1;
+            result.deviations[i] = analysis.diagonal > 0 ? *surface / analysis.diagonal : 0;
+        });
+    });
+    for (std::size_t i : placed)
+        if (!reproduced[i]) return std::nullopt;
+    return result;
+}
+
 // Whether some placed member's input node has a name or extras (what its instance node would keep).
 bool anyNamed(const PlanContext& context, const CongruenceClass& c, const std::vector<std::size_t>& placed) {
     return std::any_of(placed.begin(), placed.end(), [&](std::size_t i) {
@@ -202,15 +255,25 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
     }
     const bool useRegion = regional < instanced;
     // The shared mesh is stored about the prototype's centroid (a small range for quantization); a region in
-    // its aligned frame, also about the centroid (see RegionFrame::Aligned).
+    // its aligned frame, also about the centroid (see RegionFrame::Aligned); a lighter stand-in about its own.
     SharedPart shared;
     shared.mechanism = useRegion ? SharedPart::Mechanism::Region : SharedPart::Mechanism::Class;
     shared.mesh.name = "class " + std::to_string(k) + (useRegion ? " (fundamental region)" : "");
     Primitive local = useRegion ? region->region : prototype;
+    Eigen::Vector3d storedAbout = center;
     if (!useRegion)
-        for (auto& p : local.positions) p -= center;
+        if (std::optional<StandIn> standIn = lightestStandIn(context, c, placed, placements);
+            standIn && costs.asMesh(standIn->primitive) < costs.alone(c.prototype)) {
+            local = std::move(standIn->primitive);
+            storedAbout = analysis.classification.shapes[c.members[standIn->member]].moments.centroid;
+            placements = std::move(standIn->placements);
+            deviations = std::move(standIn->deviations);
+        }
+    if (!useRegion)
+        for (auto& p : local.positions) p -= storedAbout;
     shared.mesh.primitives.push_back(std::move(local));
-    shared.nodes = nodesOf(useRegion ? regionCopies(*region) : std::vector<Eigen::Matrix4d>{atCenter}, named);
+    shared.nodes =
+        nodesOf(useRegion ? regionCopies(*region) : std::vector<Eigen::Matrix4d>{translationTo(storedAbout)}, named);
     shared.named = named;
     for (std::size_t i : placed) {
         shared.tiles.push_back(c.members[i]);
