@@ -19,6 +19,12 @@ inline Eigen::Vector3d srgbToLinear(const Eigen::Vector3d& c) {
     return c.unaryExpr([](double x) { return srgbToLinear(x); });
 }
 
+// A vertex colour of a format that holds display values (PLY, OBJ: three.js's loaders decode them as sRGB) as
+// COLOR_0 holds it, and back: red, green and blue converted, alpha linear in both.
+inline Eigen::Vector4d linearFromSrgbColor(const Eigen::Vector4d& c) {
+    return {srgbToLinear(c[0]), srgbToLinear(c[1]), srgbToLinear(c[2]), c[3]};
+}
+
 // The value near `exact` with the fewest significant digits (at most 9) that `back` turns into `stored` as a
 // float32 (glTF stores its factors as float32), else `exact`: glTF -> X3D -> glTF gives the factor back, and a
 // value that came from X3D as a short decimal (0.8) goes back to X3D as that decimal.

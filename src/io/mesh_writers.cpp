@@ -1,10 +1,12 @@
 // OBJ (with .mtl) and PLY writers. Both formats have no instancing: the scene is written flattened to
 // world space. Coordinates are printed with the shortest text that reads back to the same double.
-#include "symcompress/detail/atomic_file.hpp"
+#include "common/color_space.hpp"
+#include "common/number_text.hpp"
 #include "image_reference.hpp"
+#include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
-#include "common/number_text.hpp"
+#include "x3d_materials.hpp"
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -32,9 +34,11 @@ std::string mtlFile(const Scene& scene, const fs::path& file) {
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& material = scene.materials[m];
         out += "\nnewmtl " + materialName(scene, static_cast<int>(m)) + "\n";
-        appendVector(out, "Kd", material.baseColorFactor, 3);
+        // sRGB-encoded, as X3D's Phong Material: the fields as read, else the factors' shortest sRGB values.
+        const PhongMaterial phong = x3d::phongOf(material);
+        appendVector(out, "Kd", phong.diffuseColor, 3);
         if (material.phong) appendVector(out, "Ks", material.phong->specularColor, 3);
-        appendVector(out, "Ke", material.emissiveFactor, 3);
+        appendVector(out, "Ke", phong.emissiveColor, 3);
         out += "d ";
         appendShortest(out, material.baseColorFactor[3]);
         out += '\n';
@@ -56,7 +60,18 @@ void writeObj(const Scene& scene, const fs::path& file, const WriteOptions&) {
     for (const WorldPrimitive& world : flattenScene(scene)) {
         const Primitive& primitive = world.primitive;
         out += "o part" + std::to_string(part++) + "\nusemtl " + materialName(scene, primitive.material) + "\n";
-        for (const Eigen::Vector3d& p : primitive.positions) appendVector(out, "v", p, 3);
+        // Vertex colours as "v x y z r g b", sRGB-encoded (OBJ holds no alpha: formatLosses says so).
+        for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
+            if (primitive.colors.empty()) {
+                appendVector(out, "v", primitive.positions[v], 3);
+                continue;
+            }
+            Eigen::Matrix<double, 6, 1> positionAndColor;
+            positionAndColor << primitive.positions[v], primitive.colors[v].head<3>().unaryExpr([](double l) {
+                return linearToSrgbShortest(std::clamp(l, 0.0, 1.0));
+            });
+            appendVector(out, "v", positionAndColor, 6);
+        }
         for (std::size_t v = 0; v < primitive.texcoords.size(); ++v) {
             const Eigen::Vector2d t = baseColorTexcoord(scene, primitive, v);
             appendVector(out, "vt", Eigen::Vector2d(t.x(), 1 - t.y()), 2);
@@ -110,9 +125,11 @@ void writePly(const Scene& scene, const fs::path& file, const WriteOptions&) {
                 put(static_cast<float>(p.texcoords[v].x()));
                 put(static_cast<float>(1 - p.texcoords[v].y()));
             }
-            if (colors)
-                for (int c = 0; c < 4; ++c)
-                    put(static_cast<std::uint8_t>(std::lround(std::clamp(p.colors[v][c], 0.0, 1.0) * 255)));
+            if (colors)  // sRGB-encoded, alpha linear (linearFromSrgbColor)
+                for (int c = 0; c < 4; ++c) {
+                    const double value = std::clamp(p.colors[v][c], 0.0, 1.0);
+                    put(static_cast<std::uint8_t>(std::lround((c < 3 ? linearToSrgb(value) : value) * 255)));
+                }
         }
     }
     std::uint32_t base = 0;

@@ -1,9 +1,10 @@
 // Wavefront OBJ reader with its .mtl materials. Each o/g group becomes a node with its own mesh (one
 // primitive per material); vertices are split per distinct (v, vt, vn) triple; polygons are triangulated.
-#include "symcompress/detail/atomic_file.hpp"
-#include "symcompress/io.hpp"
-#include "symcompress/detail/triangulate_polygon.hpp"
+#include "common/color_space.hpp"
 #include "common/mime_type.hpp"
+#include "symcompress/detail/atomic_file.hpp"
+#include "symcompress/detail/triangulate_polygon.hpp"
+#include "symcompress/io.hpp"
 #include "text_scanner.hpp"
 
 #include <algorithm>
@@ -53,13 +54,16 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
             for (int c = 0; c < 3; ++c) color[c] = nextNumber<double>(line, scanner, "a colour component");
             return color;
         };
+        // Colours are display values (sRGB-encoded), as in X3D's Phong Material and as three.js's MTLLoader
+        // reads them: glTF's factors are their linear values, the Phong fields keep them as they are.
         if (keyword == "Kd") {
             current->phong->diffuseColor = readColor();
-            current->baseColorFactor.head<3>() = current->phong->diffuseColor;
+            current->baseColorFactor.head<3>() = srgbToLinear(current->phong->diffuseColor);
         } else if (keyword == "Ks") {
             current->phong->specularColor = readColor();
         } else if (keyword == "Ke") {
-            current->emissiveFactor = current->phong->emissiveColor = readColor();
+            current->phong->emissiveColor = readColor();
+            current->emissiveFactor = srgbToLinear(current->phong->emissiveColor);
         } else if (keyword == "Ns") {
             current->phong->shininess = std::clamp(nextNumber<double>(line, scanner, "Ns") / 1000.0, 0.0, 1.0);
         } else if (keyword == "d" || keyword == "Tr") {
@@ -146,13 +150,14 @@ Scene readObj(const fs::path& file) {
             for (int c = 0; c < 3; ++c) p[c] = nextNumber<double>(line, scanner, "a vertex coordinate");
             if (!p.allFinite()) scanner.fail("NaN or infinite vertex coordinate");
             positions.push_back(p);
-            // Optional "v x y z r g b" vertex colours.
+            // Optional "v x y z r g b" vertex colours: display values (sRGB-encoded, as three.js's OBJLoader
+            // reads them); COLOR_0 is linear.
             std::string_view colorText = line;
             if (!nextWord(colorText).empty()) {
                 Eigen::Vector4d color(1, 1, 1, 1);
                 for (int c = 0; c < 3; ++c) color[c] = nextNumber<double>(line, scanner, "a vertex colour");
                 vertexColors.resize(positions.size(), Eigen::Vector4d(1, 1, 1, 1));
-                vertexColors.back() = color;
+                vertexColors.back() = linearFromSrgbColor(color);
                 anyColors = true;
             }
         } else if (keyword == "vn") {

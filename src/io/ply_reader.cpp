@@ -1,9 +1,10 @@
 // PLY reader: ASCII, binary little and big endian; any scalar property types; faces as lists of any
 // length (polygons triangulated); properties we do not use are skipped.
+#include "common/color_space.hpp"
 #include "symcompress/detail/atomic_file.hpp"
+#include "symcompress/detail/triangulate_polygon.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
-#include "symcompress/detail/triangulate_polygon.hpp"
 #include "text_scanner.hpp"
 
 #include <algorithm>
@@ -223,13 +224,15 @@ Scene readPly(const fs::path& file) {
                 if (nx >= 0 && ny >= 0 && nz >= 0) primitive.normals.emplace_back(values[nx], values[ny], values[nz]);
                 if (s >= 0 && t >= 0) primitive.texcoords.emplace_back(values[s], 1 - values[t]);  // PLY's v points up
                 if (red >= 0 && green >= 0 && blue >= 0) {
-                    // Integer colours are 0..255; float colours are already 0..1.
+                    // Integer colours are 0..255; float colours are already 0..1. Both are display values
+                    // (sRGB-encoded), as three.js's PLYLoader reads them: COLOR_0 is linear.
                     const double scale = element.properties[red].type == ScalarType::Float32 ||
                                                  element.properties[red].type == ScalarType::Float64
                                              ? 1.0
                                              : 255.0;
-                    primitive.colors.emplace_back(values[red] / scale, values[green] / scale, values[blue] / scale,
-                                                  alpha >= 0 ? values[alpha] / scale : 1.0);
+                    primitive.colors.push_back(
+                        linearFromSrgbColor({values[red] / scale, values[green] / scale, values[blue] / scale,
+                                             alpha >= 0 ? values[alpha] / scale : 1.0}));
                 }
             } else if (isFace) {
                 faces.push_back(std::move(face));

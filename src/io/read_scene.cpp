@@ -126,6 +126,17 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
                          (x3d ? "with their core textures only: their extensions and other textures have"
                               : "with their base colour only: their other textures, samplers and extensions have") +
                          " no place in " + file.extension().string() + " output");
+    if (format == FileFormat::Obj) {
+        std::size_t translucent = 0;  // meshes with vertex colours that are not opaque
+        for (const Mesh& mesh : scene.meshes)
+            translucent += std::any_of(mesh.primitives.begin(), mesh.primitives.end(), [](const Primitive& p) {
+                return std::any_of(p.colors.begin(), p.colors.end(),
+                                   [](const Eigen::Vector4d& c) { return c[3] != 1; });
+            });
+        if (translucent)
+            losses.push_back(std::to_string(translucent) + " meshes' vertex colours written without their alpha: " +
+                             extension + " output holds red, green and blue only");
+    }
     if (format != FileFormat::X3d) {
         if (!scene.animations.empty())
             losses.push_back(std::to_string(scene.animations.size()) + " animations not written: " + extension +
