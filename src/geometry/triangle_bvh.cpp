@@ -109,6 +109,10 @@ double TriangleBvh::search(const Eigen::Vector3d& p, double bound, double enough
                 const Eigen::Vector3d& b = corners_[3 * std::size_t(i) + 1];
                 const Eigen::Vector3d& c = corners_[3 * std::size_t(i) + 2];
                 if (facing && (b - a).cross(c - a).dot(*facing) <= 0) continue;
+                // The triangle's box first: no nearer than the best so far, the triangle is not either.
+                const Eigen::Vector3d outside =
+                    (a.cwiseMin(b).cwiseMin(c) - p).cwiseMax(p - a.cwiseMax(b).cwiseMax(c)).cwiseMax(0.0);
+                if (outside.squaredNorm() >= best) continue;
                 const Eigen::Vector3d q = closestPointOnTriangle(p, a, b, c);
                 const double d = (q - p).squaredNorm();
                 if (d < best) {
