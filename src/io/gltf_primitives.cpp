@@ -11,6 +11,8 @@
 #include <draco/compression/expert_encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -151,11 +153,12 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     std::unique_ptr<draco::Mesh> mesh = soup.Finalize();
     if (!mesh) throw FileError(file, "Draco could not build a mesh from a primitive");
 
-    int positionBits = primitive.positionGrid ? primitive.positionGrid->bits : positionBitsFor(primitive, options);
+    const int positionBits =
+        primitive.positionGrid ? primitive.positionGrid->bits : positionBitsFor(primitive, options);
     const std::vector<int> speeds = dracoSpeedsWorthTrying(primitive, options);
-    int speed = speeds.front();
-    // False when the encoder refuses (edgebreaker: "all triangles are degenerate").
-    auto encode = [&](int encoding, draco::EncoderBuffer& encoded) {
+    // False when the encoder refuses (edgebreaker: "all triangles are degenerate"). Encoders only read the mesh:
+    // several may encode it at once.
+    auto encode = [&](int encoding, int speed, int bits, draco::EncoderBuffer& encoded) {
         draco::ExpertEncoder encoder(*mesh);
         encoder.SetSpeedOptions(speed, speed);
         encoder.SetEncodingMethod(encoding);
@@ -163,15 +166,15 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
             const float origin[3] = {float(grid->origin.x()), float(grid->origin.y()), float(grid->origin.z())};
             encoder.SetAttributeExplicitQuantization(ids.position, grid->bits, 3, origin, float(grid->range));
         } else {
-            encoder.SetAttributeQuantization(ids.position, positionBits);
+            encoder.SetAttributeQuantization(ids.position, bits);
         }
         const std::pair<int, int> quantized[] = {
             {ids.normal, options.normalBits}, {ids.texcoord, options.texcoordBits}, {ids.color, options.colorBits}};
-        for (const auto& [id, bits] : quantized)
-            if (id >= 0) encoder.SetAttributeQuantization(id, bits);
+        for (const auto& [id, attributeBits] : quantized)
+            if (id >= 0) encoder.SetAttributeQuantization(id, attributeBits);
         for (std::size_t a = 0; a < primitive.attributes.size(); ++a)
-            if (const int bits = quantizationBits(primitive.attributes[a].name, options); bits > 0)
-                encoder.SetAttributeQuantization(ids.others[a], bits);
+            if (const int attributeBits = quantizationBits(primitive.attributes[a].name, options); attributeBits > 0)
+                encoder.SetAttributeQuantization(ids.others[a], attributeBits);
         const draco::Status status = encoder.EncodeToBuffer(&encoded);
         if (!status.ok() && encoding != draco::MESH_EDGEBREAKER_ENCODING)
             throw FileError(file, "Draco encoding failed: " + status.error_msg_string());
@@ -191,34 +194,42 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     draco::EncoderBuffer encoded;
     std::unique_ptr<draco::Mesh> result;
     if (method != DracoMethod::Sequential) {
-        if (encode(draco::MESH_EDGEBREAKER_ENCODING, encoded)) result = decode(encoded);
+        if (encode(draco::MESH_EDGEBREAKER_ENCODING, speeds.front(), positionBits, encoded)) result = decode(encoded);
         if (!complete(result) && method == DracoMethod::EdgebreakerOrNothing) return std::nullopt;
         // Other speeds (dracoSpeedsWorthTrying), then more bits within the bound at the best of them
-        // (positionBitsWorthTrying), may encode smaller: the smallest is kept (decoded only when smaller).
-        auto tryEncoding = [&] {
-            draco::EncoderBuffer trial;
-            if (!encode(draco::MESH_EDGEBREAKER_ENCODING, trial) || trial.size() >= encoded.size()) return false;
-            std::unique_ptr<draco::Mesh> decoded = decode(trial);
-            if (!complete(decoded)) return false;
-            encoded = std::move(trial);
-            result = std::move(decoded);
-            return true;
+        // (positionBitsWorthTrying), may encode smaller. Each round's trials are encoded at once; in their order,
+        // one is kept where it is smaller than the best so far and decodes whole: the first smallest.
+        auto tryEach = [&](const std::vector<std::pair<int, int>>& trials) {  // (speed, bits)
+            std::vector<draco::EncoderBuffer> buffers(trials.size());
+            std::vector<char> encodedWell(trials.size(), 0);
+            tbb::parallel_for(std::size_t(0), trials.size(), [&](std::size_t t) {
+                encodedWell[t] =
+                    encode(draco::MESH_EDGEBREAKER_ENCODING, trials[t].first, trials[t].second, buffers[t]);
+            });
+            std::optional<std::pair<int, int>> kept;
+            for (std::size_t t = 0; t < trials.size(); ++t) {
+                if (!encodedWell[t] || buffers[t].size() >= encoded.size()) continue;
+                std::unique_ptr<draco::Mesh> decoded = decode(buffers[t]);
+                if (!complete(decoded)) continue;
+                encoded = std::move(buffers[t]);
+                result = std::move(decoded);
+                kept = trials[t];
+            }
+            return kept;
         };
         if (complete(result)) {
-            int bestSpeed = speed;
-            for (std::size_t s = 1; s < speeds.size(); ++s)
-                if (speed = speeds[s]; tryEncoding()) bestSpeed = speed;
-            speed = bestSpeed;
-            const int fewestBits = positionBits;
-            int bestBits = fewestBits;
-            for (const int more : positionBitsWorthTrying(primitive, options, fewestBits))
-                if (positionBits = more; tryEncoding()) bestBits = more;
-            positionBits = bestBits;
+            std::vector<std::pair<int, int>> otherSpeeds;
+            for (std::size_t s = 1; s < speeds.size(); ++s) otherSpeeds.push_back({speeds[s], positionBits});
+            const int speed = tryEach(otherSpeeds).value_or(std::pair{speeds.front(), positionBits}).first;
+            std::vector<std::pair<int, int>> moreBits;
+            for (const int more : positionBitsWorthTrying(primitive, options, positionBits))
+                moreBits.push_back({speed, more});
+            tryEach(moreBits);
         }
     }
     if (!complete(result)) {
         encoded.Clear();
-        encode(draco::MESH_SEQUENTIAL_ENCODING, encoded);
+        encode(draco::MESH_SEQUENTIAL_ENCODING, speeds.front(), positionBits, encoded);
         result = decode(encoded);
     }
     if (result->num_faces() != primitive.triangles.size())
