@@ -5,6 +5,9 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -88,20 +91,42 @@ std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& from
     // accepts at a looser tolerance still spends it.
     auto firstPassing = [&](const std::vector<Eigen::Matrix3d>& candidates) -> std::optional<FoundIsometry> {
         const double close = tolerance / 16;
+        // One candidate's measures: screened out, or its deviation as it is and, where that is not close, refined.
+        struct Trial {
+            bool screened = false;
+            double direct = 0, refinedDeviation = 0;
+            Eigen::Matrix3d refined = Eigen::Matrix3d::Identity();
+        };
+        auto measure = [&](const Eigen::Matrix3d& candidate) {
+            Trial trial;
+            if (fromVerifier.farthestOnto(toVerifier, candidate, screening, 2000) > screening) return trial;
+            trial.screened = true;
+            // Exact copies pass as they are; refine what does not.
+            trial.direct = deviationBetween(fromVerifier, toVerifier, candidate, tolerance);
+            if (trial.direct <= close) return trial;
+            trial.refined = fromVerifier.refineOnto(toVerifier, candidate, 2 * screening);
+            trial.refinedDeviation = deviationBetween(fromVerifier, toVerifier, trial.refined, tolerance);
+            return trial;
+        };
         std::optional<FoundIsometry> best;
         auto keep = [&](const Eigen::Matrix3d& map, double d) {
             if (d <= tolerance && (!best || d < best->deviation)) best = FoundIsometry{map, d};
         };
-        for (const Eigen::Matrix3d& candidate : candidates) {
-            if (fromVerifier.farthestOnto(toVerifier, candidate, screening, 2000) > screening) continue;
-            // Exact copies pass as they are; refine what does not.
-            const double direct = deviationBetween(fromVerifier, toVerifier, candidate, tolerance);
-            if (direct <= close) return FoundIsometry{candidate, direct};
-            const Eigen::Matrix3d refined = fromVerifier.refineOnto(toVerifier, candidate, 2 * screening);
-            const double d = deviationBetween(fromVerifier, toVerifier, refined, tolerance);
-            if (d <= close) return FoundIsometry{refined, d};
-            keep(candidate, direct);
-            keep(refined, d);
+        // As many candidates at once as there are threads (a nearly round part tries dozens, each refined),
+        // then taken in their order, as one at a time would take them.
+        const auto batch = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+        for (std::size_t first = 0; first < candidates.size(); first += batch) {
+            const std::size_t last = std::min(candidates.size(), first + batch);
+            std::vector<Trial> trials(last - first);
+            tbb::parallel_for(first, last, [&](std::size_t c) { trials[c - first] = measure(candidates[c]); });
+            for (std::size_t c = first; c < last; ++c) {
+                const Trial& trial = trials[c - first];
+                if (!trial.screened) continue;
+                if (trial.direct <= close) return FoundIsometry{candidates[c], trial.direct};
+                if (trial.refinedDeviation <= close) return FoundIsometry{trial.refined, trial.refinedDeviation};
+                keep(candidates[c], trial.direct);
+                keep(trial.refined, trial.refinedDeviation);
+            }
         }
         return best;
     };
