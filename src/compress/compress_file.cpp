@@ -103,6 +103,29 @@ double bytesPerInstance(const CompressedScene& compressed, const StorageCostMode
     return total / double(compressed.instanceNodes.size());
 }
 
+// After the analysis the soup holds the geometry of every mesh the tiles draw: those meshes' arrays are freed,
+// so that the job keeps one copy of the scene's geometry, not two. A mesh kept as it is (KeptInstance) or drawn
+// in an animated subtree is written from the input and stays.
+void freeTiledGeometry(Scene& scene, const SceneAnalysis& analysis) {
+    std::vector<char> kept(scene.meshes.size(), 0);
+    for (const KeptInstance& instance : analysis.keptInstances)
+        if (instance.mesh >= 0) kept[std::size_t(instance.mesh)] = 1;
+    std::vector<int> subtree(analysis.animatedSubtrees.begin(), analysis.animatedSubtrees.end());
+    while (!subtree.empty()) {
+        const Node& node = scene.nodes[std::size_t(subtree.back())];
+        subtree.pop_back();
+        if (node.mesh >= 0) kept[std::size_t(node.mesh)] = 1;
+        subtree.insert(subtree.end(), node.children.begin(), node.children.end());
+    }
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        if (!kept[m])
+            for (Primitive& primitive : scene.meshes[m].primitives) {
+                Primitive emptied;
+                emptied.material = primitive.material;
+                primitive = std::move(emptied);
+            }
+}
+
 // compressToFile, with the time the input took to read (in the report before the HTML report shows it).
 CompressionReport compressRead(Scene scene, const fs::path& output, const CompressOptions& options,
                                const std::vector<fs::path>& inputs, double secondsRead) {
@@ -142,6 +165,8 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         analysisOptions.groupCosts = costModelFor(formatFromExtension(output), groupWrite);
     }
     const SceneAnalysis analysis = analyzeScene(scene, analysisOptions);
+    // The HTML report draws the input itself.
+    if (options.htmlReport.empty()) freeTiledGeometry(scene, analysis);
     WriteOptions write = options.write;
     write.threads = options.threads;
     write.encodings = encodings;
