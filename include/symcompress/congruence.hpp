@@ -20,6 +20,8 @@ struct Isometry {
     Eigen::Vector3d translation = Eigen::Vector3d::Zero();
     bool mirrors() const { return linear.determinant() < 0; }
     Eigen::Matrix4d matrix() const;
+    Isometry inverse() const;                         // linear orthogonal: its transpose
+    Isometry operator*(const Isometry& first) const;  // `first`, then this
 };
 
 // What the classification needs of one tile.

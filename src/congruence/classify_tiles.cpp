@@ -68,6 +68,20 @@ Eigen::Matrix4d Isometry::matrix() const {
     return m;
 }
 
+Isometry Isometry::inverse() const {
+    Isometry back;
+    back.linear = linear.transpose();
+    back.translation = -(back.linear * translation);
+    return back;
+}
+
+Isometry Isometry::operator*(const Isometry& first) const {
+    Isometry both;
+    both.linear = linear * first.linear;
+    both.translation = linear * first.translation + translation;
+    return both;
+}
+
 TileClassification classifyTiles(const std::vector<Tile>& tiles, const CongruenceOptions& options) {
     TileClassification result;
     Eigen::AlignedBox3d sceneBox;

@@ -251,12 +251,9 @@ std::optional<double> surfaceDeviation(const TileSurface& prototype, const TileS
     // The orientation first: it costs a product of 3x3 matrices, the rest two searches per sample point.
     if (!sameOrientation(prototype.moments(), member.moments(), j, std::max(member.diagonal(), tolerance)))
         return std::nullopt;
-    Isometry inverse;
-    inverse.linear = j.linear.transpose();
-    inverse.translation = -(inverse.linear * j.translation);
     const std::optional<double> there = oneWay(prototype, member, j, tolerance, geometryOnly);
     if (!there) return std::nullopt;
-    const std::optional<double> back = oneWay(member, prototype, inverse, tolerance, geometryOnly);
+    const std::optional<double> back = oneWay(member, prototype, j.inverse(), tolerance, geometryOnly);
     if (!back) return std::nullopt;
     return std::max(*there, *back);
 }

@@ -114,17 +114,13 @@ std::optional<StandIn> lightestStandIn(const PlanContext& context, const Congrue
     StandIn result{lightest, tilePrimitive(analysis.tiles[c.members[lightest]], analysis.soup), placements,
                    std::vector<double>(c.members.size(), 0)};
     const Primitive& standIn = result.primitive;
-    Isometry fromStandIn;  // the inverse of its placement: from the stand-in to the prototype
-    fromStandIn.linear = placements[lightest].linear.transpose();
-    fromStandIn.translation = -(fromStandIn.linear * placements[lightest].translation);
+    const Isometry fromStandIn = placements[lightest].inverse();  // from the stand-in to the prototype
     LazySurface standInSurface(standIn);
     std::vector<char> reproduced(c.members.size(), 0);
     withThreads(analysis.options.threads, [&] {
         tbb::parallel_for(std::size_t(0), placed.size(), [&](std::size_t p) {
             const std::size_t i = placed[p];
-            Isometry& placement = result.placements[i];
-            placement.linear = placements[i].linear * fromStandIn.linear;
-            placement.translation = placements[i].linear * fromStandIn.translation + placements[i].translation;
+            const Isometry& placement = result.placements[i] = placements[i] * fromStandIn;
             const Primitive member = tilePrimitive(analysis.tiles[c.members[i]], analysis.soup);
             double deviation = 0;
             const Reproduction corners =
