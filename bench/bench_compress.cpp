@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
             const Eigen::Vector3d at = 6.0 * Eigen::Vector3d(double(k % side), double(k / side % side), double(k / side / side));
             appendPlaced(baked, k < bolts ? bolt : randomPart(random), linear, at);
         }
-        const Scene scene = samples::singleMeshScene("bench", std::move(baked), {0.7, 0.7, 0.7, 1});
+        Scene scene = samples::singleMeshScene("bench", std::move(baked), {0.7, 0.7, 0.7, 1});
         const std::size_t triangles = scene.meshes[0].primitives[0].triangles.size();
 
         // The stages of compressFile's full plan, for a Draco GLB (without the trial of the simpler plans).
@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
         auto start = std::chrono::steady_clock::now();
         AnalysisOptions analysisOptions = analysisOptionsOf(options);
         analysisOptions.groupCosts = costModelFor(FileFormat::Glb, write);  // as compressFile sets it
-        const SceneAnalysis analysis = analyzeScene(scene, analysisOptions);
+        const SceneAnalysis analysis = analyzeSceneTakingGeometry(scene, analysisOptions);
         const double analyzeSeconds = since(start);
         start = std::chrono::steady_clock::now();
         const CompressedScene compressed = compressAnalyzed(scene, analysis, planOptions);

@@ -132,7 +132,10 @@ Scene OneMeshBuilder::build() && {
     Scene scene;
     scene.materials = std::move(materials_);
     scene.meshes.push_back({name_, std::move(primitives_)});
-    scene.nodes.push_back({name_, Eigen::Matrix4d::Identity(), 0, {}});
+    Node node;
+    node.name = name_;
+    node.mesh = 0;
+    scene.nodes.push_back(std::move(node));
     scene.roots.push_back(0);
     return scene;
 }

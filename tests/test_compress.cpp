@@ -228,6 +228,71 @@ TEST_CASE("A plan that takes another plan's assemblies and scene symmetry is the
     }
 }
 
+TEST_CASE("The analysis that takes the input's geometry is the one that copies it, and leaves the kept meshes whole",
+          "[compress]") {
+    // The room (one mesh, one node), and four boxes: drawn by two nodes, by an animated node, with tangents
+    // (which tiles do not carry), and by two nodes one of which scales it (the author's instancing).
+    Scene scene = samples::makeRoomScene();
+    Primitive box;
+    samples::appendMesh(box, samples::boxMesh({5, 0, 0}, {0.4, 0.5, 0.6}));
+    auto addNode = [&](int mesh, const Eigen::Vector3d& at, double scale) {
+        Node node;
+        node.mesh = mesh;
+        node.transform.topLeftCorner<3, 3>() *= scale;
+        node.transform.topRightCorner<3, 1>() = at;
+        scene.roots.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(node);
+        return int(scene.nodes.size()) - 1;
+    };
+    for (int m = 0; m < 4; ++m) scene.meshes.push_back({"box" + std::to_string(m), {box}, "", {}});
+    const int twice = int(scene.meshes.size()) - 4, animated = twice + 1, tangents = twice + 2, scaled = twice + 3;
+    addNode(twice, {0, 3, 0}, 1);
+    addNode(twice, {0, 6, 0}, 1);
+    AnimationChannel slide;
+    slide.node = addNode(animated, {0, 9, 0}, 1);
+    slide.times = {0, 1};
+    slide.values = {0, 9, 0, 1, 9, 0};
+    scene.animations.push_back({"slide", {slide}});
+    scene.meshes[std::size_t(tangents)].primitives[0].attributes.push_back(
+        {"TANGENT", 4, std::vector<double>(box.positions.size() * 4, 0.5)});
+    addNode(tangents, {0, 12, 0}, 1);
+    addNode(scaled, {0, 15, 0}, 1);
+    addNode(scaled, {0, 18, 0}, 0.5);
+    validateScene(scene);
+
+    const SceneAnalysis copied = analyzeScene(scene);
+    Scene taken = scene;
+    const SceneAnalysis analysis = analyzeSceneTakingGeometry(taken);
+    REQUIRE(analysis.soup.size() == copied.soup.size());
+    for (std::size_t p = 0; p < copied.soup.size(); ++p) {
+        CHECK(analysis.soup[p].primitive.positions == copied.soup[p].primitive.positions);
+        CHECK(analysis.soup[p].primitive.normals == copied.soup[p].primitive.normals);
+        CHECK(analysis.soup[p].primitive.triangles == copied.soup[p].primitive.triangles);
+        CHECK(analysis.soup[p].node == copied.soup[p].node);
+    }
+    CHECK(analysis.tiles.size() == copied.tiles.size());
+    CHECK(analysis.digest.json() == copied.digest.json());
+    CHECK(analysis.keptInstances.size() == 3);
+    // The meshes only tiles draw keep their materials and nothing else; the others are as they were.
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        INFO(scene.meshes[m].name);
+        const bool kept = int(m) == animated || int(m) == tangents || int(m) == scaled;
+        for (std::size_t p = 0; p < scene.meshes[m].primitives.size(); ++p) {
+            const Primitive& before = scene.meshes[m].primitives[p];
+            const Primitive& after = taken.meshes[m].primitives[p];
+            CHECK(after.material == before.material);
+            CHECK(after.positions.size() == (kept ? before.positions.size() : 0));
+            CHECK(after.triangles.size() == (kept ? before.triangles.size() : 0));
+            CHECK(after.attributes == before.attributes);
+        }
+    }
+    // The same output, byte for byte.
+    TemporaryFolder folder;
+    writeScene(compressAnalyzed(scene, copied, {}).scene, folder / "copied.glb");
+    writeScene(compressAnalyzed(taken, analysis, {}).scene, folder / "taken.glb");
+    CHECK(readFileBytes(folder / "copied.glb") == readFileBytes(folder / "taken.glb"));
+}
+
 TEST_CASE("Tiles that recur together are stored once per group: the room's bookshelves", "[compress]") {
     // The room with a box on one table: its mirror symmetry is broken, so the scene's symmetry does not
     // apply, and the repeated assemblies do.

@@ -35,8 +35,8 @@ struct WorldPrimitive {
     int mesh = -1;
 };
 
-// `local` placed by `world` as WorldPrimitive says.
-Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& world);
+// `local` placed by `world` as WorldPrimitive says (a primitive passed as an rvalue is placed in its own arrays).
+Primitive transformPrimitive(Primitive local, const Eigen::Matrix4d& world);
 
 // Brings every normal to unit length; a normal of zero length (or not finite) is replaced by the
 // area-weighted normal of the vertex's triangles. Returns how many were replaced, for a warning.
@@ -44,6 +44,11 @@ std::size_t repairNormals(Scene& scene);
 
 // Every drawn primitive in world space, in traversal order of Scene::roots.
 std::vector<WorldPrimitive> flattenScene(const Scene& scene);
+
+// The same, for a caller that needs the geometry of the meshes m with takeMesh[m] no more: the last node to
+// draw such a mesh gets its arrays moved into the soup instead of copied, and each such mesh is left with its
+// primitives' materials only. The job's way to keep one copy of the scene's geometry, not two.
+std::vector<WorldPrimitive> flattenSceneTaking(Scene& scene, const std::vector<char>& takeMesh);
 
 // Every drawn triangle in world space as one mesh (positions not welded, attributes dropped): the whole
 // scene taken as one shape.

@@ -103,29 +103,6 @@ double bytesPerInstance(const CompressedScene& compressed, const StorageCostMode
     return total / double(compressed.instanceNodes.size());
 }
 
-// After the analysis the soup holds the geometry of every mesh the tiles draw: those meshes' arrays are freed,
-// so that the job keeps one copy of the scene's geometry, not two. A mesh kept as it is (KeptInstance) or drawn
-// in an animated subtree is written from the input and stays.
-void freeTiledGeometry(Scene& scene, const SceneAnalysis& analysis) {
-    std::vector<char> kept(scene.meshes.size(), 0);
-    for (const KeptInstance& instance : analysis.keptInstances)
-        if (instance.mesh >= 0) kept[std::size_t(instance.mesh)] = 1;
-    std::vector<int> subtree(analysis.animatedSubtrees.begin(), analysis.animatedSubtrees.end());
-    while (!subtree.empty()) {
-        const Node& node = scene.nodes[std::size_t(subtree.back())];
-        subtree.pop_back();
-        if (node.mesh >= 0) kept[std::size_t(node.mesh)] = 1;
-        subtree.insert(subtree.end(), node.children.begin(), node.children.end());
-    }
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
-        if (!kept[m])
-            for (Primitive& primitive : scene.meshes[m].primitives) {
-                Primitive emptied;
-                emptied.material = primitive.material;
-                primitive = std::move(emptied);
-            }
-}
-
 // compressToFile, with the time the input took to read (in the report before the HTML report shows it).
 CompressionReport compressRead(Scene scene, const fs::path& output, const CompressOptions& options,
                                const std::vector<fs::path>& inputs, double secondsRead) {
@@ -164,9 +141,9 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         groupWrite.encodings = encodings;
         analysisOptions.groupCosts = costModelFor(formatFromExtension(output), groupWrite);
     }
-    const SceneAnalysis analysis = analyzeScene(scene, analysisOptions);
-    // The HTML report draws the input itself.
-    if (options.htmlReport.empty()) freeTiledGeometry(scene, analysis);
+    // The HTML report draws the input itself; the job alone needs the tiled meshes' geometry only in the soup.
+    const SceneAnalysis analysis = options.htmlReport.empty() ? analyzeSceneTakingGeometry(scene, analysisOptions)
+                                                              : analyzeScene(scene, analysisOptions);
     WriteOptions write = options.write;
     write.threads = options.threads;
     write.encodings = encodings;
@@ -235,17 +212,24 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
 
     if (options.progress) options.progress("measuring the ablation", 0, "");
     const std::uintmax_t fullPlanBytes = outputBytesOf(compressed.scene, output);
-    std::vector<Variant> variants;
+    // The smallest plan measured so far, where smaller than the full plan: each other one is freed at once, so
+    // that the job does not hold every plan it measures.
+    std::optional<Variant> smallest;
+    auto consider = [&](Variant variant) {
+        if (variant.bytes < (smallest ? smallest->bytes : fullPlanBytes)) smallest = std::move(variant);
+    };
     if (dracoAlone) {
         report.ablation.dracoAlone = dracoAlone->bytes;
-        variants.push_back(std::move(*dracoAlone));
+        consider(std::move(*dracoAlone));
+        dracoAlone.reset();
         if (options.regions) {
             PlanOptions instancingOnly = planOptions;
             instancingOnly.regions = false;
             instancingOnly.sharedPartsFrom = &fullPlan;
-            variants.push_back(planned("instancing", instancingOnly));
-            report.ablation.instancing = variants.back().bytes;
+            Variant instancing = planned("instancing", instancingOnly);
+            report.ablation.instancing = instancing.bytes;
             report.ablation.instancingAndRegions = fullPlanBytes;
+            consider(std::move(instancing));
         } else {
             report.ablation.instancing = fullPlanBytes;
         }
@@ -261,18 +245,17 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         apart.mergeKeptMeshes = false;
         CompressedScene plan = emitScene(scene, analysis, apart);
         plan.stats.secondsPlan = compressed.stats.secondsPlan;
-        variants.push_back(variantOf("kept_meshes_apart", std::move(plan), std::move(apart)));
+        consider(variantOf("kept_meshes_apart", std::move(plan), std::move(apart)));
     }
     report.outputBytes = fullPlanBytes;
     const CompressionPlan* writtenPlan = &fullPlan;
-    for (Variant& variant : variants)
-        if (variant.bytes < report.outputBytes) {
-            writeScene(variant.plan.scene, output, write, inputs);
-            compressed = std::move(variant.plan);
-            writtenPlan = &variant.decisions;
-            report.plan = variant.name;
-            report.outputBytes = outputBytesOf(compressed.scene, output);
-        }
+    if (smallest) {
+        writeScene(smallest->plan.scene, output, write, inputs);
+        compressed = std::move(smallest->plan);
+        writtenPlan = &smallest->decisions;
+        report.plan = smallest->name;
+        report.outputBytes = outputBytesOf(compressed.scene, output);
+    }
 
     report.stats = compressed.stats;
     report.warnings = std::move(compressed.scene.warnings);

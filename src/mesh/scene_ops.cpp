@@ -101,8 +101,8 @@ void transformAttribute(VertexAttribute& attribute, const Eigen::Matrix3d& linea
     }
 }
 
-Primitive transformPrimitive(const Primitive& local, const Eigen::Matrix4d& world) {
-    Primitive out = local;
+Primitive transformPrimitive(Primitive local, const Eigen::Matrix4d& world) {
+    Primitive out = std::move(local);
     const Eigen::Matrix3d linear = world.topLeftCorner<3, 3>();
     const Eigen::Vector3d translation = world.topRightCorner<3, 1>();
     for (Eigen::Vector3d& p : out.positions) p = linear * p + translation;
@@ -295,6 +295,31 @@ std::vector<WorldPrimitive> flattenScene(const Scene& scene) {
         for (const Primitive& primitive : scene.meshes[mesh].primitives)
             out.push_back({transformPrimitive(primitive, world), node, mesh});
     });
+    return out;
+}
+
+std::vector<WorldPrimitive> flattenSceneTaking(Scene& scene, const std::vector<char>& takeMesh) {
+    std::vector<std::size_t> drawingsLeft(scene.meshes.size(), 0);
+    traverse(scene, [&](int node, const Eigen::Matrix4d&) {
+        if (const int mesh = scene.nodes[node].mesh; mesh >= 0) ++drawingsLeft[std::size_t(mesh)];
+    });
+    std::vector<WorldPrimitive> out;
+    traverse(scene, [&](int node, const Eigen::Matrix4d& world) {
+        const int mesh = scene.nodes[node].mesh;
+        if (mesh < 0) return;
+        const bool last = --drawingsLeft[std::size_t(mesh)] == 0 && takeMesh[std::size_t(mesh)];
+        for (Primitive& primitive : scene.meshes[std::size_t(mesh)].primitives)
+            out.push_back(
+                {last ? transformPrimitive(std::move(primitive), world) : transformPrimitive(primitive, world), node,
+                 mesh});
+    });
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        if (takeMesh[m])
+            for (Primitive& primitive : scene.meshes[m].primitives) {
+                Primitive emptied;
+                emptied.material = primitive.material;
+                primitive = std::move(emptied);
+            }
     return out;
 }
 

@@ -38,6 +38,15 @@ void setAsideMeshesTilesCannotCarry(const Scene& input, SceneAnalysis& analysis)
                         analysis.soup.end());
 }
 
+// Whether `nodes` (those that draw one mesh) are two or more, one of them scaling or shearing it.
+bool scaledInstances(const std::set<int>& nodes, const std::vector<Eigen::Matrix4d>& world) {
+    auto rigid = [&](int node) {
+        const Eigen::Matrix3d linear = world[std::size_t(node)].topLeftCorner<3, 3>();
+        return (linear.transpose() * linear - Eigen::Matrix3d::Identity()).norm() < 1e-6;
+    };
+    return nodes.size() > 1 && !std::all_of(nodes.begin(), nodes.end(), rigid);
+}
+
 // A mesh drawn by two or more nodes, one of them scaling or shearing it, is the author's instancing of
 // copies that are not congruent: kept as it is, and left out of the soup. (Rigid copies are left to the
 // classes, which may also find more of them baked elsewhere.)
@@ -45,13 +54,9 @@ void setAsideScaledInstances(const Scene& input, SceneAnalysis& analysis) {
     std::map<int, std::set<int>> nodesOfMesh;
     for (const WorldPrimitive& placed : analysis.soup) nodesOfMesh[placed.mesh].insert(placed.node);
     const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
-    auto rigid = [&](int node) {
-        const Eigen::Matrix3d linear = world[std::size_t(node)].topLeftCorner<3, 3>();
-        return (linear.transpose() * linear - Eigen::Matrix3d::Identity()).norm() < 1e-6;
-    };
     std::set<int> kept;
     for (const auto& [mesh, nodes] : nodesOfMesh)
-        if (mesh >= 0 && nodes.size() > 1 && !std::all_of(nodes.begin(), nodes.end(), rigid)) {
+        if (mesh >= 0 && scaledInstances(nodes, world)) {
             kept.insert(mesh);
             for (int node : nodes)
                 analysis.keptInstances.push_back({mesh, world[std::size_t(node)], &input.nodes[std::size_t(node)]});
@@ -68,18 +73,12 @@ double tilesDiagonal(const std::vector<Tile>& tiles) {
     return box.isEmpty() ? 0 : box.diagonal().norm();
 }
 
-}  // namespace
-
-bool tilesCanCarry(const Mesh& mesh) {
-    return std::all_of(mesh.primitives.begin(), mesh.primitives.end(),
-                       [](const Primitive& p) { return p.attributes.empty() && p.targets.empty(); });
-}
-
-SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
+// The analysis of `soup` (the flattened `input`).
+SceneAnalysis analyzeSoup(const Scene& input, std::vector<WorldPrimitive> soup, const AnalysisOptions& options,
+                          std::chrono::steady_clock::time_point start) {
     SceneAnalysis analysis;
     analysis.options = options;
-    auto start = std::chrono::steady_clock::now();
-    analysis.soup = flattenScene(input);
+    analysis.soup = std::move(soup);
     // The whole drawing, before anything is set aside (what digestOf(worldMesh(input)) measures, without
     // flattening the scene a second time).
     analysis.digest = digestOf(analysis.soup, options.tolerance);
@@ -131,6 +130,43 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
         analysis.diagonal = analysis.digest.bounds.diagonal().norm();
     analysis.secondsClasses = since(start);
     return analysis;
+}
+
+// The meshes whose every drawing stays in the soup: carried by tiles, drawn by no animated node, not the author's
+// instancing of scaled copies (the set-asides below). The job needs their geometry only through the soup.
+std::vector<char> meshesOnlyTilesDraw(const Scene& input, const AnalysisOptions& options) {
+    std::vector<int> tops;
+    const std::vector<bool> animated = markAnimatedSubtrees(input, tops);
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+    std::vector<std::set<int>> nodesOfMesh(input.meshes.size());
+    std::vector<char> only(input.meshes.size(), 1);
+    for (std::size_t n = 0; n < input.nodes.size(); ++n)
+        if (const int mesh = input.nodes[n].mesh; mesh >= 0) {
+            nodesOfMesh[std::size_t(mesh)].insert(int(n));
+            if (animated[n]) only[std::size_t(mesh)] = 0;
+        }
+    for (std::size_t m = 0; m < input.meshes.size(); ++m)
+        if (!tilesCanCarry(input.meshes[m]) || (options.keepInputInstances && scaledInstances(nodesOfMesh[m], world)))
+            only[m] = 0;
+    return only;
+}
+
+}  // namespace
+
+bool tilesCanCarry(const Mesh& mesh) {
+    return std::all_of(mesh.primitives.begin(), mesh.primitives.end(),
+                       [](const Primitive& p) { return p.attributes.empty() && p.targets.empty(); });
+}
+
+SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    return analyzeSoup(input, flattenScene(input), options, start);
+}
+
+SceneAnalysis analyzeSceneTakingGeometry(Scene& input, const AnalysisOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<WorldPrimitive> soup = flattenSceneTaking(input, meshesOnlyTilesDraw(input, options));
+    return analyzeSoup(input, std::move(soup), options, start);
 }
 
 }  // namespace symcompress

@@ -85,6 +85,10 @@ struct SceneAnalysis {
 };
 
 SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options = {});
+// The same for a job that needs the input's geometry no more than the analysis does: the arrays of every mesh
+// that only tiles draw move into the soup instead of being copied (flattenSceneTaking), and those meshes keep
+// their primitives' materials only. The meshes kept as they are (KeptInstance, animated subtrees) stay whole.
+SceneAnalysis analyzeSceneTakingGeometry(Scene& input, const AnalysisOptions& options = {});
 
 // Whether tiles can carry everything the mesh's primitives hold (not Primitive::attributes or morph targets,
 // which the tiling, the classes and the regions do not handle yet).
