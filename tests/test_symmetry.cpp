@@ -12,9 +12,10 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
-#include <set>
 #include <random>
+#include <set>
 
 using namespace symcompress;
 
@@ -189,6 +190,27 @@ TEST_CASE("Orders larger than the moment degree are found on the shape (a 24-fol
     const SymmetryGroup group = detectSymmetries(mesh);
     CHECK(group.name == "D24h");
     CHECK(group.order() == 96);
+}
+
+TEST_CASE("Without the elements' deviations, the group is the same, each deviation left unmeasured", "[symmetry]") {
+    std::mt19937_64 random(11);
+    TriangleMesh mesh = triangulateWithRandomFanPoints(makePrism(24, 0.3), 3);
+    const Eigen::Matrix3d q = randomRotation(random);
+    for (auto& p : mesh.positions) p = (q * p).cast<float>().cast<double>();
+    const SymmetryGroup measured = detectSymmetries(mesh);
+    SymmetryOptions options;
+    options.elementDeviations = false;
+    const SymmetryGroup group = detectSymmetries(mesh, options);
+    CHECK(group.name == measured.name);
+    REQUIRE(group.order() == measured.order());
+    for (int i = 0; i < group.order(); ++i) {
+        const Symmetry &g = group.elements[std::size_t(i)], &m = measured.elements[std::size_t(i)];
+        CHECK(g.linear == m.linear);
+        CHECK(g.kind == m.kind);
+        CHECK(g.fold == m.fold);
+        CHECK(m.deviation <= 1e-5);
+        CHECK((g.kind == Symmetry::Kind::Identity ? g.deviation == 0 : std::isnan(g.deviation)));
+    }
 }
 
 TEST_CASE("A shape near a surface of revolution is given only elements that fit it, not a fold of hundreds",

@@ -52,6 +52,7 @@ struct CongruenceOptions {
     double absoluteTolerance = 0;  // when > 0, the tolerance as a distance, in place of `tolerance`
     int maxOrder = 8;         // moment orders in the descriptor
     bool symmetries = true;   // find each class's symmetry group
+    bool elementDeviations = true;  // and measure each of its elements (SymmetryOptions::elementDeviations)
     int threads = 0;
     // When set: whether the group of a class of this one tile could be used (called from one thread). The
     // groups it cannot use are not detected, unless the symmetry of the whole assembly of tiles might need

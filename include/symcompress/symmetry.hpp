@@ -21,7 +21,7 @@ struct Symmetry {
     Eigen::Vector3d axis = Eigen::Vector3d::Zero();  // rotation axis, or mirror normal (unit; zero for inversion)
     double angle = 0;                                // radians in (0, pi] (rotations and rotoreflections)
     int fold = 0;                                    // rotations: the order of the axis in the group
-    double deviation = 0;                            // d_A relative to the bounding-box diagonal
+    double deviation = 0;  // d_A relative to the bounding-box diagonal (NaN: not measured, see SymmetryOptions)
 };
 
 const char* kindName(Symmetry::Kind kind);  // "identity", "rotation", "mirror", "rotoreflection", "inversion"
@@ -36,6 +36,10 @@ struct SymmetryOptions {
     int maxOrder = 10;    // highest moment order used for the candidate axes (raised to 16 when needed)
     int maxFold = 360;    // largest n tried for axes whose moments are invariant under every rotation
     int threads = 0;      // 0: all cores
+    // Whether every element's d_A is measured (Symmetry::deviation; else NaN): for a report, not for the group
+    // itself. A shape near a surface of revolution (C360v: 720 elements, each measured on every sample point)
+    // spends most of its time there.
+    bool elementDeviations = true;
 };
 
 struct SymmetryGroup {

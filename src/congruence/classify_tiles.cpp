@@ -229,6 +229,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
                     SymmetryOptions symmetryOptions;
                     symmetryOptions.tolerance = tileSymmetryTolerance(shape.diagonal, tolerance, relativeTolerance);
                     symmetryOptions.threads = 1;
+                    symmetryOptions.elementDeviations = options.elementDeviations;
                     shape.symmetry = detectSymmetries(tiles[prototype].mesh, symmetryOptions);
                 });
             });

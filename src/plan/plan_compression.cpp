@@ -102,6 +102,7 @@ AnalysisOptions analysisOptionsOf(const CompressOptions& options) {
     analysis.tolerance = options.congruenceTolerance();
     analysis.classify = options.instancing;
     analysis.keepInputInstances = options.keepInputInstances;
+    analysis.elementDeviations = !options.htmlReport.empty();  // only the HTML report shows them
     analysis.threads = options.threads;
     analysis.progress = options.progress;
     return analysis;

@@ -100,6 +100,7 @@ SceneAnalysis analyzeSoup(const Scene& input, std::vector<WorldPrimitive> soup, 
         CongruenceOptions congruenceOptions;
         congruenceOptions.tolerance = options.tolerance;
         congruenceOptions.threads = options.threads;
+        congruenceOptions.elementDeviations = options.elementDeviations;
         std::optional<StorageCosts> costs;
         if (options.groupCosts) {
             costs.emplace(analysis, *options.groupCosts);

@@ -276,6 +276,42 @@ std::optional<std::vector<Eigen::Vector3d>> distinctPrincipalAxes(const MomentCo
     return std::vector<Eigen::Vector3d>{solver.eigenvectors().col(0), solver.eigenvectors().col(1), solver.eigenvectors().col(2)};
 }
 
+// Every element described, with its d_A into group.elements. d_A of g and of its inverse are the same number:
+// one of each pair is measured. Products of accepted maps stay within a few tolerances; searching only that
+// far keeps each query short.
+void measureElementDeviations(const ShapeVerifier& verifier, const std::vector<Eigen::Matrix3d>& elements,
+                              const std::vector<Eigen::Matrix3d>& accepted,
+                              const std::vector<double>& acceptedDeviations, double tolerance, int threads,
+                              SymmetryGroup& group) {
+    std::vector<std::size_t> inverse(elements.size());
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+        inverse[i] = i;
+        for (std::size_t j = 0; j < elements.size(); ++j)
+            if ((elements[j] - elements[i].transpose()).norm() < 1e-6) inverse[i] = j;
+    }
+    const double searchRadius = kDeviationSearch * tolerance;
+    // A generator's d_A was measured in full when it was accepted (every point within the tolerance, so
+    // every distance exact): the same number as a search up to searchRadius gives, unless sample points
+    // answer for the surface at distances that search would let them.
+    auto measuredOnAcceptance = [&](const Eigen::Matrix3d& element) -> std::optional<double> {
+        if (!verifier.exactUpTo(tolerance)) return std::nullopt;
+        for (std::size_t g = 0; g < accepted.size(); ++g)
+            if (accepted[g] == element) return acceptedDeviations[g];
+        return std::nullopt;
+    };
+    withThreads(threads, [&] {
+        tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t i) {
+            group.elements[i] = describeOrthogonal(elements[i]);
+            if (group.elements[i].kind == Symmetry::Kind::Identity || inverse[i] < i) return;
+            const std::optional<double> known = measuredOnAcceptance(elements[i]);
+            group.elements[i].deviation =
+                (known ? *known : verifier.deviation(elements[i], searchRadius)) / group.diagonal;
+        });
+    });
+    for (std::size_t i = 0; i < elements.size(); ++i)
+        if (inverse[i] < i) group.elements[i].deviation = group.elements[inverse[i]].deviation;
+}
+
 }  // namespace
 
 SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& options) {
@@ -526,35 +562,14 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
 
     // Every element with its deviation, and the fold of each rotation axis.
     group.elements.assign(elements.size(), Symmetry{});
-    // d_A of g and of its inverse are the same number: measure one of each pair. Products of accepted maps
-    // stay within a few tolerances; searching only that far keeps each query short.
-    std::vector<std::size_t> inverse(elements.size());
-    for (std::size_t i = 0; i < elements.size(); ++i) {
-        inverse[i] = i;
-        for (std::size_t j = 0; j < elements.size(); ++j)
-            if ((elements[j] - elements[i].transpose()).norm() < 1e-6) inverse[i] = j;
-    }
-    const double searchRadius = kDeviationSearch * tolerance;
-    // A generator's d_A was measured in full when it was accepted (every point within the tolerance, so
-    // every distance exact): the same number as a search up to searchRadius gives, unless sample points
-    // answer for the surface at distances that search would let them.
-    auto measuredOnAcceptance = [&](const Eigen::Matrix3d& element) -> std::optional<double> {
-        if (!verifier.exactUpTo(tolerance)) return std::nullopt;
-        for (std::size_t g = 0; g < accepted.size(); ++g)
-            if (accepted[g] == element) return generatorDeviations[g];
-        return std::nullopt;
-    };
-    withThreads(options.threads, [&] {
-        tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t i) {
+    if (options.elementDeviations)
+        measureElementDeviations(verifier, elements, accepted, generatorDeviations, tolerance, options.threads, group);
+    else
+        for (std::size_t i = 0; i < elements.size(); ++i) {
             group.elements[i] = describeOrthogonal(elements[i]);
-            if (group.elements[i].kind == Symmetry::Kind::Identity || inverse[i] < i) return;
-            const std::optional<double> known = measuredOnAcceptance(elements[i]);
-            group.elements[i].deviation =
-                (known ? *known : verifier.deviation(elements[i], searchRadius)) / group.diagonal;
-        });
-    });
-    for (std::size_t i = 0; i < elements.size(); ++i)
-        if (inverse[i] < i) group.elements[i].deviation = group.elements[inverse[i]].deviation;
+            if (group.elements[i].kind != Symmetry::Kind::Identity)
+                group.elements[i].deviation = std::numeric_limits<double>::quiet_NaN();
+        }
     for (Symmetry& s : group.elements) {
         if (s.kind != Symmetry::Kind::Rotation) continue;
         s.fold = 1;

@@ -47,6 +47,7 @@ struct AnalysisOptions {
     double tolerance = 1e-5;  // relative to the diagonal of the tiles' bounding box
     bool classify = true;     // false: tiles only (every plan will store every tile as it is)
     bool keepInputInstances = true;
+    bool elementDeviations = true;  // of the classes' groups (SymmetryOptions::elementDeviations): for reports
     int threads = 0;
     ProgressCallback progress;
     // When set, what the plans will price storage with: a class of one tile too small for any fundamental
