@@ -428,7 +428,11 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         std::lock_guard<std::mutex> lock(generatorsMutex);
         generators.push_back(best);
         generatorDeviations.push_back(deviation);
-        known = closeGroup(generators, limit);
+        // A map refined onto an element the group already has adds nothing to it (a nearly round shape's
+        // directions across its axis: dozens of them, each closing a group of hundreds again).
+        if (std::none_of(known.begin(), known.end(),
+                         [&](const Eigen::Matrix3d& g) { return (g - best).norm() < kKnownElement; }))
+            known = closeGroup(generators, limit);
         if (known.size() > limit) overflow = true;
         return true;
     };
@@ -473,7 +477,9 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 auto fitsWithin = [&](int n, double bound) {
                     const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi / n);
                     double d = verifier.deviation(rotation, bound, kScreeningPoints, &hints);
-                    if (d <= bound) d = verifier.deviation(rotation, bound, SIZE_MAX, &hints);
+                    // (Where the screening took every sample point, it measured all there is.)
+                    if (d <= bound && verifier.samples() > kScreeningPoints)
+                        d = verifier.deviation(rotation, bound, SIZE_MAX, &hints);
                     fit[n] = d;
                     return d <= bound;
                 };
