@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 
 namespace symcompress {
 namespace {
@@ -84,11 +83,18 @@ Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitiv
                        representative[corners[2] + offset]};
     };
     const bool mirrored = j.linear.determinant() < 0;
-    std::multimap<Corners, Corners> prototypeAt;
+    // (place, corners) sorted by place, triangles of one place in the prototype's order: one allocation where a
+    // multimap took one per triangle (the assemblies ask this of thousands of tile pairs).
+    std::vector<std::pair<Corners, Corners>> prototypeAt;
+    prototypeAt.reserve(prototype.triangles.size());
     for (const Triangle& t : prototype.triangles) {
         const Corners corners = keyed(t, 0, mirrored);
-        prototypeAt.emplace(places(corners, 0), corners);
+        prototypeAt.emplace_back(places(corners, 0), corners);
     }
+    auto byPlace = [](const std::pair<Corners, Corners>& a, const std::pair<Corners, Corners>& b) {
+        return a.first < b.first;
+    };
+    std::stable_sort(prototypeAt.begin(), prototypeAt.end(), byPlace);
     auto same = [&](std::uint32_t u, std::uint32_t v) {
         if (!prototype.normals.empty() && (j.linear * prototype.normals[u]).dot(member.normals[v]) < kNormalCosine)
             return false;
@@ -105,7 +111,8 @@ Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitiv
     bool attributesDiffer = false;  // at some triangle's corners: the others are only asked for their places
     for (const Triangle& t : member.triangles) {
         const Corners corners = keyed(t, offset, false);
-        const auto [first, last] = prototypeAt.equal_range(places(corners, offset));
+        const auto [first, last] = std::equal_range(prototypeAt.begin(), prototypeAt.end(),
+                                                    std::pair{places(corners, offset), Corners{}}, byPlace);
         if (first == last)  // the same corners, other triangles (a quad's other diagonal)
             return attributesDiffer ? Reproduction::Differs : Reproduction::CutOtherwise;
         if (attributesDiffer) continue;
