@@ -47,6 +47,8 @@ constexpr double kDeviationSearch = 10;
 constexpr double kKnownElement = 2e-3;
 // Sample points a candidate map is screened on before it is refined.
 constexpr std::size_t kScreeningPoints = 2000;
+// The sample points whose largest distance bounds from below the d_A of a fold the moments cannot tell.
+constexpr std::size_t kFitLowerBoundPoints = 64;
 // Folds whose rotation fits within this factor of the best-fitting fold's are preferred (see below).
 constexpr double kGoodFitFactor = 10;
 // Beyond this many folds passing the preliminary bound about one axis, none is refined (see below).
@@ -458,51 +460,78 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
             } else {
                 folds = divisorsDescending(modes);
             }
+            // A fold's d_A measured in full at the tolerance (above it: not a symmetry), once.
+            std::map<int, double> fullFit;
+            auto measuredFit = [&](int n) {
+                const auto known = fullFit.find(n);
+                if (known != fullFit.end()) return known->second;
+                return fullFit[n] = verifier.deviation(rotationAbout(axis, 2 * kPi / n), tolerance, SIZE_MAX, &hints);
+            };
+            bool measureWhenTried = false;  // `folds` holds folds not yet measured in full
             if (modes == 0) {
-                // Folds the moments cannot tell: keep those within the preliminary bound; when that leaves
-                // many (a nearly round shape at a loose tolerance), refining each would cost too much, so
-                // they must pass as they are.
-                // A generic turn within the preliminary bound says the same at once.
-                const bool nearlyRound = verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), preliminary,
-                                                            SIZE_MAX, &hints) <= preliminary;
-                std::vector<int> plausible;
-                std::map<int, double> fit;  // deviation of the rotation by 2 pi / n, for the plausible n
-                // Once more than kMaxRefinedFolds folds have passed the preliminary bound (or for a nearly
-                // round shape), only the folds within the tolerance count, with that deviation as their fit:
-                // the remaining folds are measured at the tolerance alone (a fold within it is within the
-                // preliminary bound), not measured in full at the preliminary bound first.
-                bool strict = nearlyRound;
-                // Screened on the spread-out first sample points, then measured on all: most folds of a nearly
-                // round shape fail, and a few points tell.
-                auto fitsWithin = [&](int n, double bound) {
-                    const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi / n);
-                    double d = verifier.deviation(rotation, bound, kScreeningPoints, &hints);
-                    // (Where the screening took every sample point, it measured all there is.)
-                    if (d <= bound && verifier.samples() > kScreeningPoints)
-                        d = verifier.deviation(rotation, bound, SIZE_MAX, &hints);
-                    fit[n] = d;
-                    return d <= bound;
-                };
-                for (int n : folds) {
-                    if (!fitsWithin(n, strict ? tolerance : preliminary)) continue;
-                    plausible.push_back(n);
-                    if (!strict && plausible.size() > kMaxRefinedFolds) {
-                        strict = true;
-                        plausible.erase(std::remove_if(plausible.begin(), plausible.end(),
-                                                       [&](int m) { return !fitsWithin(m, tolerance); }),
-                                        plausible.end());
+                // Folds the moments cannot tell. A fold's largest distance over the first sample points is a lower
+                // bound of its d_A: a fold above the bound it is measured against fails without more.
+                std::vector<std::pair<double, int>> lowerBounds;  // (lower bound, n), up to the preliminary bound
+                for (int n : folds)
+                    if (const double d = verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary,
+                                                            kFitLowerBoundPoints, &hints);
+                        d <= preliminary)
+                        lowerBounds.push_back({d, n});
+                // The folds within the preliminary bound, refined when tried: while at most kMaxRefinedFolds do,
+                // they are the ones tried. Once more do (or for a nearly round shape: a generic turn within the
+                // preliminary bound), refining each would cost too much: only the folds within the tolerance
+                // count, and must pass as they are.
+                std::map<int, double> preliminaryFit;
+                bool strict = verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), preliminary, SIZE_MAX,
+                                                 &hints) <= preliminary;
+                for (std::size_t i = 0; i < lowerBounds.size() && !strict; ++i) {  // largest n first
+                    const int n = lowerBounds[i].second;
+                    if (const double d =
+                            verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary, SIZE_MAX, &hints);
+                        d <= preliminary) {
+                        preliminaryFit[n] = d;
+                        strict = preliminaryFit.size() > kMaxRefinedFolds;
                     }
                 }
-                // A 24-sided part is within a loose tolerance of 360-fold too: the folds that fit best
-                // (within a factor of the best fit) come first, the largest of them first.
-                double bestFit = std::numeric_limits<double>::infinity();
-                for (int n : plausible) bestFit = std::min(bestFit, fit[n]);
-                const double good = std::max(kGoodFitFactor * bestFit, 1e-12 * group.diagonal);
-                std::stable_sort(plausible.begin(), plausible.end(), [&](int a, int b) {
-                    const bool aGood = fit[a] <= good, bGood = fit[b] <= good;
-                    return aGood != bGood ? aGood : a > b;
-                });
-                folds = plausible;
+                // A 24-sided part is within a loose tolerance of 360-fold too: the folds that fit best (within a
+                // factor of the best fit) come first, the largest of them first, then the others that fit.
+                auto bestFirst = [&](std::vector<int>& best, std::vector<int>& others) {
+                    std::sort(best.begin(), best.end(), std::greater<int>());
+                    std::sort(others.begin(), others.end(), std::greater<int>());
+                    folds = best;
+                    folds.insert(folds.end(), others.begin(), others.end());
+                };
+                std::vector<int> best, others;
+                if (!strict) {
+                    double bestFit = std::numeric_limits<double>::infinity();
+                    for (const auto& [n, d] : preliminaryFit) bestFit = std::min(bestFit, d);
+                    const double good = std::max(kGoodFitFactor * bestFit, 1e-12 * group.diagonal);
+                    for (const auto& [n, d] : preliminaryFit) (d <= good ? best : others).push_back(n);
+                    bestFirst(best, others);
+                } else {
+                    // Measured in full at the tolerance in the order of their lower bounds, until the best fit is
+                    // known (where even the smallest lower bound is within the factor of the tolerance, every
+                    // fold that fits is as good as any), then those that may fit within the factor of it; the
+                    // others only when the loop below reaches them (it stops at the first accepted).
+                    lowerBounds.erase(std::remove_if(lowerBounds.begin(), lowerBounds.end(),
+                                                     [&](const auto& bound) { return bound.first > tolerance; }),
+                                      lowerBounds.end());
+                    std::stable_sort(lowerBounds.begin(), lowerBounds.end(),
+                                     [](const auto& a, const auto& b) { return a.first < b.first; });
+                    double bestFit = lowerBounds.empty() ? 0 : lowerBounds.front().first;
+                    if (kGoodFitFactor * bestFit < tolerance) {
+                        bestFit = std::numeric_limits<double>::infinity();
+                        for (const auto& [lower, n] : lowerBounds) {
+                            if (bestFit <= lower) break;
+                            if (const double d = measuredFit(n); d <= tolerance) bestFit = std::min(bestFit, d);
+                        }
+                    }
+                    const double good = std::min(std::max(kGoodFitFactor * bestFit, 1e-12 * group.diagonal), tolerance);
+                    for (const auto& [lower, n] : lowerBounds)
+                        (good == tolerance || (lower <= good && measuredFit(n) <= good) ? best : others).push_back(n);
+                    bestFirst(best, others);
+                    measureWhenTried = true;
+                }
             }
             int fold = 1;
             // An n-fold rotation's powers are symmetries too: about an axis the moments cannot tell, the power
@@ -514,6 +543,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                            tolerance;
             };
             for (int n : folds) {
+                if (measureWhenTried && measuredFit(n) > tolerance) continue;
                 const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi / n);
                 if ((modes == 0 || view.allows(rotation)) && powersFit(n) && tryAccept(rotation, &hints)) {
                     fold = n;
