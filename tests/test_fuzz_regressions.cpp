@@ -400,3 +400,17 @@ TEST_CASE("Writers: a whole-number bound beyond a 32-bit int reads back, where w
         CHECK(readScene(folder / "big.glb").meshes.size() == scene.meshes.size());
     }
 }
+
+TEST_CASE("Writers: a texture coordinate beyond float32's range is written to X3D as a number that reads back",
+          "[io][fuzz]") {
+    // Found by fuzz_obj: vt 1.3e117, printed through float32 as "inf", which the X3D reader refuses.
+    TemporaryFolder folder;
+    writeTextFile(folder / "part.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1.3e117 0.5\nf 1/1 2/2 3/3\n");
+    const Scene scene = readScene(folder / "part.obj");
+    REQUIRE(scene.meshes.at(0).primitives.at(0).texcoords.size() == 3);
+    writeScene(scene, folder / "part.x3d");
+    const Scene back = readScene(folder / "part.x3d");
+    REQUIRE(back.meshes.size() == 1);
+    const auto& texcoords = back.meshes[0].primitives.at(0).texcoords;
+    CHECK(std::any_of(texcoords.begin(), texcoords.end(), [](const Eigen::Vector2d& t) { return t.x() == 1.3e117; }));
+}

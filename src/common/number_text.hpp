@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 
 namespace symcompress {
@@ -27,7 +28,9 @@ inline double roundedDecimals(double value, int decimals) {
 
 // The double that prints as the shortest text reading back as float(value): a reader that takes the
 // number as float32 (as glTF does) gets exactly float(value), in at most 9 digits instead of 17.
+// A value beyond float32's range is returned as it is: as a float it would be infinite.
 inline double asFloat32(double value) {
+    if (!(std::abs(value) <= double(std::numeric_limits<float>::max()))) return value;
     char text[32];
     const auto result = std::to_chars(text, text + sizeof text - 1, static_cast<float>(value));
     *result.ptr = '\0';
