@@ -64,7 +64,6 @@ public:
     bool exactUpTo(double distance) const { return snapSquared_ <= distance * distance; }
 
     const Eigen::Vector3d& center() const { return center_; }
-    std::size_t samples() const { return samples_.size(); }  // sample points
 
     // The unit direction across `axis` (through the center) of the sample point farthest from it.
     Eigen::Vector3d farthestFromAxis(const Eigen::Vector3d& axis) const;

@@ -401,9 +401,12 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     std::vector<Eigen::Vector3d> revolutionAxes;
     std::mutex generatorsMutex;
     std::vector<Eigen::Matrix3d> known{Eigen::Matrix3d::Identity()};  // the group the generators so far make
+    auto inKnown = [&](const Eigen::Matrix3d& map) {  // with generatorsMutex held
+        return std::any_of(known.begin(), known.end(), [&](const Eigen::Matrix3d& g) { return (g - map).norm() < kKnownElement; });
+    };
     auto isKnown = [&](const Eigen::Matrix3d& map) {
         std::lock_guard<std::mutex> lock(generatorsMutex);
-        return std::any_of(known.begin(), known.end(), [&](const Eigen::Matrix3d& g) { return (g - map).norm() < kKnownElement; });
+        return inKnown(map);
     };
     // A map already in the group found so far needs no test (several axes lead to the same elements); a
     // new one is screened on a few sample points, refined, and verified on all of them.
@@ -432,9 +435,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         generatorDeviations.push_back(deviation);
         // A map refined onto an element the group already has adds nothing to it (a nearly round shape's
         // directions across its axis: dozens of them, each closing a group of hundreds again).
-        if (std::none_of(known.begin(), known.end(),
-                         [&](const Eigen::Matrix3d& g) { return (g - best).norm() < kKnownElement; }))
-            known = closeGroup(generators, limit);
+        if (!inKnown(best)) known = closeGroup(generators, limit);
         if (known.size() > limit) overflow = true;
         return true;
     };
