@@ -228,7 +228,7 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
                     TileShape& shape = result.shapes[prototype];
                     SymmetryOptions symmetryOptions;
                     symmetryOptions.tolerance = tileSymmetryTolerance(shape.diagonal, tolerance, relativeTolerance);
-                    symmetryOptions.threads = 1;
+                    symmetryOptions.threads = 0;  // the classification's threads, shared (the same group on any number)
                     symmetryOptions.elementDeviations = options.elementDeviations;
                     shape.symmetry = detectSymmetries(tiles[prototype].mesh, symmetryOptions);
                 });

@@ -1,9 +1,14 @@
 #include "shape_verifier.hpp"
 #include "geometry/bounds.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
 #include <Eigen/Cholesky>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 
@@ -16,6 +21,14 @@ constexpr double kSnapCell = 1e-4;
 // tenth of the default tolerance): the distance to it is an upper bound of the distance to the surface,
 // tight only at rounding level.
 constexpr double kSnapDistance = 1e-6;
+// From this many sample points on, a measure is shared among the threads of the arena it runs in, in blocks of
+// kParallelBlock points (a search is a microsecond or two: fewer points would not pay for the tasks).
+constexpr std::size_t kParallelSamples = 256;
+constexpr std::size_t kParallelBlock = 64;
+
+bool worthThreads(std::size_t points) {
+    return points >= kParallelSamples && tbb::this_task_arena::max_concurrency() > 1;
+}
 }  // namespace
 
 void RejectingPoints::remember(std::uint32_t index) {
@@ -92,16 +105,42 @@ double ShapeVerifier::farthestOnto(const ShapeVerifier& target, const Eigen::Mat
     // Only the largest distance counts: a point's search stops at the first triangle no farther than the
     // largest so far, which leaves that largest (and the first point beyond the rejection distance) as
     // they are.
-    for (std::size_t i = 0; i < count; ++i) {
-        const Eigen::Vector3d& p = samples_[i];
-        const double d = target.squaredDistanceToSurface(linear * p, rejectSquared, bound, worst);
-        worst = std::max(worst, d);
-        if (d > rejectSquared) {
-            if (hints) hints->remember(std::uint32_t(i));
-            break;
+    if (!worthThreads(count)) {
+        for (std::size_t i = 0; i < count; ++i) {
+            const double d = target.squaredDistanceToSurface(linear * samples_[i], rejectSquared, bound, worst);
+            worst = std::max(worst, d);
+            if (d > rejectSquared) {
+                if (hints) hints->remember(std::uint32_t(i));
+                break;
+            }
         }
+        return std::sqrt(worst);
     }
-    return std::sqrt(worst);
+    // On several threads each block keeps its own largest, and stops past the first point beyond the rejection
+    // distance found so far: every point before the first such point in the samples' order is measured, so
+    // that point, the largest and the hints come out as on one thread.
+    std::atomic<std::size_t> firstRejecting{SIZE_MAX};
+    worst = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, count, kParallelBlock), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& range, double largest) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                if (i > firstRejecting.load(std::memory_order_relaxed)) break;
+                const double d = target.squaredDistanceToSurface(linear * samples_[i], rejectSquared, bound, largest);
+                if (d > rejectSquared) {
+                    std::size_t first = firstRejecting.load();
+                    while (i < first && !firstRejecting.compare_exchange_weak(first, i)) {}
+                    break;
+                }
+                largest = std::max(largest, d);
+            }
+            return largest;
+        },
+        [](double a, double b) { return std::max(a, b); });
+    const std::size_t first = firstRejecting.load();
+    if (first == SIZE_MAX) return std::sqrt(worst);
+    if (hints) hints->remember(std::uint32_t(first));
+    // Beyond the rejection distance, hence beyond any `enough`: the exact distance, as one thread finds it.
+    return std::sqrt(target.squaredDistanceToSurface(linear * samples_[first], rejectSquared, bound, 0.0));
 }
 
 double ShapeVerifier::deviation(const Eigen::Matrix3d& linear, double reject, std::size_t points,
@@ -143,28 +182,49 @@ Eigen::Matrix3d ShapeVerifier::refineOnto(const ShapeVerifier& target, const Eig
     // At most this many sample points, spread over the shape (the samples' order does that).
     constexpr std::size_t kMaxPoints = 5000;
     const std::size_t used = std::min(samples_.size(), kMaxPoints);
+    // Each point's row of the least squares (a jacobian and a residual), found on the arena's threads and
+    // summed in the points' order: the sums are the same on any number of threads.
+    struct Row {
+        Eigen::Vector3d jacobian;
+        double residual = 0;
+        bool used = false;
+    };
+    std::vector<Row> rows(used);
     for (int step = 0; step < steps; ++step) {
         // Residual n.(x - q) of x = current p against the plane of its closest triangle; a small rotation w
         // applied after current changes it by w.(x cross n).
+        auto rowsOf = [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) {
+                Row& row = rows[i];
+                row.used = false;
+                const Eigen::Vector3d x = current * samples_[i];
+                Eigen::Vector3d closest;
+                std::uint32_t triangle = 0;
+                // Points with nothing near (a hole, or a wrong map) say nothing about the fit.
+                if (!(target.bvh_.squaredDistance(target.center_ + x, searchSquared, &closest, &triangle) <
+                      searchSquared))
+                    continue;
+                const auto& positions = target.mesh_.positions;
+                const Triangle& t = target.mesh_.triangles[triangle];
+                const Eigen::Vector3d normal =
+                    (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).normalized();
+                if (!normal.allFinite()) continue;
+                row = {x.cross(normal), normal.dot(target.center_ + x - closest), true};
+            }
+        };
+        if (worthThreads(used))
+            tbb::parallel_for(
+                tbb::blocked_range<std::size_t>(0, used, kParallelBlock),
+                [&](const tbb::blocked_range<std::size_t>& range) { rowsOf(range.begin(), range.end()); });
+        else
+            rowsOf(0, used);
         Eigen::Matrix3d normalMatrix = Eigen::Matrix3d::Zero();
         Eigen::Vector3d rightSide = Eigen::Vector3d::Zero();
-        for (std::size_t i = 0; i < used; ++i) {
-            const Eigen::Vector3d x = current * samples_[i];
-            Eigen::Vector3d closest;
-            std::uint32_t triangle = 0;
-            // Points with nothing near (a hole, or a wrong map) say nothing about the fit.
-            if (!(target.bvh_.squaredDistance(target.center_ + x, searchSquared, &closest, &triangle) < searchSquared))
-                continue;
-            const auto& positions = target.mesh_.positions;
-            const Triangle& t = target.mesh_.triangles[triangle];
-            const Eigen::Vector3d normal =
-                (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]).normalized();
-            if (!normal.allFinite()) continue;
-            const Eigen::Vector3d jacobian = x.cross(normal);
-            const double residual = normal.dot(target.center_ + x - closest);
-            normalMatrix += jacobian * jacobian.transpose();
-            rightSide -= jacobian * residual;
-        }
+        for (const Row& row : rows)
+            if (row.used) {
+                normalMatrix += row.jacobian * row.jacobian.transpose();
+                rightSide -= row.jacobian * row.residual;
+            }
         const Eigen::Vector3d w = normalMatrix.ldlt().solve(rightSide);
         if (!w.allFinite()) return current;
         const double angle = w.norm();

@@ -8,19 +8,16 @@
 #include "geometry/shape_verifier.hpp"
 #include "geometry/bounds.hpp"
 
+#include <tbb/parallel_for.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <complex>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <numeric>
 #include <optional>
 
@@ -399,19 +396,14 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     std::vector<Eigen::Matrix3d> generators;
     std::vector<double> generatorDeviations;  // generators[i]'s d_A, as measured when it was accepted
     std::vector<Eigen::Vector3d> revolutionAxes;
-    std::mutex generatorsMutex;
     std::vector<Eigen::Matrix3d> known{Eigen::Matrix3d::Identity()};  // the group the generators so far make
-    auto inKnown = [&](const Eigen::Matrix3d& map) {  // with generatorsMutex held
+    auto inKnown = [&](const Eigen::Matrix3d& map) {
         return std::any_of(known.begin(), known.end(), [&](const Eigen::Matrix3d& g) { return (g - map).norm() < kKnownElement; });
-    };
-    auto isKnown = [&](const Eigen::Matrix3d& map) {
-        std::lock_guard<std::mutex> lock(generatorsMutex);
-        return inKnown(map);
     };
     // A map already in the group found so far needs no test (several axes lead to the same elements); a
     // new one is screened on a few sample points, refined, and verified on all of them.
     const std::size_t limit = 4 * std::size_t(options.maxFold) + 8;
-    std::atomic<bool> overflow{false};  // the accepted maps make no finite group: stop looking
+    bool overflow = false;  // the accepted maps make no finite group: stop looking
     // Near misses tend to fail at the same sample points: each axis's work remembers them (`hints`).
     // `refinementsLeft`, where given, counts down the refinements that may still fail about one axis: once
     // none is left, maps pass only as they are. A shape within the tolerance of a surface of revolution takes
@@ -419,7 +411,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     // failing only once refined (an unevenly tessellated roller: 1600 refinements, 15 s).
     auto tryAccept = [&](const Eigen::Matrix3d& map, RejectingPoints* hints, int* refinementsLeft = nullptr) {
         if (overflow) return false;
-        if (isKnown(map)) return true;
+        if (inKnown(map)) return true;
         if (verifier.deviation(map, preliminary, kScreeningPoints, hints) > preliminary) return false;
         const bool refine = !refinementsLeft || *refinementsLeft > 0;
         Eigen::Matrix3d best = refine ? refined(map) : map;
@@ -430,7 +422,6 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
             best = map;
         }
         if (deviation > tolerance) return false;
-        std::lock_guard<std::mutex> lock(generatorsMutex);
         generators.push_back(best);
         generatorDeviations.push_back(deviation);
         // A map refined onto an element the group already has adds nothing to it (a nearly round shape's
@@ -453,7 +444,6 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 // that belongs to no small fold: a surface of revolution has no finite fold to report.
                 if (verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), tolerance, SIZE_MAX, &hints) <=
                     tolerance) {
-                    std::lock_guard<std::mutex> lock(generatorsMutex);
                     revolutionAxes.push_back(axis);
                     return;
                 }
@@ -573,11 +563,10 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 }
             }
         };
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, axes.size()),
-                          [&](const tbb::blocked_range<std::size_t>& range) {
-                              FunctionOrder order(tests.size());
-                              for (std::size_t i = range.begin(); i != range.end(); ++i) examineAxis(axes[i], order);
-                          });
+        // The axes one after the other, each taking what the ones before it found: the group is the same on any
+        // number of threads, which share each axis's measures instead (ShapeVerifier).
+        FunctionOrder order(tests.size());
+        for (const Eigen::Vector3d& axis : axes) examineAxis(axis, order);
     });
     tryAccept(-Eigen::Matrix3d::Identity(), nullptr);
     if (!revolutionAxes.empty())
