@@ -20,6 +20,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <tuple>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -505,6 +506,41 @@ TEST_CASE("Where nothing pays, the output is the Draco-alone file: the spider", 
     const nlohmann::json report = compressAndVerify(modelPath("assimp_spider/spider.obj"), folder, "spider");
     CHECK(report["output_bytes"].get<double>() <= report["ablation"]["draco_alone"].get<double>());
     CHECK(report["output_bytes"] == report["ablation"]["final"]);
+}
+
+TEST_CASE("Tiles stored as they are keep the frame of a node that turns them off the axes, not one that keeps them",
+          "[compress]") {
+    // The three spheres' rings each share a coordinate in their mesh's frame and none once turned off the axes:
+    // Draco codes them smaller in the frame (the file 1912 -> 1752 bytes). A quarter turn keeps the axes: the
+    // world's frame is as good, and no node is spent.
+    TemporaryFolder folder;
+    const nlohmann::json upright =
+        compressAndVerify(writePlainGlb(samples::makeThreeSpheresScene(), folder, "upright"), folder, "upright-small");
+    CHECK(upright["node_frames"] == 0);
+    const Eigen::Matrix3d oblique = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d quarter = Eigen::AngleAxisd(EIGEN_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    for (const auto& [name, turn, framed] :
+         {std::tuple{"oblique", oblique, true}, std::tuple{"quarter", quarter, false}}) {
+        Scene scene = samples::makeThreeSpheresScene();
+        REQUIRE(scene.nodes.size() == 1);
+        scene.nodes[0].transform.topLeftCorner<3, 3>() = turn;
+        const nlohmann::json report =
+            compressAndVerify(writePlainGlb(scene, folder, name), folder, std::string(name) + "-small");
+        CHECK(report["node_frames"] == (framed ? 1 : 0));
+        CHECK(report["tiles_in_node_frames"] == (framed ? 3 : 0));
+        const Scene out = readScene(folder / (std::string(name) + "-small.glb"));
+        const auto drawing =
+            std::find_if(out.nodes.begin(), out.nodes.end(), [](const Node& n) { return n.mesh >= 0; });
+        REQUIRE(drawing != out.nodes.end());
+        if (framed) {
+            // The node's name and placement, and Draco's bytes of the upright scene's but for the node's.
+            CHECK(drawing->name == "three-spheres");
+            CHECK((drawing->transform.topLeftCorner<3, 3>() - oblique).norm() < 1e-6);
+            CHECK(report["output_bytes"].get<double>() < upright["output_bytes"].get<double>() + 150);
+        } else {
+            CHECK(drawing->transform.isIdentity());
+        }
+    }
 }
 
 TEST_CASE("symcompress refuses to overwrite its input and reports bad input with status 2", "[compress][cli]") {

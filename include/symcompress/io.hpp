@@ -52,6 +52,9 @@ struct WriteOptions {
     int colorBits = 8;
     int compressionLevel =
         10;  // Draco speed 10 - compressionLevel; 10: the smallest of several (dracoSpeedsWorthTrying)
+    // false: each primitive encoded once, at the speed compressionLevel asks first and the fewest position bits,
+    // without the trials of other speeds and bits: a quick measure, for comparing two ways of storing a part.
+    bool encodingTrials = true;
     // glTF: leaves drawing one mesh written as one node with EXT_mesh_gpu_instancing where that is smaller
     // (--no-gpu-instancing: a node each, for viewers without the extension).
     bool gpuInstancing = true;

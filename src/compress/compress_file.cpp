@@ -159,8 +159,6 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         write.maxRelativePositionError = options.closeUpError * options.maxError;
     }
     planOptions.costs = costModelFor(formatFromExtension(output), write);
-    // The HTML report draws the plan's decisions: kept only when it is asked for.
-    const bool keepPlans = !options.htmlReport.empty();
     // The decoder verifies against the whole budget (without tiles, there is no diagonal to scale it by).
     SurfaceDigest digest = analysis.digest;
     if (!options.fixedPositionBits && analysis.diagonal > 0) digest.maxError = options.maxError;
@@ -173,11 +171,11 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         const char* name = "";
         CompressedScene plan;
         std::uintmax_t bytes = 0;
-        CompressionPlan decisions;  // only for the HTML report
+        CompressionPlan decisions;
     };
     auto variantOf = [&](const char* name, CompressedScene plan, CompressionPlan decisions) {
         const std::uintmax_t bytes = measuredBytes(plan, output, name, write, inputs);
-        return Variant{name, std::move(plan), bytes, keepPlans ? std::move(decisions) : CompressionPlan()};
+        return Variant{name, std::move(plan), bytes, std::move(decisions)};
     };
     CompressionPlan fullPlan;  // the other plans are made from its decisions
     auto planned = [&](const char* name, PlanOptions variant) {
@@ -247,6 +245,16 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         plan.stats.secondsPlan = compressed.stats.secondsPlan;
         consider(variantOf("kept_meshes_apart", std::move(plan), std::move(apart)));
     }
+    // A plan weighs each group of tiles it stores in its node's frame alone, with one quick encoding each way; the
+    // file weighs them together: the smallest plan's decisions with every tile stored as it is in the world's
+    // frame too.
+    if (const CompressionPlan& best = smallest ? smallest->decisions : fullPlan; !best.framedTiles.empty()) {
+        CompressionPlan world = best;
+        world.framedTiles.clear();
+        CompressedScene plan = emitScene(scene, analysis, world);
+        plan.stats.secondsPlan = compressed.stats.secondsPlan;
+        consider(variantOf(smallest ? smallest->name : "world_frame", std::move(plan), std::move(world)));
+    }
     report.outputBytes = fullPlanBytes;
     const CompressionPlan* writtenPlan = &fullPlan;
     if (smallest) {
@@ -266,7 +274,7 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     if (const FileFormat format = formatFromExtension(output); format == FileFormat::Glb || format == FileFormat::Gltf)
         report.gpuInstancing = gltfGpuInstancing(compressed.scene, write);
     report.ratio = report.outputBytes ? double(report.inputBytes) / double(report.outputBytes) : 0;
-    if (keepPlans) {
+    if (!options.htmlReport.empty()) {
         if (options.progress) options.progress("writing the HTML report", 0, "");
         writeFileAtomically(options.htmlReport,
                             compressionReportHtml({scene, analysis, *writtenPlan, report, &planOptions.costs}));

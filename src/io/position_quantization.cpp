@@ -60,7 +60,8 @@ double positionErrorBound(const Primitive& primitive, const WriteOptions& option
 
 std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const WriteOptions& options, int fewest) {
     std::vector<int> more;
-    if (primitive.positionGrid || primitive.triangles.size() > kMostTriedTriangles) return more;
+    if (!options.encodingTrials || primitive.positionGrid || primitive.triangles.size() > kMostTriedTriangles)
+        return more;
     const double bound = positionErrorBound(primitive, options);
     if (!(bound > 0)) return more;
     for (int bits = fewest + 1; bits <= std::min(fewest + 2, kMostPositionBits); ++bits)
@@ -70,7 +71,7 @@ std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const Write
 
 std::vector<int> dracoSpeedsWorthTrying(const Primitive& primitive, const WriteOptions& options) {
     const int asked = std::clamp(10 - options.compressionLevel, 0, 10);
-    if (asked != 0 || primitive.triangles.size() > kMostTriedTriangles) return {asked};
+    if (!options.encodingTrials || asked != 0 || primitive.triangles.size() > kMostTriedTriangles) return {asked};
     // Speeds 2-3 and 8-10 encode alike (measured on the shared models); speed 0 first, the best on most.
     return {0, 1, 2, 5, 8};
 }

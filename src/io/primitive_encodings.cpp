@@ -79,6 +79,7 @@ PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOption
     f.number(primitive.maxPositionError);
     // The options encodePrimitive reads (positionBitsFor, dracoSpeedsWorthTrying, positionBitsWorthTrying).
     f.word(options.draco);
+    f.word(options.encodingTrials);
     for (int bits :
          {options.positionBits, options.normalBits, options.texcoordBits, options.colorBits, options.compressionLevel})
         f.word(std::uint64_t(std::int64_t(bits)));

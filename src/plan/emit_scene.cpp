@@ -205,7 +205,11 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
                     dropped.insert(source->name);
         count(part, stats);
     }
+    std::vector<char> framed(analysis.tiles.size(), 0);
+    for (const FramedTiles& group : plan.framedTiles)
+        for (std::size_t t : group.tiles) framed[t] = 1;
     for (std::size_t t : plan.tilesAsTheyAre) {
+        if (framed[t]) continue;
         unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
         if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())
             merged.insert(source->name), mergedSource = source;
@@ -221,6 +225,15 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         out.meshes.push_back(std::move(mesh));
         addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(),
                     merged.size() == 1 ? mergedSource : nullptr);
+    }
+    for (const FramedTiles& group : plan.framedTiles) {
+        const Node& source = input.nodes[std::size_t(group.node)];
+        Mesh mesh = tilesInFrame(analysis, group.tiles, group.transform);
+        if (source.mesh >= 0) mesh.name = input.meshes[std::size_t(source.mesh)].name;
+        out.meshes.push_back(std::move(mesh));
+        addRootNode(out, int(out.meshes.size()) - 1, group.transform, &source);
+        stats.tilesInNodeFrames += group.tiles.size();
+        ++stats.nodeFrames;
     }
     if (!dropped.empty())
         out.warnings.push_back(std::to_string(dropped.size()) + " node names (e.g. '" + *dropped.begin() +

@@ -41,6 +41,8 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
         // cost more than it saves (hundreds of small scaled copies), and this plan stores nothing shared.
         plan.shareInputInstances = false;
         for (std::size_t t = 0; t < analysis.tiles.size(); ++t) plan.tilesAsTheyAre.push_back(t);
+        StorageCosts costs(analysis, options.costs);
+        withThreads(analysis.options.threads, [&] { planSourceFrames(input, analysis, costs, plan); });
         return plan;
     }
     if (options.progress) options.progress("planning", analysis.classification.classes.size(), "classes");
@@ -84,6 +86,7 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
     plan.symmetricClasses = classes.symmetricClasses;
     plan.attributeMismatches = classes.attributeMismatches;
     plan.notWorthInstancing = classes.notWorthInstancing;
+    withThreads(analysis.options.threads, [&] { planSourceFrames(input, analysis, costs, plan); });
     return plan;
 }
 

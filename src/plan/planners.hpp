@@ -39,6 +39,14 @@ std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<b
 // `drawn` are left out.
 CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>& drawn);
 
+// The tiles stored as they are that are worth storing in the frame of the input node that drew them (a node
+// that turns them off the world's axes; FramedTiles), measured both ways by the writer: plan.framedTiles.
+void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, StorageCosts& costs, CompressionPlan& plan);
+
+// The tiles merged into one mesh (a primitive per material and attributes) in the frame whose world transform
+// is `frame`.
+Mesh tilesInFrame(const SceneAnalysis& analysis, const std::vector<std::size_t>& tiles, const Eigen::Matrix4d& frame);
+
 // The translation taking a mesh stored about `center` to where it was.
 Eigen::Matrix4d translationTo(const Eigen::Vector3d& center);
 

@@ -22,6 +22,10 @@ double StorageCosts::asMesh(const Primitive& part) const {
     return double(part.triangles.size()) * model_.bytesPerTriangle + model_.bytesPerMesh;
 }
 
+double StorageCosts::asMeshQuickly(const Primitive& part) const {
+    return model_.quickMeshBytes ? model_.quickMeshBytes(part) : asMesh(part);
+}
+
 double StorageCosts::node(const Node& node) const {
     return model_.nodeBytes ? model_.nodeBytes(node) : model_.bytesPerInstance;
 }

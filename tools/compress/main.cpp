@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -247,9 +248,16 @@ void printReport(const CompressionReport& report) {
     std::printf("%s -> %s\n", report.input.string().c_str(), report.output.string().c_str());
     std::printf("  size            %ju -> %ju bytes, ratio %.2f\n", report.inputBytes, report.outputBytes,
                 report.ratio);
-    if (report.plan != "final")
+    if (report.plan != "final") {
+        const std::map<std::string, const char*> plans{
+            {"draco_alone", "every tile as it is"},
+            {"instancing", "instancing without regions"},
+            {"kept_meshes_apart", "the kept meshes each with its node"},
+            {"world_frame", "the tiles stored as they are all in the world's frame"}};
+        const auto plan = plans.find(report.plan);
         std::printf("  plan            %s: its file was smaller than the full plan's\n",
-                    report.plan == "draco_alone" ? "every tile as it is" : "instancing without regions");
+                    plan != plans.end() ? plan->second : report.plan.c_str());
+    }
     std::printf("  triangles       %zu drawn, %zu stored\n", stats.trianglesIn, stats.trianglesStored);
     std::printf("  tiles           %zu in %zu classes; %zu classes stored once for %zu instances\n", stats.tiles,
                 stats.classes, stats.instancedClasses, stats.instances);
@@ -264,6 +272,11 @@ void printReport(const CompressionReport& report) {
             stats.assemblies, stats.assemblyCopies, stats.tilesInAssemblies);
     if (stats.inputInstancesKept)
         std::printf("  kept            %zu nodes of meshes the input already shares\n", stats.inputInstancesKept);
+    if (stats.nodeFrames)
+        std::printf(
+            "  node frames     %zu tiles stored as they are in the frames of the %zu nodes that drew them, "
+            "off the world's axes\n",
+            stats.tilesInNodeFrames, stats.nodeFrames);
     if (stats.animatedNodesKept)
         std::printf("  animated        %zu nodes kept as they are, for the scene's animations (%zu)\n",
                     stats.animatedNodesKept, report.animations);

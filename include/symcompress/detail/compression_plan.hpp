@@ -28,6 +28,9 @@ struct StorageCostModel {
     // triangle) from a bare one (2 to 4). Parts merged with others are then measured on a sample of the
     // scene's parts stored together.
     std::function<double(const Primitive&)> meshBytes;
+    // The same without the writer's trials of settings (WriteOptions::encodingTrials), for comparing two ways of
+    // storing one part; else meshBytes.
+    std::function<double(const Primitive&)> quickMeshBytes;
     // What a node drawing a shared mesh costs (its transform and name): a rigid placement costs less than
     // a mirrored or scaled one. Else bytesPerInstance.
     std::function<double(const Node&)> nodeBytes;
@@ -144,6 +147,15 @@ struct SharedPart {
     bool named = true;
 };
 
+// Tiles stored as they are in the frame of the input node that drew them, drawn by a node at its placement (its
+// name and extras kept): where the node turns them off the world's axes, Draco codes them smaller there (a UV
+// sphere's rings each share a coordinate in its frame, none in the world's).
+struct FramedTiles {
+    int node = -1;                                            // the input node
+    Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // its world transform
+    std::vector<std::size_t> tiles;                           // in the order they are merged
+};
+
 // A plan: what is stored once and drawn by nodes, and what is stored as it is. Turned into a Scene by
 // emitScene.
 struct CompressionPlan {
@@ -151,6 +163,7 @@ struct CompressionPlan {
     bool mergeKeptMeshes = true;              // PlanOptions::mergeKeptMeshes
     std::vector<SharedPart> shared;           // in the order they are written
     std::vector<std::size_t> tilesAsTheyAre;  // in the order they are merged (one mesh per material)
+    std::vector<FramedTiles> framedTiles;     // of tilesAsTheyAre, those stored in their nodes' frames
     std::size_t classes = 0, symmetricClasses = 0, attributeMismatches = 0, notWorthInstancing = 0;
     std::string sceneGroup = "C1";
     double maxError = 0;               // PlanOptions::maxError

@@ -1,0 +1,114 @@
+#include "plan/planners.hpp"
+#include "plan/primitives_by_kind.hpp"
+#include "symcompress/scene_ops.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace symcompress {
+namespace {
+
+// At most about this share of a part's Draco bytes is what its own frame can spare (a UV sphere turned off
+// the axes: 1656 -> 1912 bytes in world space, 15%): a group whose estimate is below the node's cost over it
+// is not measured.
+constexpr double kMostAFrameSpares = 0.3;
+
+// A group is stored in its node's frame only where the quick measure finds that smaller by this share: less
+// is within what the writer's trials of settings change, and the job then writes the plan twice to know.
+constexpr double kLeastWorthFraming = 0.01;
+
+// Whether `transform` keeps the axes as axes (a signed permutation with scales): Draco's grid is then the same
+// in the world as in the node's frame, up to a scale per axis, and the frame spares nothing. A transform that
+// flattens has no frame to go back to: it keeps the world's.
+bool keepsAxes(const Eigen::Matrix4d& transform) {
+    if (!(std::abs(transform.topLeftCorner<3, 3>().determinant()) >
+          1e-12 * std::pow(transform.topLeftCorner<3, 3>().norm(), 3)))
+        return true;
+    const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
+    for (int column = 0; column < 3; ++column) {
+        const Eigen::Vector3d c = linear.col(column).cwiseAbs();
+        if ((c.array() > 1e-9 * c.maxCoeff()).count() != 1) return false;
+    }
+    return true;
+}
+
+// The input node all of tile t's triangles come from, or -1.
+int onlyNodeOf(const SceneAnalysis& analysis, std::size_t t) {
+    const Tile& tile = analysis.tiles[t];
+    if (tile.sources.empty()) return -1;
+    const int node = analysis.soup[tile.sources.front().primitive].node;
+    for (const TriangleSource& source : tile.sources)
+        if (analysis.soup[source.primitive].node != node) return -1;
+    return node;
+}
+
+// The primitive tile t joins when merged (PrimitivesByKind): its material and which attributes it has.
+std::tuple<int, bool, bool, bool> kindOf(const SceneAnalysis& analysis, std::size_t t) {
+    const Primitive& from = analysis.soup[analysis.tiles[t].sources.front().primitive].primitive;
+    return {analysis.tiles[t].material, !from.normals.empty(), !from.texcoords.empty(), !from.colors.empty()};
+}
+
+// Both ways of storing a group measured alike: each primitive encoded once, without the writer's trials.
+double bytesOf(const StorageCosts& costs, const Mesh& mesh) {
+    double bytes = 0;
+    for (const Primitive& primitive : mesh.primitives) bytes += costs.asMeshQuickly(primitive);
+    return bytes;
+}
+
+}  // namespace
+
+Mesh tilesInFrame(const SceneAnalysis& analysis, const std::vector<std::size_t>& tiles,
+                  const Eigen::Matrix4d& frame) {
+    const Eigen::Matrix4d toFrame = frame.inverse();
+    PrimitivesByKind parts;
+    for (std::size_t t : tiles) parts.add(transformPrimitive(tilePrimitive(analysis.tiles[t], analysis.soup), toFrame));
+    Mesh mesh;
+    parts.moveInto(mesh);
+    return mesh;
+}
+
+void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, StorageCosts& costs, CompressionPlan& plan) {
+    const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+    std::map<int, std::vector<std::size_t>> byNode;  // turned off the axes, in the tiles' order
+    for (std::size_t t : plan.tilesAsTheyAre)
+        if (const int node = onlyNodeOf(analysis, t); node >= 0 && !keepsAxes(world[std::size_t(node)]))
+            byNode[node].push_back(t);
+    std::vector<FramedTiles> candidates;
+    for (auto& [node, tiles] : byNode)
+        if (kMostAFrameSpares * costs.meshOf(tiles, false) > costs.node(world[std::size_t(node)], &input.nodes[std::size_t(node)]))
+            candidates.push_back({node, world[std::size_t(node)], std::move(tiles)});
+    // Each group measured both ways as the writer codes it. Merged with the world's parts, it spares the
+    // overhead of a primitive of each kind that other tiles stored as they are have too; in its frame, it costs
+    // a node.
+    std::vector<char> inGroup(analysis.tiles.size(), 0);
+    for (const FramedTiles& group : candidates)
+        for (std::size_t t : group.tiles) inGroup[t] = 1;
+    std::map<std::tuple<int, bool, bool, bool>, std::size_t> outside;  // a tile of each kind in no group
+    for (std::size_t t : plan.tilesAsTheyAre)
+        if (!inGroup[t]) outside.emplace(kindOf(analysis, t), t);
+    std::vector<char> pays(candidates.size(), 0);
+    tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
+        const FramedTiles& group = candidates[i];
+        std::vector<std::size_t> spared;  // a tile of each kind whose primitive merging spares
+        for (std::size_t t : group.tiles)
+            if (const auto other = outside.find(kindOf(analysis, t)); other != outside.end())
+                if (std::find(spared.begin(), spared.end(), other->second) == spared.end())
+                    spared.push_back(other->second);
+        const double overhead = costs.meshOf(spared, true) - costs.meshOf(spared, false);
+        double world = 0, own = 0;
+        tbb::parallel_invoke(
+            [&] { world = bytesOf(costs, tilesInFrame(analysis, group.tiles, Eigen::Matrix4d::Identity())); },
+            [&] { own = bytesOf(costs, tilesInFrame(analysis, group.tiles, group.transform)); });
+        pays[i] = own + costs.node(group.transform, &input.nodes[std::size_t(group.node)]) <
+                  (1 - kLeastWorthFraming) * (world - overhead);
+    });
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+        if (pays[i]) plan.framedTiles.push_back(std::move(candidates[i]));
+}
+
+}  // namespace symcompress
