@@ -543,6 +543,24 @@ TEST_CASE("Tiles stored as they are keep the frame of a node that turns them off
     }
 }
 
+TEST_CASE("A scene far from the origin is stored about its centre, its node's translation to the budget, verified",
+          "[compress]") {
+    // 10 km out, float32's spacing is a millimetre, 1e-4 of the lamp's size: merged in world space and with
+    // its node's translation printed as float32, it missed its budget (NOT VERIFIED, 6.5e-5 of the diagonal).
+    TemporaryFolder folder;
+    for (const auto& [name, scene] :
+         {std::pair{"lamp", samples::makeLampScene()}, std::pair{"spheres", samples::makeThreeSpheresScene()}}) {
+        Scene far = scene;
+        REQUIRE(far.nodes.size() == 1);
+        far.nodes[0].transform.topRightCorner<3, 1>() = Eigen::Vector3d(1e4, -2e3, 5e3);
+        const std::string small = std::string(name) + "-far-small";
+        compressAndVerify(writePlainGlb(far, folder, std::string(name) + "-far"), folder, small);
+        for (const Mesh& mesh : readScene(folder / (small + ".glb")).meshes)
+            for (const Primitive& primitive : mesh.primitives)
+                for (const Eigen::Vector3d& p : primitive.positions) CHECK(p.norm() < 10);
+    }
+}
+
 TEST_CASE("symcompress refuses to overwrite its input and reports bad input with status 2", "[compress][cli]") {
     TemporaryFolder folder;
     const auto copy = folder / "rock.gltf";

@@ -36,15 +36,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A node's fields: translation (float32, what a glTF reader keeps of it), rotation quaternion to 1e-7 and
-// scale, each left out when it does nothing. Instance nodes are the common case, where their size counts:
-// a rigid or uniformly scaled transform takes about half the bytes of a matrix.
-Json transformFields(const Eigen::Vector3d& translation, const Eigen::Matrix3d& rotation,
-                     const Eigen::Vector3d& scale) {
+// A node's translation as printed: float32's shortest text (what many glTF readers keep of it) where that is
+// within `precision` of it (a distance; 0: always), else the decimals that are: a node far from the origin (a
+// georeferenced part 10 km out) would move by float32's spacing there, a millimetre.
+Eigen::Vector3d printedTranslation(const Eigen::Vector3d& translation, double precision) {
+    const Eigen::Vector3d t = translation.unaryExpr(&asFloat32);
+    if (!(precision > 0) || (t - translation).cwiseAbs().maxCoeff() <= precision) return t;
+    const int decimals = std::clamp(int(std::ceil(-std::log10(precision))), 0, 15);
+    return translation.unaryExpr(
+        [&](double x) { return std::abs(x) * std::pow(10.0, decimals) < 1e15 ? roundedDecimals(x, decimals) : x; });
+}
+
+// A node's fields: translation (printedTranslation), rotation quaternion to 1e-7 and scale (float32), each left
+// out when it does nothing. Instance nodes are the common case, where their size counts: a rigid or uniformly
+// scaled transform takes about half the bytes of a matrix.
+Json transformFields(const Eigen::Vector3d& translation, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& scale,
+                     double translationPrecision) {
     Json out = Json::object();
     Eigen::Quaterniond q(rotation);
     if (q.w() < 0) q.coeffs() *= -1;
-    const Eigen::Vector3d t = translation.unaryExpr(&asFloat32), s = scale.unaryExpr(&asFloat32);
+    const Eigen::Vector3d t = printedTranslation(translation, translationPrecision), s = scale.unaryExpr(&asFloat32);
     const Eigen::Vector4d r = q.coeffs().unaryExpr([](double x) { return roundedDecimals(x, kRotationDecimals); });
     if (!t.isZero(0)) out["translation"] = {t.x(), t.y(), t.z()};
     if (r != Eigen::Vector4d(0, 0, 0, 1)) out["rotation"] = {r.x(), r.y(), r.z(), r.w()};
@@ -66,22 +77,23 @@ void putExtras(Json& object, const std::string& extrasJson) {
 // scaleOrientation, a turned child of a non-uniformly scaled parent) is split by the SVD L = U Σ V^T:
 // this node takes translation, U and Σ, and a new child, appended to `extra` (its index is firstExtra +
 // its position there), takes V^T with the mesh and the children.
-Json writeNode(const Node& node, const std::vector<int>& meshIndex, std::size_t firstExtra, std::vector<Json>& extra) {
+Json writeNode(const Node& node, const std::vector<int>& meshIndex, std::size_t firstExtra, std::vector<Json>& extra,
+               double translationPrecision = 0) {
     const Eigen::Matrix3d linear = node.transform.topLeftCorner<3, 3>();
     const Eigen::Vector3d translation = node.transform.topRightCorner<3, 1>();
     Json out;
     Json* drawing = &out;  // the node that carries the mesh and the children
     if (const auto trs = asRotationAndScale(linear)) {
-        out = transformFields(translation, trs->first, trs->second);
+        out = transformFields(translation, trs->first, trs->second, translationPrecision);
     } else {
         Eigen::JacobiSVD<Eigen::Matrix3d> svd(linear, Eigen::ComputeFullU | Eigen::ComputeFullV);
         Eigen::Matrix3d u = svd.matrixU(), v = svd.matrixV();
         Eigen::Vector3d sigma = svd.singularValues();
         if (v.determinant() < 0) v.col(2) = -v.col(2), u.col(2) = -u.col(2);
         if (u.determinant() < 0) u.col(2) = -u.col(2), sigma[2] = -sigma[2];
-        out = transformFields(translation, u, sigma);
+        out = transformFields(translation, u, sigma, translationPrecision);
         out["children"] = {firstExtra + extra.size()};
-        extra.push_back(transformFields(Eigen::Vector3d::Zero(), v.transpose(), Eigen::Vector3d::Ones()));
+        extra.push_back(transformFields(Eigen::Vector3d::Zero(), v.transpose(), Eigen::Vector3d::Ones(), 0));
         drawing = &extra.back();
     }
     if (!node.name.empty()) out["name"] = node.name;
@@ -481,12 +493,14 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     }
     const GpuInstancingPlan gpu = planGpuInstancing(scene, meshIndex, options);
     const NodeNumbering numbering(scene, gpu);
+    // A node's translation moves all it draws: it takes a small share of the budget for positions.
+    const double translationPrecision = options.maxPositionError / 16;
     std::vector<Json> extraNodes;
     for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
         if (gpu.batchOf[n] >= 0) continue;
         Node node = scene.nodes[n];
         node.children = numbering.list(node.children);
-        root["nodes"].push_back(writeNode(node, meshIndex, numbering.written, extraNodes));
+        root["nodes"].push_back(writeNode(node, meshIndex, numbering.written, extraNodes, translationPrecision));
     }
     writeGpuBatches(gpu, scene, meshIndex, builder, root);
     if (!gpu.batches.empty()) extensions.add("EXT_mesh_gpu_instancing", true);

@@ -108,6 +108,28 @@ double largestStretch(const Eigen::Matrix4d& transform) {
                                        .maxCoeff()));
 }
 
+// A mesh far from the origin for its size (georeferenced coordinates; the lantern moved 10 km away) loses in
+// float32, in which glTF, Draco and X3D store its corners, more than a small share of the budget: it is
+// moved to be about its centre, and the translation back returned for the node drawing it (a JSON number, a
+// double). Otherwise the identity, the mesh as it is.
+Eigen::Matrix4d centredIfFar(Mesh& mesh, double budget) {
+    constexpr double kRoundingShare = 1.0 / 16;  // of the budget, the most float32's rounding may take
+    Eigen::AlignedBox3d box;
+    for (const Primitive& primitive : mesh.primitives)
+        for (const Eigen::Vector3d& p : primitive.positions) box.extend(p);
+    Eigen::Matrix4d back = Eigen::Matrix4d::Identity();
+    if (box.isEmpty()) return back;
+    const double largest = box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff();
+    // A corner rounds by at most half float32's spacing on each axis.
+    if (!(largest > 0) || std::sqrt(3.0) / 2 * std::ldexp(1.0, std::ilogb(largest) - 23) <= kRoundingShare * budget)
+        return back;
+    const Eigen::Vector3d centre = box.center();
+    for (Primitive& primitive : mesh.primitives)
+        for (Eigen::Vector3d& p : primitive.positions) p -= centre;
+    back.topRightCorner<3, 1>() = centre;
+    return back;
+}
+
 // Each stored mesh's share of the error budget (a distance): what the deviation of the copies it draws
 // leaves of it (`deviation`, by mesh), less `instanceShare` where several nodes draw it (a GPU batch may round
 // their rotations and translations), in the mesh's frame: divided by the largest stretch of a node that draws it, since a
@@ -205,6 +227,8 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
                     dropped.insert(source->name);
         count(part, stats);
     }
+    // The error budget as a distance (with fixed bits, about half a 14-bit step of the diagonal).
+    const double budget = analysis.diagonal * (plan.maxError > 0 ? plan.maxError : std::ldexp(1.0, -15));
     std::vector<char> framed(analysis.tiles.size(), 0);
     for (const FramedTiles& group : plan.framedTiles)
         for (std::size_t t : group.tiles) framed[t] = 1;
@@ -222,16 +246,17 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
                                    "') not kept: their tiles are stored as they are in one mesh per material");
         Mesh mesh;
         unique.moveInto(mesh);
+        const Eigen::Matrix4d offset = centredIfFar(mesh, budget);
         out.meshes.push_back(std::move(mesh));
-        addRootNode(out, int(out.meshes.size()) - 1, Eigen::Matrix4d::Identity(),
-                    merged.size() == 1 ? mergedSource : nullptr);
+        addRootNode(out, int(out.meshes.size()) - 1, offset, merged.size() == 1 ? mergedSource : nullptr);
     }
     for (const FramedTiles& group : plan.framedTiles) {
         const Node& source = input.nodes[std::size_t(group.node)];
         Mesh mesh = tilesInFrame(analysis, group.tiles, group.transform);
         if (source.mesh >= 0) mesh.name = input.meshes[std::size_t(source.mesh)].name;
+        const Eigen::Matrix4d offset = centredIfFar(mesh, budget / largestStretch(group.transform));
         out.meshes.push_back(std::move(mesh));
-        addRootNode(out, int(out.meshes.size()) - 1, group.transform, &source);
+        addRootNode(out, int(out.meshes.size()) - 1, group.transform * offset, &source);
         stats.tilesInNodeFrames += group.tiles.size();
         ++stats.nodeFrames;
     }
