@@ -190,15 +190,18 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         // A mesh the tiles cannot carry (attributes such as TANGENT) that one node draws is stored as it is too,
         // in world space with the tiles stored as they are (one primitive per material and attributes), instead
         // of a mesh and a node of its own (the cat's 44 parts with tangents: 2 primitives).
-        // Only at a rigid placement: a viewer may turn tangents by the normal matrix (X_ITE does), not by the
-        // placement as glTF's are, and the two differ under a scale (the cat's spear: 0.7% of its pixels
-        // otherwise); and without morph targets, which a merged primitive would not keep.
+        // Only at a rigid placement, or one scaled alike on every axis: a viewer may turn tangents by the normal
+        // matrix (X_ITE does), not by the placement as glTF's are, and the two differ in direction under any
+        // other scale (the cat's spear: 0.7% of its pixels otherwise); and without morph targets, which a merged
+        // primitive would not keep.
         const Eigen::Matrix3d linear = kept.transform.topLeftCorner<3, 3>();
         const Mesh& source = input.meshes[std::size_t(kept.mesh)];
-        const bool drawnOnce = plan.mergeKeptMeshes && keptDrawers[kept.mesh] == 1 &&
-                               (linear.transpose() * linear - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
-                               std::all_of(source.primitives.begin(), source.primitives.end(),
-                                           [](const Primitive& p) { return p.targets.empty(); });
+        const double squaredScale = (linear.transpose() * linear).trace() / 3;  // uniform: the same either way
+        const bool drawnOnce =
+            plan.mergeKeptMeshes && keptDrawers[kept.mesh] == 1 && squaredScale > 0 &&
+            (linear.transpose() * linear / squaredScale - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
+            std::all_of(source.primitives.begin(), source.primitives.end(),
+                        [](const Primitive& p) { return p.targets.empty(); });
         if ((!plan.shareInputInstances && tilesCanCarry(input.meshes[std::size_t(kept.mesh)])) || drawnOnce) {
             for (const Primitive& primitive : input.meshes[std::size_t(kept.mesh)].primitives)
                 unique.add(transformPrimitive(primitive, kept.transform));
