@@ -62,8 +62,7 @@ double bytesOf(const StorageCosts& costs, const Mesh& mesh) {
 
 }  // namespace
 
-Mesh tilesInFrame(const SceneAnalysis& analysis, const std::vector<std::size_t>& tiles,
-                  const Eigen::Matrix4d& frame) {
+Mesh tilesInFrame(const SceneAnalysis& analysis, const std::vector<std::size_t>& tiles, const Eigen::Matrix4d& frame) {
     const Eigen::Matrix4d toFrame = frame.inverse();
     PrimitivesByKind parts;
     for (std::size_t t : tiles) parts.add(transformPrimitive(tilePrimitive(analysis.tiles[t], analysis.soup), toFrame));
@@ -80,7 +79,8 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
             byNode[node].push_back(t);
     std::vector<FramedTiles> candidates;
     for (auto& [node, tiles] : byNode)
-        if (kMostAFrameSpares * costs.meshOf(tiles, false) > costs.node(world[std::size_t(node)], &input.nodes[std::size_t(node)]))
+        if (kMostAFrameSpares * costs.meshOf(tiles, false) >
+            costs.node(world[std::size_t(node)], &input.nodes[std::size_t(node)]))
             candidates.push_back({node, world[std::size_t(node)], std::move(tiles)});
     // Each group measured both ways as the writer codes it. Merged with the world's parts, it spares the
     // overhead of a primitive of each kind that other tiles stored as they are have too; in its frame, it costs
@@ -100,12 +100,12 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
                 if (std::find(spared.begin(), spared.end(), other->second) == spared.end())
                     spared.push_back(other->second);
         const double overhead = costs.meshOf(spared, true) - costs.meshOf(spared, false);
-        double world = 0, own = 0;
+        double inWorld = 0, inFrame = 0;
         tbb::parallel_invoke(
-            [&] { world = bytesOf(costs, tilesInFrame(analysis, group.tiles, Eigen::Matrix4d::Identity())); },
-            [&] { own = bytesOf(costs, tilesInFrame(analysis, group.tiles, group.transform)); });
-        pays[i] = own + costs.node(group.transform, &input.nodes[std::size_t(group.node)]) <
-                  (1 - kLeastWorthFraming) * (world - overhead);
+            [&] { inWorld = bytesOf(costs, tilesInFrame(analysis, group.tiles, Eigen::Matrix4d::Identity())); },
+            [&] { inFrame = bytesOf(costs, tilesInFrame(analysis, group.tiles, group.transform)); });
+        pays[i] = inFrame + costs.node(group.transform, &input.nodes[std::size_t(group.node)]) <
+                  (1 - kLeastWorthFraming) * (inWorld - overhead);
     });
     for (std::size_t i = 0; i < candidates.size(); ++i)
         if (pays[i]) plan.framedTiles.push_back(std::move(candidates[i]));
