@@ -66,8 +66,9 @@ struct CompressionStats {
     std::string sceneGroup = "C1";         // the scene's symmetry group, where one part of the scene is stored for all
     std::size_t tilesInSceneSymmetry = 0;  // tiles drawn by that part's nodes
     std::size_t inputInstancesKept = 0;    // nodes of the input's own shared meshes, kept
-    std::size_t tilesInNodeFrames = 0;     // tiles stored as they are in the frame of the node that drew them
-    std::size_t nodeFrames = 0;            // ... by so many nodes (CompressionPlan::framedTiles)
+    // Meshes written in the frame of the input nodes their tiles came from, which turned them off the world's
+    // axes (CompressionPlan::framedTiles, SharedPart::frame), and the tiles they draw.
+    std::size_t nodeFrames = 0, tilesInNodeFrames = 0;
     std::size_t animatedNodesKept = 0;     // nodes of animated subtrees, kept with their animations
     std::size_t camerasAndLightsKept = 0;  // other nodes with a camera or a light, kept at their world placement
     double maxDeviation = 0;               // of the placements used, relative to the diagonal

@@ -248,9 +248,15 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     // A plan weighs each group of tiles it stores in its node's frame alone, with one quick encoding each way; the
     // file weighs them together: the smallest plan's decisions with every tile stored as it is in the world's
     // frame too.
-    if (const CompressionPlan& best = smallest ? smallest->decisions : fullPlan; !best.framedTiles.empty()) {
+    auto inFrames = [](const CompressionPlan& plan) {
+        return !plan.framedTiles.empty() ||
+               std::any_of(plan.shared.begin(), plan.shared.end(),
+                           [](const SharedPart& part) { return !part.frame.isIdentity(); });
+    };
+    if (const CompressionPlan& best = smallest ? smallest->decisions : fullPlan; inFrames(best)) {
         CompressionPlan world = best;
         world.framedTiles.clear();
+        world.sharedPartFrames = false;
         CompressedScene plan = emitScene(scene, analysis, world);
         plan.stats.secondsPlan = compressed.stats.secondsPlan;
         consider(variantOf(smallest ? smallest->name : "world_frame", std::move(plan), std::move(world)));

@@ -219,11 +219,14 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     std::vector<double> deviation(out.meshes.size(), 0);  // of what each mesh draws, as a distance
     for (const SharedPart& part : plan.shared) {
         const int mesh = int(out.meshes.size());
-        out.meshes.push_back(part.mesh);
+        Eigen::Matrix4d frame = Eigen::Matrix4d::Identity();
+        if (plan.sharedPartFrames) frame.topLeftCorner<3, 3>() = part.frame;
+        out.meshes.push_back(frame.isIdentity() ? part.mesh : meshInFrame(part.mesh, frame));
+        if (!frame.isIdentity()) ++stats.nodeFrames, stats.tilesInNodeFrames += part.tiles.size();
         deviation.resize(out.meshes.size(), 0);
         deviation.back() = part.deviation * analysis.diagonal;
         for (const PlacedCopy& node : part.nodes)
-            result.instanceNodes.push_back(addRootNode(out, mesh, node.transform, node.source));
+            result.instanceNodes.push_back(addRootNode(out, mesh, node.transform * frame, node.source));
         if (!part.named)
             for (std::size_t t : part.tiles)
                 if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 
 namespace symcompress {
@@ -25,11 +26,8 @@ constexpr double kLeastWorthFraming = 0.01;
 // Whether `transform` keeps the axes as axes (a signed permutation with scales): Draco's grid is then the same
 // in the world as in the node's frame, up to a scale per axis, and the frame spares nothing. A transform that
 // flattens has no frame to go back to: it keeps the world's.
-bool keepsAxes(const Eigen::Matrix4d& transform) {
-    if (!(std::abs(transform.topLeftCorner<3, 3>().determinant()) >
-          1e-12 * std::pow(transform.topLeftCorner<3, 3>().norm(), 3)))
-        return true;
-    const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
+bool keepsAxes(const Eigen::Matrix3d& linear) {
+    if (!(std::abs(linear.determinant()) > 1e-12 * std::pow(linear.norm(), 3))) return true;
     for (int column = 0; column < 3; ++column) {
         const Eigen::Vector3d c = linear.col(column).cwiseAbs();
         if ((c.array() > 1e-9 * c.maxCoeff()).count() != 1) return false;
@@ -53,6 +51,33 @@ std::tuple<int, bool, bool, bool> kindOf(const SceneAnalysis& analysis, std::siz
     return {analysis.tiles[t].material, !from.normals.empty(), !from.texcoords.empty(), !from.colors.empty()};
 }
 
+// The turn that the world transforms of the nodes all of `tiles` come from share, where they share one (scaled
+// alike on every axis at most, without a mirror) that turns them off the world's axes: the frame their author
+// modelled them in.
+std::optional<Eigen::Matrix3d> sharedTurn(const SceneAnalysis& analysis, const std::vector<Eigen::Matrix4d>& world,
+                                          const std::vector<std::size_t>& tiles) {
+    std::optional<Eigen::Matrix3d> linear;
+    for (std::size_t t : tiles) {
+        const int node = onlyNodeOf(analysis, t);
+        if (node < 0) return std::nullopt;
+        const Eigen::Matrix3d l = world[std::size_t(node)].topLeftCorner<3, 3>();
+        if (!linear) linear = l;
+        if ((l - *linear).norm() > 1e-9 * linear->norm()) return std::nullopt;
+    }
+    if (!linear || keepsAxes(*linear) || linear->determinant() < 0) return std::nullopt;
+    const double squaredScale = (linear->transpose() * *linear).trace() / 3;
+    if ((linear->transpose() * *linear / squaredScale - Eigen::Matrix3d::Identity()).norm() > 1e-6) return std::nullopt;
+    return Eigen::Matrix3d(*linear / std::sqrt(squaredScale));
+}
+
+// The nodes of `copies` each turned by `frame` after its transform.
+std::vector<PlacedCopy> turned(std::vector<PlacedCopy> copies, const Eigen::Matrix3d& frame) {
+    Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
+    turn.topLeftCorner<3, 3>() = frame;
+    for (PlacedCopy& copy : copies) copy.transform = copy.transform * turn;
+    return copies;
+}
+
 // Both ways of storing a group measured alike: each primitive encoded once, without the writer's trials.
 double bytesOf(const StorageCosts& costs, const Mesh& mesh) {
     double bytes = 0;
@@ -61,6 +86,13 @@ double bytesOf(const StorageCosts& costs, const Mesh& mesh) {
 }
 
 }  // namespace
+
+Mesh meshInFrame(const Mesh& mesh, const Eigen::Matrix4d& frame) {
+    Mesh out = mesh;
+    const Eigen::Matrix4d toFrame = frame.inverse();
+    for (Primitive& primitive : out.primitives) primitive = transformPrimitive(std::move(primitive), toFrame);
+    return out;
+}
 
 Mesh tilesInFrame(const SceneAnalysis& analysis, const std::vector<std::size_t>& tiles, const Eigen::Matrix4d& frame) {
     const Eigen::Matrix4d toFrame = frame.inverse();
@@ -75,7 +107,8 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
     const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
     std::map<int, std::vector<std::size_t>> byNode;  // turned off the axes, in the tiles' order
     for (std::size_t t : plan.tilesAsTheyAre)
-        if (const int node = onlyNodeOf(analysis, t); node >= 0 && !keepsAxes(world[std::size_t(node)]))
+        if (const int node = onlyNodeOf(analysis, t);
+            node >= 0 && !keepsAxes(world[std::size_t(node)].topLeftCorner<3, 3>()))
             byNode[node].push_back(t);
     std::vector<FramedTiles> candidates;
     for (auto& [node, tiles] : byNode)
@@ -109,6 +142,23 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
     });
     for (std::size_t i = 0; i < candidates.size(); ++i)
         if (pays[i]) plan.framedTiles.push_back(std::move(candidates[i]));
+
+    // A shared mesh (not a fundamental region, whose grid keeps its seams closed) likewise: turned into the
+    // frame its tiles' nodes share, and each node drawing it turned back after its transform.
+    tbb::parallel_for(std::size_t(0), plan.shared.size(), [&](std::size_t i) {
+        SharedPart& part = plan.shared[i];
+        if (part.mechanism == SharedPart::Mechanism::Region ||
+            std::any_of(part.mesh.primitives.begin(), part.mesh.primitives.end(),
+                        [](const Primitive& p) { return p.positionGrid.has_value(); }))
+            return;
+        const std::optional<Eigen::Matrix3d> frame = sharedTurn(analysis, world, part.tiles);
+        if (!frame) return;
+        Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
+        turn.topLeftCorner<3, 3>() = *frame;
+        const double inWorld = bytesOf(costs, part.mesh) + costs.nodes(part.nodes);
+        const double inFrame = bytesOf(costs, meshInFrame(part.mesh, turn)) + costs.nodes(turned(part.nodes, *frame));
+        if (inFrame < (1 - kLeastWorthFraming) * inWorld) part.frame = *frame;
+    });
 }
 
 }  // namespace symcompress

@@ -40,8 +40,12 @@ std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<b
 CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>& drawn);
 
 // The tiles stored as they are that are worth storing in the frame of the input node that drew them (a node
-// that turns them off the world's axes; FramedTiles), measured both ways by the writer: plan.framedTiles.
+// that turns them off the world's axes; FramedTiles), measured both ways by the writer: plan.framedTiles; and
+// the shared meshes worth writing in the frame their tiles' nodes share (SharedPart::frame).
 void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, StorageCosts& costs, CompressionPlan& plan);
+
+// `mesh` (in the world's frame) written in the frame whose world transform is `frame`.
+Mesh meshInFrame(const Mesh& mesh, const Eigen::Matrix4d& frame);
 
 // The tiles merged into one mesh (a primitive per material and attributes) in the frame whose world transform
 // is `frame`.

@@ -274,9 +274,9 @@ void printReport(const CompressionReport& report) {
         std::printf("  kept            %zu nodes of meshes the input already shares\n", stats.inputInstancesKept);
     if (stats.nodeFrames)
         std::printf(
-            "  node frames     %zu tiles stored as they are in the frames of the %zu nodes that drew them, "
-            "off the world's axes\n",
-            stats.tilesInNodeFrames, stats.nodeFrames);
+            "  node frames     %zu meshes (for %zu tiles) written in the frame of the nodes their tiles came from, "
+            "which turned them off the world's axes\n",
+            stats.nodeFrames, stats.tilesInNodeFrames);
     if (stats.animatedNodesKept)
         std::printf("  animated        %zu nodes kept as they are, for the scene's animations (%zu)\n",
                     stats.animatedNodesKept, report.animations);

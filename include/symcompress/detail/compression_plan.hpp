@@ -145,6 +145,10 @@ struct SharedPart {
     // false: the nodes leave out the names and extras of the input nodes their tiles came from (stored as they
     // are, merged into one mesh per material, the tiles would lose them too; emitScene warns).
     bool named = true;
+    // The rotation of the frame the mesh is written in (emitScene turns it by the inverse, and each node by this
+    // after its transform): the frame of the input nodes its tiles came from, where they all share one that
+    // turns them off the world's axes and Draco codes the mesh smaller there (planSourceFrames).
+    Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
 };
 
 // Tiles stored as they are in the frame of the input node that drew them, drawn by a node at its placement (its
@@ -164,6 +168,8 @@ struct CompressionPlan {
     std::vector<SharedPart> shared;           // in the order they are written
     std::vector<std::size_t> tilesAsTheyAre;  // in the order they are merged (one mesh per material)
     std::vector<FramedTiles> framedTiles;     // of tilesAsTheyAre, those stored in their nodes' frames
+    // Whether a shared part's mesh is written in its SharedPart::frame (false: every one in the world's).
+    bool sharedPartFrames = true;
     std::size_t classes = 0, symmetricClasses = 0, attributeMismatches = 0, notWorthInstancing = 0;
     std::string sceneGroup = "C1";
     double maxError = 0;               // PlanOptions::maxError
