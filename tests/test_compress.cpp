@@ -543,6 +543,38 @@ TEST_CASE("Tiles stored as they are keep the frame of a node that turns them off
     }
 }
 
+TEST_CASE("Tiles of several nodes under one turned root share one mesh in that turn's frame", "[compress]") {
+    // The three spheres and the lamp (its base stored as it is) as two nodes under a root turned by 0.7 rad:
+    // one mesh in the root's frame, drawn by a node with the turn alone (their names merged away, as in world
+    // space), not a mesh and a node for each.
+    Scene scene = samples::makeThreeSpheresScene();
+    const Scene lamp = samples::makeLampScene();
+    const int firstMaterial = int(scene.materials.size());
+    scene.materials.insert(scene.materials.end(), lamp.materials.begin(), lamp.materials.end());
+    Mesh lampMesh = lamp.meshes.at(0);
+    for (Primitive& primitive : lampMesh.primitives)
+        if (primitive.material >= 0) primitive.material += firstMaterial;
+    scene.meshes.push_back(lampMesh);
+    Node lampNode;
+    lampNode.name = "lamp";
+    lampNode.mesh = int(scene.meshes.size()) - 1;
+    lampNode.transform.topRightCorner<3, 1>() = Eigen::Vector3d(10, 0, 0);
+    scene.nodes.push_back(lampNode);
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    Node root;
+    root.transform.topLeftCorner<3, 3>() = turn;
+    root.children = {0, 1};
+    scene.roots = {int(scene.nodes.size())};
+    scene.nodes.push_back(root);
+    TemporaryFolder folder;
+    const nlohmann::json report = compressAndVerify(writePlainGlb(scene, folder, "two"), folder, "two-small");
+    REQUIRE(report["node_frames"].get<int>() >= 1);
+    const Scene out = readScene(folder / "two-small.glb");
+    CHECK(std::any_of(out.nodes.begin(), out.nodes.end(), [&](const Node& node) {
+        return node.mesh >= 0 && node.name.empty() && (node.transform.topLeftCorner<3, 3>() - turn).norm() < 1e-6;
+    }));
+}
+
 TEST_CASE(
     "Shared meshes are written in the frame their tiles' nodes share where it turns them off the axes: the chess "
     "board turned",

@@ -235,21 +235,23 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     }
     // The error budget as a distance (with fixed bits, about half a 14-bit step of the diagonal).
     const double budget = analysis.diagonal * (plan.maxError > 0 ? plan.maxError : std::ldexp(1.0, -15));
+    // 1: in a group in its node's frame, drawn by a node with that node's name; 2: in a group of several nodes'.
     std::vector<char> framed(analysis.tiles.size(), 0);
     for (const FramedTiles& group : plan.framedTiles)
-        for (std::size_t t : group.tiles) framed[t] = 1;
+        for (std::size_t t : group.tiles) framed[t] = group.node >= 0 ? 1 : 2;
     for (std::size_t t : plan.tilesAsTheyAre) {
-        if (framed[t]) continue;
-        unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
+        if (framed[t] == 1) continue;
         if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())
             merged.insert(source->name), mergedSource = source;
+        if (!framed[t]) unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
     }
+    // The tiles stored as they are share one mesh per material, drawn by one node (or one per turn of their
+    // nodes, below): it takes the name of the node its tiles came from when that is a single one; otherwise the
+    // names are lost.
+    if (merged.size() > 1)
+        out.warnings.push_back(std::to_string(merged.size()) + " node names (e.g. '" + *merged.begin() +
+                               "') not kept: their tiles are stored as they are in one mesh per material");
     if (!unique.empty()) {
-        // One mesh per material for every tile stored as it is, drawn by one node: it takes the name of the
-        // node its tiles came from when that is a single one; otherwise the names are lost.
-        if (merged.size() > 1)
-            out.warnings.push_back(std::to_string(merged.size()) + " node names (e.g. '" + *merged.begin() +
-                                   "') not kept: their tiles are stored as they are in one mesh per material");
         Mesh mesh;
         unique.moveInto(mesh);
         const Eigen::Matrix4d offset = centredIfFar(mesh, budget);
@@ -257,12 +259,12 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         addRootNode(out, int(out.meshes.size()) - 1, offset, merged.size() == 1 ? mergedSource : nullptr);
     }
     for (const FramedTiles& group : plan.framedTiles) {
-        const Node& source = input.nodes[std::size_t(group.node)];
+        const Node* source = group.node >= 0 ? &input.nodes[std::size_t(group.node)] : nullptr;
         Mesh mesh = tilesInFrame(analysis, group.tiles, group.transform);
-        if (source.mesh >= 0) mesh.name = input.meshes[std::size_t(source.mesh)].name;
+        if (source && source->mesh >= 0) mesh.name = input.meshes[std::size_t(source->mesh)].name;
         const Eigen::Matrix4d offset = centredIfFar(mesh, budget / largestStretch(group.transform));
         out.meshes.push_back(std::move(mesh));
-        addRootNode(out, int(out.meshes.size()) - 1, group.transform * offset, &source);
+        addRootNode(out, int(out.meshes.size()) - 1, group.transform * offset, source);
         stats.tilesInNodeFrames += group.tiles.size();
         ++stats.nodeFrames;
     }

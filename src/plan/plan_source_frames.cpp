@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 #include <tuple>
 
 namespace symcompress {
@@ -70,12 +71,9 @@ std::optional<Eigen::Matrix3d> sharedTurn(const SceneAnalysis& analysis, const s
     return Eigen::Matrix3d(*linear / std::sqrt(squaredScale));
 }
 
-// The nodes of `copies` each turned by `frame` after its transform.
-std::vector<PlacedCopy> turned(std::vector<PlacedCopy> copies, const Eigen::Matrix3d& frame) {
-    Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
-    turn.topLeftCorner<3, 3>() = frame;
-    for (PlacedCopy& copy : copies) copy.transform = copy.transform * turn;
-    return copies;
+// The input node a group keeps, if it came from one.
+const Node* sourceOf(const Scene& input, const FramedTiles& group) {
+    return group.node >= 0 ? &input.nodes[std::size_t(group.node)] : nullptr;
 }
 
 // Both ways of storing a group measured alike: each primitive encoded once, without the writer's trials.
@@ -105,16 +103,38 @@ Mesh tilesInFrame(const SceneAnalysis& analysis, const std::vector<std::size_t>&
 
 void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, StorageCosts& costs, CompressionPlan& plan) {
     const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
-    std::map<int, std::vector<std::size_t>> byNode;  // turned off the axes, in the tiles' order
-    for (std::size_t t : plan.tilesAsTheyAre)
-        if (const int node = onlyNodeOf(analysis, t);
-            node >= 0 && !keepsAxes(world[std::size_t(node)].topLeftCorner<3, 3>()))
-            byNode[node].push_back(t);
+    // The tiles turned off the axes, grouped by the turn of their nodes (the linear part of their world
+    // transforms), in the tiles' order: a group from one node is drawn by a node with its transform and name, one
+    // from several (a scene under a turned root) by a node with the turn alone.
+    struct Turn {
+        Eigen::Matrix3d linear;
+        std::set<int> nodes;
+        std::vector<std::size_t> tiles;
+    };
+    std::vector<Turn> turns;
+    for (std::size_t t : plan.tilesAsTheyAre) {
+        const int node = onlyNodeOf(analysis, t);
+        if (node < 0) continue;
+        const Eigen::Matrix3d linear = world[std::size_t(node)].topLeftCorner<3, 3>();
+        if (keepsAxes(linear)) continue;
+        auto turn = std::find_if(turns.begin(), turns.end(), [&](const Turn& other) {
+            return (other.linear - linear).norm() <= 1e-9 * linear.norm();
+        });
+        if (turn == turns.end()) turn = turns.insert(turns.end(), Turn{linear, {}, {}});
+        turn->nodes.insert(node);
+        turn->tiles.push_back(t);
+    }
     std::vector<FramedTiles> candidates;
-    for (auto& [node, tiles] : byNode)
-        if (kMostAFrameSpares * costs.meshOf(tiles, false) >
-            costs.node(world[std::size_t(node)], &input.nodes[std::size_t(node)]))
-            candidates.push_back({node, world[std::size_t(node)], std::move(tiles)});
+    for (Turn& turn : turns) {
+        FramedTiles group{turn.nodes.size() == 1 ? *turn.nodes.begin() : -1, Eigen::Matrix4d::Identity(),
+                          std::move(turn.tiles)};
+        if (group.node >= 0)
+            group.transform = world[std::size_t(group.node)];
+        else
+            group.transform.topLeftCorner<3, 3>() = turn.linear;
+        if (kMostAFrameSpares * costs.meshOf(group.tiles, false) > costs.node(group.transform, sourceOf(input, group)))
+            candidates.push_back(std::move(group));
+    }
     // Each group measured both ways as the writer codes it. Merged with the world's parts, it spares the
     // overhead of a primitive of each kind that other tiles stored as they are have too; in its frame, it costs
     // a node.
@@ -137,7 +157,7 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
         tbb::parallel_invoke(
             [&] { inWorld = bytesOf(costs, tilesInFrame(analysis, group.tiles, Eigen::Matrix4d::Identity())); },
             [&] { inFrame = bytesOf(costs, tilesInFrame(analysis, group.tiles, group.transform)); });
-        pays[i] = inFrame + costs.node(group.transform, &input.nodes[std::size_t(group.node)]) <
+        pays[i] = inFrame + costs.node(group.transform, sourceOf(input, group)) <
                   (1 - kLeastWorthFraming) * (inWorld - overhead);
     });
     for (std::size_t i = 0; i < candidates.size(); ++i)
@@ -155,9 +175,10 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
         if (!frame) return;
         Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
         turn.topLeftCorner<3, 3>() = *frame;
-        const double inWorld = bytesOf(costs, part.mesh) + costs.nodes(part.nodes);
-        const double inFrame = bytesOf(costs, meshInFrame(part.mesh, turn)) + costs.nodes(turned(part.nodes, *frame));
-        if (inFrame < (1 - kLeastWorthFraming) * inWorld) part.frame = *frame;
+        // The nodes' turns print about as long either way (and their batches' streams code alike): only the
+        // mesh is measured, and the job's world_frame plan measures the whole file.
+        if (bytesOf(costs, meshInFrame(part.mesh, turn)) < (1 - kLeastWorthFraming) * bytesOf(costs, part.mesh))
+            part.frame = *frame;
     });
 }
 

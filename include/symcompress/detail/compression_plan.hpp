@@ -155,8 +155,8 @@ struct SharedPart {
 // name and extras kept): where the node turns them off the world's axes, Draco codes them smaller there (a UV
 // sphere's rings each share a coordinate in its frame, none in the world's).
 struct FramedTiles {
-    int node = -1;                                            // the input node
-    Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // its world transform
+    int node = -1;  // the input node they all come from, or -1: several, which share the transform's turn
+    Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // its world transform, or the turn they share
     std::vector<std::size_t> tiles;                           // in the order they are merged
 };
 
