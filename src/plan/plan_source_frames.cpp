@@ -24,7 +24,7 @@ constexpr double kMostAFrameSpares = 0.3;
 // is within what the writer's trials of settings change, and the job then writes the plan twice to know.
 constexpr double kLeastWorthFraming = 0.01;
 
-// Whether `transform` keeps the axes as axes (a signed permutation with scales): Draco's grid is then the same
+// Whether `linear` keeps the axes as axes (a signed permutation with scales): Draco's grid is then the same
 // in the world as in the node's frame, up to a scale per axis, and the frame spares nothing. A transform that
 // flattens has no frame to go back to: it keeps the world's.
 bool keepsAxes(const Eigen::Matrix3d& linear) {
