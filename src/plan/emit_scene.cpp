@@ -196,12 +196,9 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         // primitive would not keep.
         const Eigen::Matrix3d linear = kept.transform.topLeftCorner<3, 3>();
         const Mesh& source = input.meshes[std::size_t(kept.mesh)];
-        const double squaredScale = (linear.transpose() * linear).trace() / 3;  // uniform: the same either way
-        const bool drawnOnce =
-            plan.mergeKeptMeshes && keptDrawers[kept.mesh] == 1 && squaredScale > 0 &&
-            (linear.transpose() * linear / squaredScale - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
-            std::all_of(source.primitives.begin(), source.primitives.end(),
-                        [](const Primitive& p) { return p.targets.empty(); });
+        const bool drawnOnce = plan.mergeKeptMeshes && keptDrawers[kept.mesh] == 1 && uniformScaleOf(linear) &&
+                               std::all_of(source.primitives.begin(), source.primitives.end(),
+                                           [](const Primitive& p) { return p.targets.empty(); });
         if ((!plan.shareInputInstances && tilesCanCarry(input.meshes[std::size_t(kept.mesh)])) || drawnOnce) {
             for (const Primitive& primitive : input.meshes[std::size_t(kept.mesh)].primitives)
                 unique.add(transformPrimitive(primitive, kept.transform));

@@ -66,9 +66,9 @@ std::optional<Eigen::Matrix3d> sharedTurn(const SceneAnalysis& analysis, const s
         if ((l - *linear).norm() > 1e-9 * linear->norm()) return std::nullopt;
     }
     if (!linear || keepsAxes(*linear) || linear->determinant() < 0) return std::nullopt;
-    const double squaredScale = (linear->transpose() * *linear).trace() / 3;
-    if ((linear->transpose() * *linear / squaredScale - Eigen::Matrix3d::Identity()).norm() > 1e-6) return std::nullopt;
-    return Eigen::Matrix3d(*linear / std::sqrt(squaredScale));
+    const std::optional<double> scale = uniformScaleOf(*linear);
+    if (!scale) return std::nullopt;
+    return Eigen::Matrix3d(*linear / *scale);
 }
 
 // The input node a group keeps, if it came from one.
@@ -84,6 +84,14 @@ double bytesOf(const StorageCosts& costs, const Mesh& mesh) {
 }
 
 }  // namespace
+
+std::optional<double> uniformScaleOf(const Eigen::Matrix3d& linear) {
+    const double squaredScale = (linear.transpose() * linear).trace() / 3;
+    if (!(squaredScale > 0) ||
+        !((linear.transpose() * linear / squaredScale - Eigen::Matrix3d::Identity()).norm() < 1e-6))
+        return std::nullopt;
+    return std::sqrt(squaredScale);
+}
 
 Mesh meshInFrame(const Mesh& mesh, const Eigen::Matrix4d& frame) {
     Mesh out = mesh;

@@ -44,6 +44,10 @@ CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>&
 // the shared meshes worth writing in the frame their tiles' nodes share (SharedPart::frame).
 void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, StorageCosts& costs, CompressionPlan& plan);
 
+// The scale of `linear` where it scales alike on every axis (L^T L = s^2 I within 1e-6): a rotation or a
+// mirror times s. Nothing otherwise.
+std::optional<double> uniformScaleOf(const Eigen::Matrix3d& linear);
+
 // `mesh` (in the world's frame) written in the frame whose world transform is `frame`.
 Mesh meshInFrame(const Mesh& mesh, const Eigen::Matrix4d& frame);
 
