@@ -102,6 +102,12 @@ bool hasWarning(const Scene& scene, const std::string& text) {
 
 }  // namespace
 
+TEST_CASE("glTF: an EXT_meshopt_compression fallback that is a number is no fallback, not an exception", "[io][fuzz]") {
+    // fuzz_gltf: nlohmann's type_error escaped the reader and aborted the process.
+    const std::string error = readError(regressionInput("gltf_meshopt_fallback_number.gltf"));
+    CHECK_THAT(error, Catch::Contains("gltf_meshopt_fallback_number.gltf"));
+}
+
 TEST_CASE("glTF: a buffer view whose byteOffset + byteLength wraps around is refused", "[io][fuzz]") {
     const std::string error = readError(regressionInput("gltf_view_range_wraps.gltf"));
     CHECK_THAT(error, Catch::Contains("gltf_view_range_wraps.gltf: POSITION (accessor 0): buffer view runs past the end"));

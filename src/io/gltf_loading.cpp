@@ -209,7 +209,9 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
         for (auto& buffer : json["buffers"]) {
             if (!buffer.is_object() || !buffer.contains("extensions") || !buffer["extensions"].is_object()) continue;
             const auto meshopt = buffer["extensions"].find("EXT_meshopt_compression");
-            if (meshopt == buffer["extensions"].end() || !meshopt->is_object() || !meshopt->value("fallback", false))
+            // A "fallback" that is not a boolean (fuzz_gltf: a number) is no fallback, not an exception.
+            if (meshopt == buffer["extensions"].end() || !meshopt->is_object() || !meshopt->contains("fallback") ||
+                (*meshopt)["fallback"] != true)
                 continue;
             buffer["uri"] = "data:application/octet-stream;base64,AA==";
             buffer["byteLength"] = 1;
