@@ -420,3 +420,24 @@ TEST_CASE("Writers: a texture coordinate beyond float32's range is written to X3
     const auto& texcoords = back.meshes[0].primitives.at(0).texcoords;
     CHECK(std::any_of(texcoords.begin(), texcoords.end(), [](const Eigen::Vector2d& t) { return t.x() == 1.3e117; }));
 }
+
+TEST_CASE("Readers: a NaN or infinite number in an OBJ file or its material library is refused, naming the file",
+          "[io][fuzz]") {
+    // Found by fuzz_obj: "Ks nan 0 0" became an X3D specularColor the X3D reader refuses.
+    TemporaryFolder folder;
+    const std::string triangle = "mtllib part.mtl\nusemtl shiny\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n";
+    for (const std::string statement : {"Ks nan 0 0", "Kd 1 inf 0", "Ke 0 0 -inf", "Ns nan", "d nan", "Tr inf"}) {
+        writeTextFile(folder / "part.obj", triangle);
+        writeTextFile(folder / "part.mtl", "newmtl shiny\n" + statement + "\n");
+        const std::string message = readError(folder / "part.obj");
+        CHECK(message.find("part.mtl") != std::string::npos);
+        CHECK(message.find("NaN or infinite") != std::string::npos);
+    }
+    for (const std::string line : {"v 0 0 0 nan 1 1", "vt nan 0", "vt 0 inf"}) {
+        writeTextFile(folder / "part.obj", triangle + line + "\n");
+        writeTextFile(folder / "part.mtl", "newmtl shiny\n");
+        const std::string message = readError(folder / "part.obj");
+        CHECK(message.find("part.obj") != std::string::npos);
+        CHECK(message.find("NaN or infinite") != std::string::npos);
+    }
+}

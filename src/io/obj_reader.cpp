@@ -51,7 +51,7 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
         if (!current || keyword.empty() || keyword.front() == '#') continue;
         auto readColor = [&]() {
             Eigen::Vector3d color;
-            for (int c = 0; c < 3; ++c) color[c] = nextNumber<double>(line, scanner, "a colour component");
+            for (int c = 0; c < 3; ++c) color[c] = nextFiniteNumber<double>(line, scanner, "colour component");
             return color;
         };
         // Colours are display values (sRGB-encoded), as in X3D's Phong Material and as three.js's MTLLoader
@@ -65,9 +65,9 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
             current->phong->emissiveColor = readColor();
             current->emissiveFactor = srgbToLinear(current->phong->emissiveColor);
         } else if (keyword == "Ns") {
-            current->phong->shininess = std::clamp(nextNumber<double>(line, scanner, "Ns") / 1000.0, 0.0, 1.0);
+            current->phong->shininess = std::clamp(nextFiniteNumber<double>(line, scanner, "Ns") / 1000.0, 0.0, 1.0);
         } else if (keyword == "d" || keyword == "Tr") {
-            const double value = nextNumber<double>(line, scanner, "a transparency");
+            const double value = nextFiniteNumber<double>(line, scanner, "transparency");
             const double opacity = keyword == "d" ? value : 1 - value;
             current->baseColorFactor[3] = opacity;
             current->phong->transparency = 1 - opacity;
@@ -147,15 +147,14 @@ Scene readObj(const fs::path& file) {
         if (keyword.empty() || keyword.front() == '#') continue;
         if (keyword == "v") {
             Eigen::Vector3d p;
-            for (int c = 0; c < 3; ++c) p[c] = nextNumber<double>(line, scanner, "a vertex coordinate");
-            if (!p.allFinite()) scanner.fail("NaN or infinite vertex coordinate");
+            for (int c = 0; c < 3; ++c) p[c] = nextFiniteNumber<double>(line, scanner, "vertex coordinate");
             positions.push_back(p);
             // Optional "v x y z r g b" vertex colours: display values (sRGB-encoded, as three.js's OBJLoader
             // reads them); COLOR_0 is linear.
             std::string_view colorText = line;
             if (!nextWord(colorText).empty()) {
                 Eigen::Vector4d color(1, 1, 1, 1);
-                for (int c = 0; c < 3; ++c) color[c] = nextNumber<double>(line, scanner, "a vertex colour");
+                for (int c = 0; c < 3; ++c) color[c] = nextFiniteNumber<double>(line, scanner, "vertex colour");
                 vertexColors.resize(positions.size(), Eigen::Vector4d(1, 1, 1, 1));
                 vertexColors.back() = linearFromSrgbColor(color);
                 anyColors = true;
@@ -165,9 +164,10 @@ Scene readObj(const fs::path& file) {
             for (int c = 0; c < 3; ++c) n[c] = nextNumber<double>(line, scanner, "a normal component");
             normals.push_back(n.allFinite() ? n : Eigen::Vector3d::Zero());
         } else if (keyword == "vt") {
-            const double u = nextNumber<double>(line, scanner, "a texture coordinate");
+            const double u = nextFiniteNumber<double>(line, scanner, "texture coordinate");
             std::string_view vText = line;
-            const double v = nextWord(vText).empty() ? 0.0 : nextNumber<double>(line, scanner, "a texture coordinate");
+            const double v =
+                nextWord(vText).empty() ? 0.0 : nextFiniteNumber<double>(line, scanner, "texture coordinate");
             texcoords.emplace_back(u, 1 - v);  // OBJ's v points up, glTF's down
         } else if (keyword == "f") {
             std::vector<CornerKey> corners;

@@ -69,8 +69,7 @@ void readAsciiStl(const fs::path& file, const std::vector<unsigned char>& bytes,
         } else if (keyword == "vertex") {
             if (corner == 3) scanner.fail("a facet with more than 3 vertices");
             Eigen::Vector3d p;
-            for (int c = 0; c < 3; ++c) p[c] = nextNumber<double>(line, scanner, "a vertex coordinate");
-            if (!p.allFinite()) scanner.fail("NaN or infinite coordinate");
+            for (int c = 0; c < 3; ++c) p[c] = nextFiniteNumber<double>(line, scanner, "vertex coordinate");
             corners[corner++] = p;
         } else if (keyword == "endloop") {
             if (corner != 3) scanner.fail("a facet with " + std::to_string(corner) + " vertices instead of 3");

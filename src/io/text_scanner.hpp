@@ -5,6 +5,7 @@
 #include "symcompress/io.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -70,6 +71,15 @@ Number nextNumber(std::string_view& line, const TextScanner& scanner, const char
     Number value{};
     if (word.empty()) scanner.fail(std::string("missing ") + what);
     if (!parseNumber(word, value)) scanner.fail(std::string("cannot read ") + what + " '" + std::string(word) + "'");
+    return value;
+}
+
+// The next word of `line` as a finite real number: text formats spell NaN and infinity too, and no writer
+// can give them back.
+template <typename Real>
+Real nextFiniteNumber(std::string_view& line, const TextScanner& scanner, const char* what) {
+    const Real value = nextNumber<Real>(line, scanner, what);
+    if (!std::isfinite(value)) scanner.fail(std::string("NaN or infinite ") + what);
     return value;
 }
 
