@@ -199,6 +199,12 @@ TEST_CASE("A part's corners also stay within a fraction of its own diagonal: a s
     options.maxPositionError = 0;
     CHECK(positionErrorBound(points, options) == 0);
     CHECK(positionBitsFor(points, options) == options.positionBits);
+    // A part stored turned from the world keeps the close-up bound of the box it had there
+    // (Primitive::closeUpDiagonal): its own box turned is another size.
+    Primitive turned = points;
+    turned.closeUpDiagonal = 2 * diagonal;
+    options.maxPositionError = 0.5;
+    CHECK(positionErrorBound(turned, options) == Approx(4e-4 * diagonal));
 }
 
 TEST_CASE("X3D positions are written to the fewest places that keep every corner within the error bound",

@@ -190,6 +190,10 @@ struct Primitive {
     // > 0: how far a quantizing writer may move a corner (a distance in the primitive's frame): the share of
     // the error budget that the placements drawing it leave (positionBitsFor).
     double maxPositionError = 0;
+    // > 0: the diagonal that the writer's close-up bound (WriteOptions::maxRelativePositionError) is a fraction
+    // of, where not the primitive's own box's: a part stored turned from the world keeps the larger of its
+    // world box's and its own, so that a frame never tightens the bound.
+    double closeUpDiagonal = 0;
 };
 
 struct Mesh {

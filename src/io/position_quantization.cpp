@@ -54,8 +54,10 @@ double positionErrorBound(const Primitive& primitive, const WriteOptions& option
     const double bound = primitive.maxPositionError > 0 ? primitive.maxPositionError : options.maxPositionError;
     if (!(bound > 0)) return 0;  // fixed bits: the relative bound only tightens a bound
     if (!(options.maxRelativePositionError > 0) || primitive.triangles.empty()) return bound;
-    return std::min(bound, options.maxRelativePositionError *
-                               boundsOfCorners(primitive.positions, primitive.triangles).diagonal().norm());
+    const double diagonal = primitive.closeUpDiagonal > 0
+                                ? primitive.closeUpDiagonal
+                                : boundsOfCorners(primitive.positions, primitive.triangles).diagonal().norm();
+    return std::min(bound, options.maxRelativePositionError * diagonal);
 }
 
 std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const WriteOptions& options, int fewest) {

@@ -77,6 +77,7 @@ PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOption
         f.word(std::uint64_t(grid->bits));
     }
     f.number(primitive.maxPositionError);
+    f.number(primitive.closeUpDiagonal);
     // The options encodePrimitive reads (positionBitsFor, dracoSpeedsWorthTrying, positionBitsWorthTrying).
     f.word(options.draco);
     f.word(options.encodingTrials);

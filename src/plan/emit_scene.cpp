@@ -100,14 +100,6 @@ void dropPointLikeTriangles(Scene& out, CompressionStats& stats) {
             " stored triangles with two corners at one point (zero area, they draw nothing) left out");
 }
 
-// The largest factor by which `linear` stretches a length (its largest singular value).
-double largestStretch(const Eigen::Matrix4d& transform) {
-    const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
-    return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(linear.transpose() * linear)
-                                       .eigenvalues()
-                                       .maxCoeff()));
-}
-
 // A mesh far from the origin for its size (georeferenced coordinates; the lantern moved 10 km away) loses in
 // float32, in which glTF, Draco and X3D store its corners, more than a small share of the budget: it is
 // moved to be about its centre, and the translation back returned for the node drawing it (a JSON number, a

@@ -1,9 +1,11 @@
+#include "geometry/bounds.hpp"
 #include "plan/planners.hpp"
 #include "plan/primitives_by_kind.hpp"
 #include "symcompress/scene_ops.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -76,6 +78,13 @@ const Node* sourceOf(const Scene& input, const FramedTiles& group) {
     return group.node >= 0 ? &input.nodes[std::size_t(group.node)] : nullptr;
 }
 
+// `mesh` with the error budget of a mesh that one node draws in the frame `frame`, as emitScene gives it.
+Mesh drawnOnce(Mesh mesh, double budget, const Eigen::Matrix4d& frame) {
+    if (budget > 0)
+        for (Primitive& primitive : mesh.primitives) primitive.maxPositionError = budget / largestStretch(frame);
+    return mesh;
+}
+
 // Both ways of storing a group measured alike: each primitive encoded once, without the writer's trials.
 double bytesOf(const StorageCosts& costs, const Mesh& mesh) {
     double bytes = 0;
@@ -93,20 +102,32 @@ std::optional<double> uniformScaleOf(const Eigen::Matrix3d& linear) {
     return std::sqrt(squaredScale);
 }
 
+double largestStretch(const Eigen::Matrix4d& transform) {
+    const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
+    return std::sqrt(std::max(
+        0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(linear.transpose() * linear).eigenvalues().maxCoeff()));
+}
+
 Mesh meshInFrame(const Mesh& mesh, const Eigen::Matrix4d& frame) {
     Mesh out = mesh;
     const Eigen::Matrix4d toFrame = frame.inverse();
-    for (Primitive& primitive : out.primitives) primitive = transformPrimitive(std::move(primitive), toFrame);
+    for (Primitive& primitive : out.primitives) {
+        const double worldDiagonal = boundsOfCorners(primitive.positions, primitive.triangles).diagonal().norm();
+        primitive = transformPrimitive(std::move(primitive), toFrame);
+        // A box's diagonal depends on its frame: the larger of the two, so that a frame never tightens the bound.
+        primitive.closeUpDiagonal =
+            std::max(worldDiagonal / largestStretch(frame),
+                     boundsOfCorners(primitive.positions, primitive.triangles).diagonal().norm());
+    }
     return out;
 }
 
 Mesh tilesInFrame(const SceneAnalysis& analysis, const std::vector<std::size_t>& tiles, const Eigen::Matrix4d& frame) {
-    const Eigen::Matrix4d toFrame = frame.inverse();
     PrimitivesByKind parts;
-    for (std::size_t t : tiles) parts.add(transformPrimitive(tilePrimitive(analysis.tiles[t], analysis.soup), toFrame));
+    for (std::size_t t : tiles) parts.add(tilePrimitive(analysis.tiles[t], analysis.soup));
     Mesh mesh;
     parts.moveInto(mesh);
-    return mesh;
+    return frame.isIdentity() ? mesh : meshInFrame(mesh, frame);
 }
 
 void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, StorageCosts& costs, CompressionPlan& plan) {
@@ -152,6 +173,7 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
     std::map<std::tuple<int, bool, bool, bool>, std::size_t> outside;  // a tile of each kind in no group
     for (std::size_t t : plan.tilesAsTheyAre)
         if (!inGroup[t]) outside.emplace(kindOf(analysis, t), t);
+    const double budget = plan.maxError * analysis.diagonal;  // of a mesh one node draws (shareErrorBudget)
     std::vector<char> pays(candidates.size(), 0);
     tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
         const FramedTiles& group = candidates[i];
@@ -162,9 +184,15 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
                     spared.push_back(other->second);
         const double overhead = costs.meshOf(spared, true) - costs.meshOf(spared, false);
         double inWorld = 0, inFrame = 0;
+        const Eigen::Matrix4d identity = Eigen::Matrix4d::Identity();
         tbb::parallel_invoke(
-            [&] { inWorld = bytesOf(costs, tilesInFrame(analysis, group.tiles, Eigen::Matrix4d::Identity())); },
-            [&] { inFrame = bytesOf(costs, tilesInFrame(analysis, group.tiles, group.transform)); });
+            [&] {
+                inWorld = bytesOf(costs, drawnOnce(tilesInFrame(analysis, group.tiles, identity), budget, identity));
+            },
+            [&] {
+                inFrame = bytesOf(
+                    costs, drawnOnce(tilesInFrame(analysis, group.tiles, group.transform), budget, group.transform));
+            });
         pays[i] = inFrame + costs.node(group.transform, sourceOf(input, group)) <
                   (1 - kLeastWorthFraming) * (inWorld - overhead);
     });

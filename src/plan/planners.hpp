@@ -48,7 +48,11 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
 // mirror times s. Nothing otherwise.
 std::optional<double> uniformScaleOf(const Eigen::Matrix3d& linear);
 
-// `mesh` (in the world's frame) written in the frame whose world transform is `frame`.
+// The largest factor by which `transform` stretches a length (its linear part's largest singular value).
+double largestStretch(const Eigen::Matrix4d& transform);
+
+// `mesh` (in the world's frame) written in the frame whose world transform is `frame`, each primitive's close-up
+// bound (Primitive::closeUpDiagonal) no tighter than its world box's.
 Mesh meshInFrame(const Mesh& mesh, const Eigen::Matrix4d& frame);
 
 // The tiles merged into one mesh (a primitive per material and attributes) in the frame whose world transform
