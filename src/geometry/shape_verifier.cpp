@@ -171,17 +171,18 @@ double deviationBetween(const ShapeVerifier& from, const ShapeVerifier& to, cons
     return std::max(forward, to.farthestOnto(from, linear.transpose(), reject));
 }
 
-Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, double searchRadius, int steps) const {
-    return refineOnto(*this, linear, searchRadius, steps);
+Eigen::Matrix3d ShapeVerifier::refine(const Eigen::Matrix3d& linear, double searchRadius, int steps,
+                                      std::size_t points) const {
+    return refineOnto(*this, linear, searchRadius, steps, points);
 }
 
 Eigen::Matrix3d ShapeVerifier::refineOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear,
-                                          double searchRadius, int steps) const {
+                                          double searchRadius, int steps, std::size_t points) const {
     const double searchSquared = searchRadius * searchRadius;
     Eigen::Matrix3d current = linear;
     // At most this many sample points, spread over the shape (the samples' order does that).
     constexpr std::size_t kMaxPoints = 5000;
-    const std::size_t used = std::min(samples_.size(), kMaxPoints);
+    const std::size_t used = std::min({samples_.size(), kMaxPoints, points});
     // Each point's row of the least squares (a jacobian and a residual), found on the arena's threads and
     // summed in the points' order: the sums are the same on any number of threads.
     struct Row {

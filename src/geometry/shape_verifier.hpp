@@ -45,13 +45,14 @@ public:
     // The map near `linear` (same determinant) that best fits the data: Gauss-Newton on the point-to-plane
     // distances of the mapped sample points to their closest triangles, which converges in a few steps
     // where point-to-point correspondences would only creep along the surface. Points with no triangle
-    // within searchRadius are left out.
-    Eigen::Matrix3d refine(const Eigen::Matrix3d& linear, double searchRadius, int steps = 6) const;
+    // within searchRadius are left out; at most the first `points` sample points are used.
+    Eigen::Matrix3d refine(const Eigen::Matrix3d& linear, double searchRadius, int steps = 6,
+                           std::size_t points = SIZE_MAX) const;
 
     // The same between two shapes: the map best taking this shape's sample points onto target's surface,
     // maps taken from this shape's center to target's.
     Eigen::Matrix3d refineOnto(const ShapeVerifier& target, const Eigen::Matrix3d& linear, double searchRadius,
-                               int steps = 6) const;
+                               int steps = 6, std::size_t points = SIZE_MAX) const;
 
     // The largest distance from target's surface of this shape's sample points mapped by
     // x -> target center + linear (x - center), over the first `points` of them; stops at the first point

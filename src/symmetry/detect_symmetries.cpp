@@ -52,6 +52,10 @@ constexpr double kGoodFitFactor = 10;
 constexpr std::size_t kMaxRefinedFolds = 8;
 // A turn (in turns) that is no multiple of 1/n for any small n: 1 - 1/golden ratio.
 constexpr double kGenericTurn = 0.3819660112501051;
+// A candidate is first refined on this many sample points; beyond this many tolerances from the shape that way,
+// it is not refined on all of them.
+constexpr std::size_t kRoughRefinementPoints = 256;
+constexpr double kRoughMargin = 1.5;
 // How far, relative to the diagonal, a candidate from the moments may be from a symmetry before refinement.
 constexpr double kPreliminaryMargin = 2e-4;
 
@@ -380,11 +384,11 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     // first taken within a looser bound, then refined on the data, made exact again (same kind and angle
     // about the refined axis) and kept only within the tolerance.
     const double preliminary = std::max(2 * tolerance, tolerance + kPreliminaryMargin * group.diagonal);
-    auto refined = [&](const Eigen::Matrix3d& map) -> Eigen::Matrix3d {
+    auto refined = [&](const Eigen::Matrix3d& map, std::size_t points = SIZE_MAX) -> Eigen::Matrix3d {
         const Symmetry before = describeOrthogonal(map);
         if (before.kind == Symmetry::Kind::Inversion) return map;
         // Only the refined axis is kept (a refined mirror may come out as a rotoreflection by a tiny angle).
-        const Symmetry after = describeOrthogonal(verifier.refine(map, 2 * preliminary));
+        const Symmetry after = describeOrthogonal(verifier.refine(map, 2 * preliminary, 6, points));
         if (after.kind == Symmetry::Kind::Identity || after.kind == Symmetry::Kind::Inversion ||
             std::abs(after.axis.dot(before.axis)) < 0.99)
             return map;
@@ -413,14 +417,20 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         if (overflow) return false;
         if (inKnown(map)) return true;
         if (verifier.deviation(map, preliminary, kScreeningPoints, hints) > preliminary) return false;
-        const bool refine = !refinementsLeft || *refinementsLeft > 0;
+        bool refine = !refinementsLeft || *refinementsLeft > 0;
+        // A near miss fails as well refined on a few sample points as on all of them: one that fails that way by a
+        // margin is not refined in full (a roller near a surface of revolution spent half its time on those).
+        const bool failsRoughly =
+            refine && verifier.deviation(refined(map, kRoughRefinementPoints), kRoughMargin * tolerance, SIZE_MAX,
+                                         hints) > kRoughMargin * tolerance;
+        if (failsRoughly) refine = false;
         Eigen::Matrix3d best = refine ? refined(map) : map;
         double deviation = verifier.deviation(best, tolerance, SIZE_MAX, hints);
         if (deviation > tolerance && refine) {
             deviation = verifier.deviation(map, tolerance, SIZE_MAX, hints);
-            if (deviation > tolerance && refinementsLeft) --*refinementsLeft;
             best = map;
         }
+        if (deviation > tolerance && (refine || failsRoughly) && refinementsLeft) --*refinementsLeft;
         if (deviation > tolerance) return false;
         generators.push_back(best);
         generatorDeviations.push_back(deviation);
