@@ -441,3 +441,30 @@ TEST_CASE("Readers: a NaN or infinite number in an OBJ file or its material libr
         CHECK(message.find("NaN or infinite") != std::string::npos);
     }
 }
+
+TEST_CASE("Readers: OBJ colours beyond [0, 1] are clamped with a warning, not converted to infinite linear values",
+          "[io][fuzz]") {
+    // Found by fuzz_obj: "Kd 1 0.5 5.1e307", whose linear value overflowed, written as an X3D Color that does not
+    // read back.
+    TemporaryFolder folder;
+    writeTextFile(folder / "part.obj", "mtllib part.mtl\nusemtl bright\nv 0 0 0 1 300 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    writeTextFile(folder / "part.mtl", "newmtl bright\nKd 1 0.5 5.1e307\nKs -2 0 1\n");
+    const Scene scene = readScene(folder / "part.obj");
+    const Material& material = scene.materials.at(0);
+    CHECK(material.phong->diffuseColor == Eigen::Vector3d(1, 0.5, 1));
+    CHECK(material.phong->specularColor == Eigen::Vector3d(0, 0, 1));
+    CHECK(material.baseColorFactor.allFinite());
+    const auto& colors = scene.meshes.at(0).primitives.at(0).colors;
+    REQUIRE(colors.size() == 3);
+    CHECK(colors[0].head<3>() == Eigen::Vector3d(1, 1, 0));
+    auto warned = [&](const std::string& text) {
+        return std::any_of(scene.warnings.begin(), scene.warnings.end(),
+                           [&](const std::string& warning) { return warning.find(text) != std::string::npos; });
+    };
+    CHECK(warned("part.mtl: colour components outside [0, 1] clamped"));
+    CHECK(warned("part.obj: vertex colour components outside [0, 1] clamped"));
+    for (const char* extension : {".x3d", ".glb"}) {
+        writeScene(scene, folder / (std::string("part") + extension));
+        CHECK(readScene(folder / (std::string("part") + extension)).meshes.size() == 1);
+    }
+}

@@ -22,6 +22,14 @@ std::string rest(std::string_view line) {
     return std::string(line);
 }
 
+// Clamps `color`'s components to [0, 1], the range of display values; false where one was outside it.
+bool clampedToUnit(Eigen::Ref<Eigen::Vector3d> color) {
+    const Eigen::Vector3d inside = color.cwiseMax(0.0).cwiseMin(1.0);
+    const bool was = inside == color;
+    color = inside;
+    return was;
+}
+
 // Reads a .mtl library into `scene`; returns the material index of every name.
 std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& scene) {
     std::map<std::string, int> byName;
@@ -34,6 +42,7 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
     TextScanner scanner(library, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
     Material* current = nullptr;
     std::map<std::string, int> textureOfFile;
+    bool clamped = false;  // a colour component outside [0, 1]
     while (!scanner.atEnd()) {
         std::string_view line = scanner.nextLine();
         const std::string_view keyword = nextWord(line);
@@ -52,6 +61,7 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
         auto readColor = [&]() {
             Eigen::Vector3d color;
             for (int c = 0; c < 3; ++c) color[c] = nextFiniteNumber<double>(line, scanner, "colour component");
+            clamped = !clampedToUnit(color) || clamped;
             return color;
         };
         // Colours are display values (sRGB-encoded), as in X3D's Phong Material and as three.js's MTLLoader
@@ -97,6 +107,7 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
             current->baseColorTexture.texture = entry->second;
         }
     }
+    if (clamped) scene.warnings.push_back(library.filename().string() + ": colour components outside [0, 1] clamped");
     return byName;
 }
 
@@ -130,7 +141,7 @@ Scene readObj(const fs::path& file) {
     std::vector<Group> groups(1);
     groups[0].name = file.stem().string();
     std::size_t lines = 0, points = 0, curves = 0, degenerateFaces = 0;
-    bool anyColors = false;
+    bool anyColors = false, clampedColors = false;
 
     auto resolve = [&](std::string_view word, std::size_t count, const char* what) -> int {
         long long index;
@@ -155,6 +166,7 @@ Scene readObj(const fs::path& file) {
             if (!nextWord(colorText).empty()) {
                 Eigen::Vector4d color(1, 1, 1, 1);
                 for (int c = 0; c < 3; ++c) color[c] = nextFiniteNumber<double>(line, scanner, "vertex colour");
+                clampedColors = !clampedToUnit(color.head<3>()) || clampedColors;
                 vertexColors.resize(positions.size(), Eigen::Vector4d(1, 1, 1, 1));
                 vertexColors.back() = linearFromSrgbColor(color);
                 anyColors = true;
@@ -266,6 +278,7 @@ Scene readObj(const fs::path& file) {
         scene.nodes.push_back(std::move(node));
     }
     const std::string name = file.filename().string();
+    if (clampedColors) scene.warnings.push_back(name + ": vertex colour components outside [0, 1] clamped");
     if (lines) scene.warnings.push_back(name + ": " + std::to_string(lines) + " line elements (l) skipped");
     if (points) scene.warnings.push_back(name + ": " + std::to_string(points) + " point elements (p) skipped");
     if (curves) scene.warnings.push_back(name + ": " + std::to_string(curves) + " curve and surface statements skipped");
