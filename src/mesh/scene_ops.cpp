@@ -396,7 +396,9 @@ TriangleMesh worldMesh(const Scene& scene) {
 
 Scene sceneOfOneMesh(const std::string& name, Primitive primitive) {
     Scene scene;
-    scene.meshes.push_back({name, {std::move(primitive)}, "", {}});
+    // Moved, not listed in braces: an initializer list copies its elements (a large STL's arrays, twice).
+    scene.meshes.emplace_back().name = name;
+    scene.meshes.back().primitives.push_back(std::move(primitive));
     Node node;
     node.name = name;
     node.mesh = 0;
