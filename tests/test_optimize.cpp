@@ -196,6 +196,42 @@ TEST_CASE("Normals that are their triangles' own are dropped and the vertices th
         CHECK(dropFlatNormals(tilted) == 0);
         CHECK(tilted.meshes[0].primitives[0].normals.size() == 36);
     }
+    SECTION("a sliver far out, whose normal float32 cannot tell, asks nothing; more than 1% of them keep the normals") {
+        // A triangle 0.07 long and 6e-5 wide in a plane turned off the axes, 350 units out: float32's rounding
+        // of its corners turns its normal by more than the angle, while its stored normal is the plane's.
+        const Eigen::Vector3d n = Eigen::Vector3d(1, 2, 3).normalized(), e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+        const Eigen::Vector3d origin(350, 200, 100);
+        auto addSliver = [&](Primitive& primitive, double along) {
+            const auto first = std::uint32_t(primitive.positions.size());
+            const Eigen::Vector3d start = origin + along * e2;
+            for (const Eigen::Vector3d& p :
+                 std::vector<Eigen::Vector3d>{start, start + 0.07 * e1, start + 0.035 * e1 + 6e-5 * e2}) {
+                primitive.positions.push_back(p.cast<float>().cast<double>());
+                primitive.normals.push_back(n);
+            }
+            primitive.triangles.push_back({first, first + 1, first + 2});
+            const Eigen::Vector3d* p = &primitive.positions[first];
+            REQUIRE((p[1] - p[0]).cross(p[2] - p[0]).normalized().dot(n) < 0.9999);  // it would fail the test
+        };
+        Scene scene = boxesWithFaceNormals(0);
+        Primitive& boxes = scene.meshes[0].primitives[0];
+        const Primitive box = boxes;
+        for (int k = 1; k < 9; ++k) {  // 108 triangles in all
+            Primitive moved = box;
+            for (Eigen::Vector3d& p : moved.positions) p.x() += 2 * k;
+            for (Triangle& t : moved.triangles)
+                for (std::uint32_t& v : t) v += std::uint32_t(boxes.positions.size());
+            boxes.positions.insert(boxes.positions.end(), moved.positions.begin(), moved.positions.end());
+            boxes.normals.insert(boxes.normals.end(), moved.normals.begin(), moved.normals.end());
+            boxes.triangles.insert(boxes.triangles.end(), moved.triangles.begin(), moved.triangles.end());
+        }
+        Scene many = scene;
+        addSliver(boxes, 0);
+        CHECK(dropFlatNormals(scene) == 1);
+        addSliver(many.meshes[0].primitives[0], 0);
+        addSliver(many.meshes[0].primitives[0], 0.01);
+        CHECK(dropFlatNormals(many) == 0);
+    }
     SECTION("a normal map reads the normals: kept") {
         Scene mapped = boxesWithFaceNormals(0, 0);
         mapped.materials.push_back({});

@@ -54,21 +54,34 @@ std::vector<int> keepUsed(std::vector<Item>& items, const std::vector<bool>& use
 // Normals within this angle of their triangle's (0.8 degrees, a few steps of Draco's 10-bit normals) shade as
 // the viewer's own flat normals do.
 constexpr double kFlatNormalCosine = 0.9999;
+// Triangles whose normal float32 cannot tell within that angle are excused, unless more than this fraction are.
+constexpr double kMostExcused = 0.01;
 
 // Whether every corner's normal is its triangle's geometric normal: what a viewer computes where a mesh has
 // none (glTF: flat shading; the X3D writer asks for normals per face), so the normals say nothing. Triangles
-// too small to have a direction ask nothing.
+// too small to have a direction ask nothing, nor do slivers whose normal float32 cannot tell within the angle
+// (a bolt's thread 200 units out), unless more than kMostExcused of the triangles are.
 bool normalsAreFlat(const Primitive& primitive) {
+    const double flatAngle = std::acos(kFlatNormalCosine);
+    std::size_t excused = 0;
     for (const Triangle& t : primitive.triangles) {
         const Eigen::Vector3d &a = primitive.positions[t[0]], &b = primitive.positions[t[1]],
                               &c = primitive.positions[t[2]];
         const Eigen::Vector3d cross = (b - a).cross(c - a);
         const double length = cross.norm();
         if (!(length > 1e-12 * std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), 1e-300}))) continue;
-        for (std::uint32_t v : t)
-            if (primitive.normals[v].dot(cross) < kFlatNormalCosine * length * primitive.normals[v].norm()) return false;
+        const bool flat = std::all_of(t.begin(), t.end(), [&](std::uint32_t v) {
+            return !(primitive.normals[v].dot(cross) < kFlatNormalCosine * length * primitive.normals[v].norm());
+        });
+        if (flat) continue;
+        // How far float32's rounding of the corners (the file's and the viewer's) may turn the cross product.
+        const double rounding =
+            std::ldexp(std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), c.cwiseAbs().maxCoeff()}), -24);
+        const double perimeter = (b - a).norm() + (c - b).norm() + (a - c).norm();
+        if (!(2 * std::sqrt(3.0) * rounding * perimeter > flatAngle * length)) return false;
+        ++excused;
     }
-    return true;
+    return double(excused) <= kMostExcused * double(primitive.triangles.size());
 }
 
 // Vertices equal in every attribute merged into the first of them (what splitting by face normals had
