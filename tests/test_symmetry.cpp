@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -179,6 +180,29 @@ TEST_CASE("Subgroups of point groups: the counts group theory gives", "[symmetry
     check(group({rotation(z, kPi / 2), cubeTurn, inversion}), 98);
     CHECK_THROWS_AS(subgroupsOf({rotation(z, 1.0)}), std::invalid_argument);
     CHECK_THROWS_AS(subgroupsOf({Eigen::Matrix3d::Identity(), rotation(z, 1.0)}), std::invalid_argument);
+}
+
+TEST_CASE("A subgroup is found from a few questions where the group's products tell the rest", "[symmetry]") {
+    // Every subgroup of Oh (98) as the elements a predicate holds for: each found whole, and by fewer questions
+    // than elements where it is large or of small index.
+    auto rotation = [](const Eigen::Vector3d& axis, double angle) {
+        return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    };
+    const std::vector<Eigen::Matrix3d> oh =
+        group({rotation(Eigen::Vector3d::UnitZ(), kPi / 2),
+               rotation(Eigen::Vector3d(1, 1, 1).normalized(), 2 * kPi / 3), -Eigen::Matrix3d::Identity()});
+    REQUIRE(oh.size() == 48);
+    std::size_t questions = 0;
+    for (const std::vector<std::size_t>& h : subgroupsOf(oh)) {
+        std::vector<char> member(oh.size(), 0);
+        for (std::size_t e : h) member[e] = 1;
+        std::atomic<std::size_t> asked{0};
+        const std::vector<char> found = subgroupWhere(oh, [&](std::size_t e) { return ++asked, member[e] != 0; });
+        CHECK(found == member);
+        if (h.size() >= 24) CHECK(asked <= 12);  // the group itself, and its subgroups of index 2
+        questions += asked;
+    }
+    CHECK(questions < 98 * 48 / 2);  // 1910 against 4704
 }
 
 TEST_CASE("Orders larger than the moment degree are found on the shape (a 24-fold prism)", "[symmetry]") {

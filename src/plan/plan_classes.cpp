@@ -71,21 +71,23 @@ std::vector<Eigen::Matrix3d> attributeGroup(const PlanContext& context, const Ti
     const double tolerance = context.tolerance();
     const bool geometryOnly = context.options.geometryOnly;
     const std::vector<Symmetry>& elements = shape.symmetry.elements;
-    std::vector<char> carries(elements.size(), 0);
-    // The elements in parallel (a group of 128 elements, each checked as a surface, is most of a scene's plan).
-    withThreads(context.analysis.options.threads, [&] {
-        tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t e) {
-            Isometry about;
-            about.linear = elements[e].linear;
-            about.translation = center - about.linear * center;
-            // As `reproduces` decides, the surface's hierarchy built once for every element whose image cuts the
-            // same corners otherwise (a quad's diagonal turned the other way), not twice for each.
-            const Reproduction corners = reproduction(prototype, prototype, about, tolerance, geometryOnly);
-            carries[e] = corners == Reproduction::Reproduced ||
-                         (corners == Reproduction::CutOtherwise &&
-                          surfaceDeviation(surface.get(), surface.get(), about, tolerance, geometryOnly));
-        });
-    });
+    auto carriesAttributes = [&](std::size_t e) {
+        Isometry about;
+        about.linear = elements[e].linear;
+        about.translation = center - about.linear * center;
+        // As `reproduces` decides, the surface's hierarchy built once for every element whose image cuts the
+        // same corners otherwise (a quad's diagonal turned the other way), not twice for each.
+        const Reproduction corners = reproduction(prototype, prototype, about, tolerance, geometryOnly);
+        return corners == Reproduction::Reproduced ||
+               (corners == Reproduction::CutOtherwise &&
+                surfaceDeviation(surface.get(), surface.get(), about, tolerance, geometryOnly));
+    };
+    // The elements that carry the attributes make a subgroup: a group of 128 whose attributes keep half of it
+    // takes a few checks, not 128.
+    std::vector<Eigen::Matrix3d> linear;
+    for (const Symmetry& element : elements) linear.push_back(element.linear);
+    std::vector<char> carries;
+    withThreads(context.analysis.options.threads, [&] { carries = subgroupWhere(linear, carriesAttributes); });
     std::vector<Eigen::Matrix3d> group;
     for (std::size_t e = 0; e < elements.size(); ++e)
         if (carries[e]) group.push_back(elements[e].linear);
