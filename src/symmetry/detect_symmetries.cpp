@@ -52,8 +52,8 @@ constexpr double kGoodFitFactor = 10;
 constexpr std::size_t kMaxRefinedFolds = 8;
 // A turn (in turns) that is no multiple of 1/n for any small n: 1 - 1/golden ratio.
 constexpr double kGenericTurn = 0.3819660112501051;
-// A candidate is first refined on this many sample points; beyond this many tolerances from the shape that way,
-// it is not refined on all of them.
+// A candidate is first refined on this many sample points; beyond this many tolerances from the shape that way
+// (on the screening points), it is not refined on all of them.
 constexpr std::size_t kRoughRefinementPoints = 256;
 constexpr double kRoughMargin = 1.5;
 // How far, relative to the diagonal, a candidate from the moments may be from a symmetry before refinement.
@@ -421,8 +421,8 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         // A near miss fails as well refined on a few sample points as on all of them: one that fails that way by a
         // margin is not refined in full (a roller near a surface of revolution spent half its time on those).
         const bool failsRoughly =
-            refine && verifier.deviation(refined(map, kRoughRefinementPoints), kRoughMargin * tolerance, SIZE_MAX,
-                                         hints) > kRoughMargin * tolerance;
+            refine && verifier.deviation(refined(map, kRoughRefinementPoints), kRoughMargin * tolerance,
+                                         kScreeningPoints, hints) > kRoughMargin * tolerance;
         if (failsRoughly) refine = false;
         Eigen::Matrix3d best = refine ? refined(map) : map;
         double deviation = verifier.deviation(best, tolerance, SIZE_MAX, hints);
