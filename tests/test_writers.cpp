@@ -7,6 +7,7 @@
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "symcompress/verify.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -81,6 +82,23 @@ TEST_CASE("Written glTF nodes and materials carry no needless digits and no defa
         CHECK(back.materials[0].baseColorFactor.isApprox(scene.materials[0].baseColorFactor, 1e-7));
         CHECK(back.materials[0].metallicFactor == 1);
     }
+}
+
+TEST_CASE("The asset names symcompress once: in the digest where there is one, else as the generator", "[io]") {
+    TemporaryFolder folder;
+    const Scene scene = samples::makeThreeSpheresScene();
+    writeScene(scene, folder / "plain.glb");
+    CHECK(glbJson(folder / "plain.glb")["asset"]["generator"] == "symcompress");
+    WriteOptions withDigest;
+    withDigest.extrasJson = SurfaceDigest{}.json();
+    writeScene(scene, folder / "digest.glb", withDigest);
+    const nlohmann::json asset = glbJson(folder / "digest.glb")["asset"];
+    CHECK(asset["extras"].contains("symcompress_digest"));
+    CHECK_FALSE(asset.contains("generator"));
+    WriteOptions otherExtras;
+    otherExtras.extrasJson = R"({"author":"someone"})";
+    writeScene(scene, folder / "other.glb", otherExtras);
+    CHECK(glbJson(folder / "other.glb")["asset"]["generator"] == "symcompress");
 }
 
 TEST_CASE("A node that shears is written as TRS nodes, as glTF requires, and draws the same", "[io]") {

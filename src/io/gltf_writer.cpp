@@ -428,7 +428,10 @@ std::size_t gltfNodeBytes(const Node& node) {
 }
 
 void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& options) {
-    Json root = {{"asset", {{"version", "2.0"}, {"generator", "symcompress"}}}};
+    Json root = {{"asset", {{"version", "2.0"}}}};
+    // Extras that name symcompress (the digest) say who wrote the file: the optional generator would say it
+    // again in 26 bytes, which on a small file at a peer's deviation are the difference.
+    if (options.extrasJson.find("\"symcompress") == std::string::npos) root["asset"]["generator"] = "symcompress";
     if (!options.extrasJson.empty()) {
         try {
             root["asset"]["extras"] = Json::parse(options.extrasJson);
