@@ -429,9 +429,6 @@ std::size_t gltfNodeBytes(const Node& node) {
 
 void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& options) {
     Json root = {{"asset", {{"version", "2.0"}}}};
-    // Extras that name symcompress (the digest) say who wrote the file: the optional generator would say it
-    // again in 26 bytes, which on a small file at a peer's deviation are the difference.
-    if (options.extrasJson.find("\"symcompress") == std::string::npos) root["asset"]["generator"] = "symcompress";
     if (!options.extrasJson.empty()) {
         try {
             root["asset"]["extras"] = Json::parse(options.extrasJson);
@@ -439,6 +436,10 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
             throw std::invalid_argument(std::string("extras are not valid JSON: ") + error.what());
         }
     }
+    // The digest in the extras says who wrote the file: the optional generator would say it again in 26 bytes,
+    // which on a small file at a peer's deviation are the difference.
+    if (!root["asset"].contains("extras") || !root["asset"]["extras"].contains("symcompress_digest"))
+        root["asset"]["generator"] = "symcompress";
     GltfBuilder builder(root);
     ExtensionsInUse extensions;
     TextureWriter textures(scene, builder, root, file, extensions);
