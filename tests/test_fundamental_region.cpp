@@ -2,6 +2,7 @@
 // (area, coverage both ways, orientation), attributes must be interpolated at the cuts, and seams must
 // survive quantization where the frame makes that possible.
 #include "symcompress/detail/fundamental_region.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -212,6 +213,14 @@ Eigen::Vector4d colorAt(const Eigen::Vector3d& x) {
     return {0.5 + 0.1 * x.x(), 0.5 - 0.05 * x.y(), 0.2 * x.z(), 1 - 0.01 * (x.x() + x.y())};
 }
 
+Eigen::Vector2d secondTexcoordAt(const Eigen::Vector3d& x) { return {0.2 * x.y() + 0.1, -0.5 * x.z() + 0.3 * x.x()}; }
+// A tangent for each face (flat, as the solids' normals are): a fixed direction in its plane, the handedness
+// by the side it faces.
+Eigen::Vector4d tangentAt(const Eigen::Vector3d& normal) {
+    const Eigen::Vector3d fixed(0.3, -0.5, 0.81), inPlane = (fixed - fixed.dot(normal) * normal).normalized();
+    return {inPlane.x(), inPlane.y(), inPlane.z(), normal.dot(Eigen::Vector3d(1, 1, 1)) >= 0 ? 1.0 : -1.0};
+}
+
 Primitive place(Primitive primitive, const Placement& placement) {
     for (Eigen::Vector3d& p : primitive.positions) p = placement.centre + placement.scale * (placement.rotation * p);
     for (Eigen::Vector3d& n : primitive.normals) n = placement.rotation * n;
@@ -220,6 +229,15 @@ Primitive place(Primitive primitive, const Placement& placement) {
     for (const Eigen::Vector3d& p : primitive.positions) {
         primitive.texcoords.push_back(texcoordAt(p));
         primitive.colors.push_back(colorAt(p));
+    }
+    if (primitive.normals.empty()) return primitive;
+    primitive.attributes = {{"TANGENT", 4, {}}, {"TEXCOORD_1", 2, {}}};
+    for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
+        const Eigen::Vector3d& p = primitive.positions[v];
+        const Eigen::Vector4d tangent = tangentAt(primitive.normals[v]);
+        primitive.attributes[0].values.insert(primitive.attributes[0].values.end(), tangent.data(), tangent.data() + 4);
+        const Eigen::Vector2d second = secondTexcoordAt(p);
+        primitive.attributes[1].values.insert(primitive.attributes[1].values.end(), {second.x(), second.y()});
     }
     return primitive;
 }
@@ -328,11 +346,21 @@ void checkRegion(const Primitive& tile, const std::vector<Eigen::Matrix3d>& grou
     REQUIRE(region.normals.size() == region.positions.size());
     REQUIRE(region.texcoords.size() == region.positions.size());
     REQUIRE(region.colors.size() == region.positions.size());
+    REQUIRE(attributeSignature(region) == "TANGENT:4;TEXCOORD_1:2;");
+    for (const VertexAttribute& attribute : region.attributes) REQUIRE(attribute.count() == region.positions.size());
+    const Eigen::Matrix3d regionTurn = result.regionToTile.topLeftCorner<3, 3>();
     for (std::size_t v = 0; v < region.positions.size(); ++v) {
         const Eigen::Vector3d x = applyAffine(result.regionToTile, region.positions[v]);
         CHECK((region.texcoords[v] - texcoordAt(x)).norm() <= 1e-9 * size);
         CHECK((region.colors[v] - colorAt(x)).norm() <= 1e-9 * size);
         CHECK(std::abs(region.normals[v].norm() - 1) <= 1e-12);
+        // The other attributes too: a TANGENT turned into the region's frame, of unit length, its handedness kept.
+        const Eigen::Vector4d expected = tangentAt(regionTurn * region.normals[v]);
+        const Eigen::Map<const Eigen::Vector4d> tangent(region.attributes[0].vertex(v));
+        CHECK((regionTurn * tangent.head<3>() - expected.head<3>()).norm() <= 1e-7);
+        CHECK(tangent.w() == expected.w());
+        CHECK((Eigen::Map<const Eigen::Vector2d>(region.attributes[1].vertex(v)) - secondTexcoordAt(x)).norm() <=
+              1e-9 * size);
     }
     // Flat faces: the normal of each corner is the normal of its triangle, in region coordinates.
     for (const Triangle& t : region.triangles) {
@@ -345,6 +373,18 @@ void checkRegion(const Primitive& tile, const std::vector<Eigen::Matrix3d>& grou
     // The copies rebuild S: coverage both ways, the same orientation and volume.
     const Primitive rebuilt = rebuildFromRegion(result);
     CHECK(std::abs(area(rebuilt) - tileArea) <= 1e-9 * tileArea);
+    // Each copy's tangents are the region's turned by its instance, the handedness kept (as a viewer draws them).
+    REQUIRE(rebuilt.attributes.size() == 2);
+    REQUIRE(rebuilt.attributes[0].count() == rebuilt.positions.size());
+    for (std::size_t k = 0; k < result.instances.size(); ++k) {
+        const Eigen::Matrix3d turn = instanceTransform(result, k).topLeftCorner<3, 3>();
+        for (std::size_t v = 0; v < region.positions.size(); ++v) {
+            const Eigen::Map<const Eigen::Vector4d> from(region.attributes[0].vertex(v)),
+                to(rebuilt.attributes[0].vertex(k * region.positions.size() + v));
+            CHECK((turn * from.head<3>() - to.head<3>()).norm() <= 1e-12);
+            CHECK(to.w() == from.w());
+        }
+    }
     CHECK(oneSidedDistance(tile, rebuilt) <= 1e-9 * size);
     CHECK(oneSidedDistance(rebuilt, tile) <= 1e-9 * size);
     const double volume = signedVolume(tile, centre);

@@ -386,7 +386,9 @@ TEST_CASE("A hand-built scene with every feature at once round trips through com
     CHECK(rebuilt.verified);
     writeScene(readScene(folder / "rebuilt.glb"), folder / "converted.gltf");
     // Rebuilt, the mirrored copy of the triangle is baked: its tangents turned with it (x negated), their
-    // handedness kept, since a viewer builds the bitangent from the placed normal and tangent either way.
+    // handedness kept, since a viewer builds the bitangent from the placed normal and tangent either way. The
+    // compressed file draws it as an instance of the stored triangle or baked beside it, as the plan weighs them
+    // (test_compress checks tangents on mirrored instances of tiles).
     auto baked = values;
     for (const std::vector<double>& tangent : values.at("TANGENT"))
         baked["TANGENT"].insert({-tangent[0], tangent[1], tangent[2], tangent[3]});
@@ -394,7 +396,8 @@ TEST_CASE("A hand-built scene with every feature at once round trips through com
         INFO(name);
         const Scene out = readScene(folder / name);
         CHECK(drawnMaterials(out) == std::multiset<std::string>{expected});
-        CHECK(sameValues(attributeValues(out), std::string(name) == "compressed.glb" ? values : baked));
+        CHECK((sameValues(attributeValues(out), baked) ||
+               (std::string(name) == "compressed.glb" && sameValues(attributeValues(out), values))));
         CHECK(skinsAndMorphs(out) == moves);
         const nlohmann::json root = gltfJson(folder / name);
         CHECK(listed(root, "extensionsUsed").count("KHR_materials_clearcoat"));

@@ -35,8 +35,19 @@ struct WorldPrimitive {
     int mesh = -1;
 };
 
+// An attribute moved with its primitive by `linear` (normalMatrix: its inverse transpose): a TANGENT's direction
+// turned (its handedness w kept: a viewer builds the bitangent from the placed normal and tangent, so a mirrored
+// placement and its baked copy draw alike), a NORMAL or TANGENT of a morph target (`displacement`) turned, and
+// its POSITION too; the others stay as they are.
+void transformAttribute(VertexAttribute& attribute, const Eigen::Matrix3d& linear, const Eigen::Matrix3d& normalMatrix,
+                        bool displacement);
+
 // `local` placed by `world` as WorldPrimitive says (a primitive passed as an rvalue is placed in its own arrays).
 Primitive transformPrimitive(Primitive local, const Eigen::Matrix4d& world);
+
+// The names and sizes of the primitive's other attributes (Primitive::attributes), as one key ("TANGENT:4;"):
+// primitives or tiles with different keys are never merged into one.
+std::string attributeSignature(const Primitive& primitive);
 
 // Brings every normal to unit length; a normal of zero length (or not finite) is replaced by the
 // area-weighted normal of the vertex's triangles. Returns how many were replaced, for a warning.

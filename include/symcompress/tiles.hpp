@@ -28,7 +28,7 @@ struct TileOptions {
 };
 
 // Welds positions within the tolerance, then groups triangles that share an edge (two welded vertices),
-// never across materials. Tiles come in order of their first triangle.
+// never across materials or sets of attributes (attributeSignature). Tiles come in order of their first triangle.
 std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const TileOptions& options = {});
 
 // The tile's triangles with their original (unwelded) vertices and attributes, taken from the soup:

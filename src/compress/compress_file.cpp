@@ -234,17 +234,6 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     } else {
         report.ablation.dracoAlone = fullPlanBytes;
     }
-    // Kept meshes merged into world space or each with its node: which is smaller depends on the format and the
-    // meshes (the cat's 44 parts with tangents: GLB 79528 bytes apart, 35388 merged; the lantern's X3D
-    // 428885 apart, 450450 merged: world coordinates print longer). The full plan's decisions, emitted the other
-    // way.
-    if (!analysis.keptInstances.empty()) {
-        CompressionPlan apart = fullPlan;
-        apart.mergeKeptMeshes = false;
-        CompressedScene plan = emitScene(scene, analysis, apart);
-        plan.stats.secondsPlan = compressed.stats.secondsPlan;
-        consider(variantOf("kept_meshes_apart", std::move(plan), std::move(apart)));
-    }
     // A plan weighs each group of tiles it stores in its node's frame alone, with one quick encoding each way; the
     // file weighs them together: the smallest plan's decisions with every tile stored as it is in the world's
     // frame too.

@@ -85,10 +85,7 @@ void traverse(const Scene& scene, Visit&& visit) {
 
 }  // namespace
 
-// An attribute moved with its primitive: a TANGENT's direction turned with the surface (its handedness w kept: a
-// viewer builds the bitangent from the placed normal and tangent, so a mirrored placement and its baked copy
-// draw alike), a morph target's displacements of positions, normals and tangents turned (approximately, for a
-// transform that is not rigid); the others stay as they are.
+// (A morph target's displacements are turned approximately for a transform that is not rigid.)
 void transformAttribute(VertexAttribute& attribute, const Eigen::Matrix3d& linear, const Eigen::Matrix3d& normalMatrix,
                         bool displacement) {
     const bool normal = attribute.name == "NORMAL", direction = attribute.name == "TANGENT" || normal;
@@ -120,6 +117,13 @@ Primitive transformPrimitive(Primitive local, const Eigen::Matrix4d& world) {
     if (linear.determinant() < 0)
         for (Triangle& triangle : out.triangles) std::swap(triangle[1], triangle[2]);
     return out;
+}
+
+std::string attributeSignature(const Primitive& primitive) {
+    std::string signature;
+    for (const VertexAttribute& attribute : primitive.attributes)
+        signature += attribute.name + ":" + std::to_string(attribute.components) + ";";
+    return signature;
 }
 
 void validateScene(const Scene& scene) {

@@ -1,10 +1,13 @@
-#include "symcompress/tiles.hpp"
 #include "symcompress/detail/weld_positions.hpp"
+#include "symcompress/scene_ops.hpp"
+#include "symcompress/tiles.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <map>
 #include <numeric>
+#include <string>
 
 namespace symcompress {
 
@@ -56,11 +59,20 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
             first += static_cast<std::uint32_t>(world.primitive.positions.size());
         }
     }
-    std::vector<int> materials;  // by triangle
-    materials.reserve(triangleCount);
-    for (const WorldPrimitive& world : soup) materials.insert(materials.end(), world.primitive.triangles.size(), world.primitive.material);
+    // Each triangle's kind: its material and the names of its other attributes (attributeSignature), which a tile
+    // never mixes, so that its primitive carries every attribute of each of its triangles.
+    std::vector<int> kinds;
+    kinds.reserve(triangleCount);
+    {
+        std::map<std::pair<int, std::string>, int> kindOf;
+        for (const WorldPrimitive& world : soup) {
+            const auto kind =
+                kindOf.try_emplace({world.primitive.material, attributeSignature(world.primitive)}, int(kindOf.size()));
+            kinds.insert(kinds.end(), world.primitive.triangles.size(), kind.first->second);
+        }
+    }
 
-    // Triangles that share an undirected edge (and a material) are in one tile: for each edge a-b (a != b), the
+    // Triangles that share an undirected edge (and a kind) are in one tile: for each edge a-b (a != b), the
     // triangles at a that also have b as a corner (every two distinct corners of a triangle are an edge). The
     // sets' roots are their first triangles whatever order they are united in.
     DisjointSets sets(weldedTriangles.size());
@@ -81,8 +93,7 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
                     const std::uint32_t u = incident[i];
                     if (u >= t) continue;  // each pair once; a triangle listed twice at a (a collapsed corner) is harmless
                     const Triangle& other = weldedTriangles[u];
-                    // The material is part of the key: tiles never cross materials.
-                    if ((other[0] == b || other[1] == b || other[2] == b) && materials[u] == materials[t]) sets.unite(u, t);
+                    if ((other[0] == b || other[1] == b || other[2] == b) && kinds[u] == kinds[t]) sets.unite(u, t);
                 }
             }
         }
@@ -99,7 +110,7 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
             if (tileOfRoot[root] == kNone) {
                 tileOfRoot[root] = static_cast<std::uint32_t>(tiles.size());
                 tiles.emplace_back();
-                tiles.back().material = materials[t];
+                tiles.back().material = soup[p].primitive.material;
             }
             Tile& tile = tiles[tileOfRoot[root]];
             tile.sources.push_back({p, local});
@@ -108,7 +119,7 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
     }
     std::vector<std::uint32_t>().swap(tileOfRoot);
     std::vector<Triangle>().swap(weldedTriangles);
-    std::vector<int>().swap(materials);
+    std::vector<int>().swap(kinds);
     // Local indices in the order of first use; `local` is shared by the tiles (a tile's entries are those
     // stamped with its number).
     std::vector<std::uint32_t> local(positions.size()), stamp(positions.size(), kNone);

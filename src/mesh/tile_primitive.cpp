@@ -18,6 +18,9 @@ Primitive tilePrimitive(const Tile& tile, const std::vector<WorldPrimitive>& sou
         texcoords = texcoords && !primitive.texcoords.empty();
         colors = colors && !primitive.colors.empty();
     }
+    // Its other attributes every source has (splitIntoTiles never mixes them).
+    for (const VertexAttribute& attribute : first.attributes)
+        out.attributes.push_back({attribute.name, attribute.components, {}});
     std::unordered_map<std::uint64_t, std::uint32_t> localIndex;  // (primitive, vertex) -> index in out
     for (const TriangleSource& source : tile.sources) {
         const Primitive& primitive = soup[source.primitive].primitive;
@@ -31,6 +34,8 @@ Primitive tilePrimitive(const Tile& tile, const std::vector<WorldPrimitive>& sou
                 if (normals) out.normals.push_back(primitive.normals[vertex]);
                 if (texcoords) out.texcoords.push_back(primitive.texcoords[vertex]);
                 if (colors) out.colors.push_back(primitive.colors[vertex]);
+                for (std::size_t a = 0; a < out.attributes.size(); ++a)
+                    out.attributes[a].appendVertex(primitive.attributes[a], vertex);
             }
             triangle[corner] = entry->second;
         }

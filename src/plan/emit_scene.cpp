@@ -176,23 +176,11 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     std::set<std::string> merged;      // names of the input nodes whose parts are merged into `unique`
     std::set<std::string> dropped;     // names of the input nodes whose tiles unnamed nodes draw
     const Node* mergedSource = nullptr;  // one of them
-    std::map<int, int> keptDrawers;      // input mesh -> the kept instances drawing it
-    for (const KeptInstance& kept : analysis.keptInstances) ++keptDrawers[kept.mesh];
     for (const KeptInstance& kept : analysis.keptInstances) {
-        // A mesh the tiles cannot carry (attributes such as TANGENT) that one node draws is stored as it is too,
-        // in world space with the tiles stored as they are (one primitive per material and attributes), instead
-        // of a mesh and a node of its own (the cat's 44 parts with tangents: 2 primitives).
-        // Only at a rigid placement, or one scaled alike on every axis: a viewer may turn tangents by the normal
-        // matrix (X_ITE does), not by the placement as glTF's are, and the two differ in direction under any
-        // other scale (the cat's spear: 0.7% of its pixels otherwise); and without morph targets, which a merged
-        // primitive would not keep.
-        const Eigen::Matrix3d linear = kept.transform.topLeftCorner<3, 3>();
+        // Without instancing, a kept mesh the tiles can carry (the author's scaled copies) is stored as it is too.
         const Mesh& source = input.meshes[std::size_t(kept.mesh)];
-        const bool drawnOnce = plan.mergeKeptMeshes && keptDrawers[kept.mesh] == 1 && uniformScaleOf(linear) &&
-                               std::all_of(source.primitives.begin(), source.primitives.end(),
-                                           [](const Primitive& p) { return p.targets.empty(); });
-        if ((!plan.shareInputInstances && tilesCanCarry(input.meshes[std::size_t(kept.mesh)])) || drawnOnce) {
-            for (const Primitive& primitive : input.meshes[std::size_t(kept.mesh)].primitives)
+        if (!plan.shareInputInstances && tilesCanCarry(source, kept.transform.topLeftCorner<3, 3>())) {
+            for (const Primitive& primitive : source.primitives)
                 unique.add(transformPrimitive(primitive, kept.transform));
             if (kept.source && !kept.source->name.empty()) merged.insert(kept.source->name), mergedSource = kept.source;
             continue;

@@ -14,6 +14,60 @@ namespace {
 constexpr double kNormalCosine = 0.999;  // normals within 2.6 degrees are the same
 constexpr double kTexcoordTolerance = 1e-4;
 constexpr double kColorTolerance = 1e-3;
+constexpr double kOtherTolerance = 1e-5;  // relative to the value's size, at least 1: an application's data
+constexpr int kMostComponents = 16;       // a MAT4
+
+// Whether the two primitives have the same other attributes (Primitive::attributes), by name and size.
+bool sameAttributeNames(const Primitive& a, const Primitive& b) {
+    return std::equal(a.attributes.begin(), a.attributes.end(), b.attributes.begin(), b.attributes.end(),
+                      [](const VertexAttribute& x, const VertexAttribute& y) {
+                          return x.name == y.name && x.components == y.components;
+                      });
+}
+
+// Whether the values `x` of an attribute (turned by `linear` where they are a direction) and `y` agree: a
+// TANGENT's direction within the normals' angle and its handedness the same (a viewer builds the bitangent
+// from the placed normal and tangent, so a mirrored placement keeps w), texture coordinates and colours
+// within their tolerances, an application's data nearly exactly.
+bool sameValues(const VertexAttribute& attribute, const double* x, const double* y, const Eigen::Matrix3d& linear) {
+    if (attribute.name == "TANGENT" && attribute.components == 4) {
+        const Eigen::Vector3d turned = linear * Eigen::Vector3d(x[0], x[1], x[2]);
+        const Eigen::Vector3d other(y[0], y[1], y[2]);
+        return turned.normalized().dot(other.normalized()) >= kNormalCosine && x[3] * y[3] > 0;
+    }
+    const bool texcoord = attribute.name.rfind("TEXCOORD_", 0) == 0, color = attribute.name.rfind("COLOR_", 0) == 0;
+    for (int k = 0; k < attribute.components; ++k) {
+        const double difference = std::abs(x[k] - y[k]);
+        if (texcoord ? difference > kTexcoordTolerance
+            : color  ? difference > kColorTolerance
+                     : !(difference <= kOtherTolerance * std::max({1.0, std::abs(x[k]), std::abs(y[k])})))
+            return false;
+    }
+    return true;
+}
+
+// Attribute `attribute`'s value at `weights` in triangle t, into `out`.
+void interpolate(const VertexAttribute& attribute, const Triangle& t, const Eigen::Vector3d& weights, double* out) {
+    for (int k = 0; k < attribute.components; ++k)
+        out[k] = weights[0] * attribute.vertex(t[0])[k] + weights[1] * attribute.vertex(t[1])[k] +
+                 weights[2] * attribute.vertex(t[2])[k];
+}
+
+// Whether `a`'s other attributes at `weights` in its triangle `s` agree with `b`'s at `onto` in its triangle `t`
+// (a's directions turned by `linear`); a and b have the same attribute names.
+bool sameOtherAttributes(const Primitive& a, const Triangle& s, const Eigen::Vector3d& weights,
+                         const Eigen::Matrix3d& linear, const Primitive& b, const Triangle& t,
+                         const Eigen::Vector3d& onto) {
+    std::array<double, kMostComponents> x, y;
+    for (std::size_t k = 0; k < a.attributes.size(); ++k) {
+        const VertexAttribute& attribute = a.attributes[k];
+        if (attribute.components > kMostComponents) return false;
+        interpolate(attribute, s, weights, x.data());
+        interpolate(b.attributes[k], t, onto, y.data());
+        if (!sameValues(attribute, x.data(), y.data(), linear)) return false;
+    }
+    return true;
+}
 
 }  // namespace
 
@@ -55,7 +109,8 @@ Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitiv
                                       double tolerance, double* deviation) {
     if (prototype.triangles.size() != member.triangles.size() ||
         prototype.positions.size() != member.positions.size() || prototype.normals.empty() != member.normals.empty() ||
-        prototype.texcoords.empty() != member.texcoords.empty() || prototype.colors.empty() != member.colors.empty())
+        prototype.texcoords.empty() != member.texcoords.empty() || prototype.colors.empty() != member.colors.empty() ||
+        !sameAttributeNames(prototype, member))
         return Reproduction::Differs;
     std::vector<Eigen::Vector3d> both;
     both.reserve(prototype.positions.size() + member.positions.size());
@@ -104,7 +159,8 @@ Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitiv
         if (!prototype.colors.empty() &&
             (prototype.colors[u] - member.colors[v]).cwiseAbs().maxCoeff() > kColorTolerance)
             return false;
-        return true;
+        return sameOtherAttributes(prototype, {u, u, u}, Eigen::Vector3d(1, 0, 0), j.linear, member, {v, v, v},
+                                   Eigen::Vector3d(1, 0, 0));
     };
     const std::size_t offset = prototype.positions.size();
     double largest = 0;
@@ -165,9 +221,10 @@ bool sameAttributes(const Primitive& a, const Triangle& s, const Eigen::Vector3d
         (interpolated(a.texcoords, s, weights) - interpolated(b.texcoords, t, onto)).cwiseAbs().maxCoeff() >
             kTexcoordTolerance)
         return false;
-    return a.colors.empty() ||
-           (interpolated(a.colors, s, weights) - interpolated(b.colors, t, onto)).cwiseAbs().maxCoeff() <=
-               kColorTolerance;
+    if (!a.colors.empty() &&
+        (interpolated(a.colors, s, weights) - interpolated(b.colors, t, onto)).cwiseAbs().maxCoeff() > kColorTolerance)
+        return false;
+    return sameOtherAttributes(a, s, weights, linear, b, t, onto);
 }
 
 // One way of the surface check: `from`'s vertices and centroids, mapped by `map` into `onto`'s frame, against
@@ -181,7 +238,8 @@ std::optional<double> oneWay(const TileSurface& from, const TileSurface& onto, c
     double largest = 0;
     std::uint32_t triangle = 0;
     Eigen::Vector3d weights;
-    const bool attributes = !geometryOnly && !(a.normals.empty() && a.texcoords.empty() && a.colors.empty());
+    const bool attributes =
+        !geometryOnly && !(a.normals.empty() && a.texcoords.empty() && a.colors.empty() && a.attributes.empty());
     // The squared distance of p from onto's surface (bound when nothing is closer). Without attributes (and then
     // without `facing`) only the largest matters: a point no farther than the largest so far stops at the first
     // triangle that close, not at the closest.
@@ -222,6 +280,7 @@ Primitive geometryOf(Primitive primitive) {
     primitive.normals.clear();
     primitive.texcoords.clear();
     primitive.colors.clear();
+    primitive.attributes.clear();
     return primitive;
 }
 
@@ -253,7 +312,7 @@ std::optional<double> surfaceDeviation(const TileSurface& prototype, const TileS
                                        double tolerance, bool geometryOnly) {
     const Primitive &p = prototype.primitive(), &m = member.primitive();
     if (!geometryOnly && (p.normals.empty() != m.normals.empty() || p.texcoords.empty() != m.texcoords.empty() ||
-                          p.colors.empty() != m.colors.empty()))
+                          p.colors.empty() != m.colors.empty() || !sameAttributeNames(p, m)))
         return std::nullopt;
     // The orientation first: it costs a product of 3x3 matrices, the rest two searches per sample point.
     if (!sameOrientation(prototype.moments(), member.moments(), j, std::max(member.diagonal(), tolerance)))

@@ -35,7 +35,6 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
     CompressionPlan plan;
     plan.maxError = options.maxError;
     plan.instanceShare = options.instanceShare;
-    plan.mergeKeptMeshes = options.mergeKeptMeshes;
     if (!options.instancing || !analysis.options.classify) {
         // Every copy as it is, as Draco alone stores it, the author's shared meshes too: their sharing may
         // cost more than it saves (hundreds of small scaled copies), and this plan stores nothing shared.

@@ -23,7 +23,8 @@ namespace {
 constexpr double kMostAFrameSpares = 0.3;
 
 // A group is stored in its node's frame only where the quick measure finds that smaller by this share: less
-// is within what the writer's trials of settings change, and the job then writes the plan twice to know.
+// is within what the writer's trials of Draco settings change, and the job then writes the plan twice to know.
+// (Printed coordinates have no trials: any saving counts.)
 constexpr double kLeastWorthFraming = 0.01;
 
 // Whether `linear` keeps the axes as axes (a signed permutation with scales): Draco's grid is then the same
@@ -49,9 +50,11 @@ int onlyNodeOf(const SceneAnalysis& analysis, std::size_t t) {
 }
 
 // The primitive tile t joins when merged (PrimitivesByKind): its material and which attributes it has.
-std::tuple<int, bool, bool, bool> kindOf(const SceneAnalysis& analysis, std::size_t t) {
+using TileKind = std::tuple<int, bool, bool, bool, std::string>;
+TileKind kindOf(const SceneAnalysis& analysis, std::size_t t) {
     const Primitive& from = analysis.soup[analysis.tiles[t].sources.front().primitive].primitive;
-    return {analysis.tiles[t].material, !from.normals.empty(), !from.texcoords.empty(), !from.colors.empty()};
+    return {analysis.tiles[t].material, !from.normals.empty(), !from.texcoords.empty(), !from.colors.empty(),
+            attributeSignature(from)};
 }
 
 // The turn that the world transforms of the nodes all of `tiles` come from share, where they share one (scaled
@@ -134,22 +137,26 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
     const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
     // The tiles turned off the axes, grouped by the turn of their nodes (the linear part of their world
     // transforms), in the tiles' order: a group from one node is drawn by a node with its transform and name, one
-    // from several (a scene under a turned root) by a node with the turn alone.
+    // from several (a scene under a turned root) by a node with the turn alone. Where coordinates are printed, the
+    // tiles of a node that moves or scales them without turning them too, by node.
     struct Turn {
         Eigen::Matrix3d linear;
         std::set<int> nodes;
         std::vector<std::size_t> tiles;
+        int byNode = -1;  // the node of a group of a node that keeps the axes
     };
     std::vector<Turn> turns;
     for (std::size_t t : plan.tilesAsTheyAre) {
         const int node = onlyNodeOf(analysis, t);
         if (node < 0) continue;
         const Eigen::Matrix3d linear = world[std::size_t(node)].topLeftCorner<3, 3>();
-        if (keepsAxes(linear)) continue;
+        const bool axes = keepsAxes(linear);
+        if (axes && (costs.positionsOnGrid() || world[std::size_t(node)].isIdentity(0))) continue;
+        const int byNode = axes ? node : -1;
         auto turn = std::find_if(turns.begin(), turns.end(), [&](const Turn& other) {
-            return (other.linear - linear).norm() <= 1e-9 * linear.norm();
+            return other.byNode == byNode && (other.linear - linear).norm() <= 1e-9 * linear.norm();
         });
-        if (turn == turns.end()) turn = turns.insert(turns.end(), Turn{linear, {}, {}});
+        if (turn == turns.end()) turn = turns.insert(turns.end(), Turn{linear, {}, {}, byNode});
         turn->nodes.insert(node);
         turn->tiles.push_back(t);
     }
@@ -170,10 +177,11 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
     std::vector<char> inGroup(analysis.tiles.size(), 0);
     for (const FramedTiles& group : candidates)
         for (std::size_t t : group.tiles) inGroup[t] = 1;
-    std::map<std::tuple<int, bool, bool, bool>, std::size_t> outside;  // a tile of each kind in no group
+    std::map<TileKind, std::size_t> outside;  // a tile of each kind in no group
     for (std::size_t t : plan.tilesAsTheyAre)
         if (!inGroup[t]) outside.emplace(kindOf(analysis, t), t);
     const double budget = plan.maxError * analysis.diagonal;  // of a mesh one node draws (shareErrorBudget)
+    const double leastWorth = costs.positionsOnGrid() ? kLeastWorthFraming : 0;
     std::vector<char> pays(candidates.size(), 0);
     tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
         const FramedTiles& group = candidates[i];
@@ -193,8 +201,8 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
                 inFrame = bytesOf(
                     costs, drawnOnce(tilesInFrame(analysis, group.tiles, group.transform), budget, group.transform));
             });
-        pays[i] = inFrame + costs.node(group.transform, sourceOf(input, group)) <
-                  (1 - kLeastWorthFraming) * (inWorld - overhead);
+        pays[i] =
+            inFrame + costs.node(group.transform, sourceOf(input, group)) < (1 - leastWorth) * (inWorld - overhead);
     });
     for (std::size_t i = 0; i < candidates.size(); ++i)
         if (pays[i]) plan.framedTiles.push_back(std::move(candidates[i]));

@@ -1,5 +1,7 @@
 #include "plan/primitives_by_kind.hpp"
 
+#include "symcompress/scene_ops.hpp"
+
 #include <Eigen/Geometry>
 
 namespace symcompress {
@@ -30,10 +32,8 @@ Primitive withFaceNormals(const Primitive& part) {
 }  // namespace
 
 void PrimitivesByKind::add(const Primitive& part) {
-    std::string attributes;
-    for (const VertexAttribute& attribute : part.attributes)
-        attributes += attribute.name + ":" + std::to_string(attribute.components) + ";";
-    append(parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty(), attributes}],
+    append(parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty(),
+                   attributeSignature(part)}],
            part);
 }
 
@@ -80,6 +80,11 @@ Primitive triangleOf(const Primitive& part, std::size_t t) {
         if (!part.normals.empty()) one.normals.push_back(part.normals[v]);
         if (!part.texcoords.empty()) one.texcoords.push_back(part.texcoords[v]);
         if (!part.colors.empty()) one.colors.push_back(part.colors[v]);
+    }
+    for (const VertexAttribute& attribute : part.attributes) {
+        VertexAttribute& corners =
+            one.attributes.emplace_back(VertexAttribute{attribute.name, attribute.components, {}});
+        for (std::uint32_t v : part.triangles[t]) corners.appendVertex(attribute, v);
     }
     one.triangles = {{0, 1, 2}};
     return one;

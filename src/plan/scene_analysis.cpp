@@ -2,9 +2,10 @@
 // (animated subtrees, the author's scaled instances) set aside, the rest split into tiles and classified.
 #include "symcompress/detail/compression_plan.hpp"
 
-#include "geometry/bounds.hpp"
-#include "plan/storage_costs.hpp"
 #include "common/with_threads.hpp"
+#include "geometry/bounds.hpp"
+#include "plan/planners.hpp"
+#include "plan/storage_costs.hpp"
 
 #include <tbb/task_group.h>
 
@@ -21,13 +22,15 @@ double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Meshes with attributes that tiles do not carry (Primitive::attributes: tangents, more texture coordinate
-// sets...), kept as they are where their nodes draw them, and left out of the soup.
+// Meshes that tiles do not carry where their nodes draw them (tilesCanCarry), kept as they are there, and left
+// out of the soup.
 void setAsideMeshesTilesCannotCarry(const Scene& input, SceneAnalysis& analysis) {
     const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
     std::set<std::pair<int, int>> kept;  // mesh, node
     for (const WorldPrimitive& placed : analysis.soup)
-        if (placed.mesh >= 0 && !tilesCanCarry(input.meshes[std::size_t(placed.mesh)]) &&
+        if (placed.mesh >= 0 &&
+            !tilesCanCarry(input.meshes[std::size_t(placed.mesh)],
+                           world[std::size_t(placed.node)].topLeftCorner<3, 3>()) &&
             kept.insert({placed.mesh, placed.node}).second)
             analysis.keptInstances.push_back(
                 {placed.mesh, world[std::size_t(placed.node)], &input.nodes[std::size_t(placed.node)]});
@@ -124,9 +127,8 @@ SceneAnalysis analyzeSoup(const Scene& input, std::vector<WorldPrimitive> soup, 
         analysis.absoluteTolerance = options.tolerance * tilesDiagonal(analysis.tiles);
     }
     analysis.diagonal = options.tolerance > 0 ? analysis.absoluteTolerance / options.tolerance : 0;
-    // No tiles (every mesh set aside, with attributes the tiles cannot carry yet, as the cat's X3D tangents): the
-    // whole drawing's diagonal, as the digest (and symdecompress's check) measures it, so that the kept meshes are
-    // still written within the budget instead of to every digit.
+    // No tiles (every mesh animated or set aside): the whole drawing's diagonal, as the digest (and symdecompress's
+    // check) measures it, so that the kept meshes are still written within the budget instead of to every digit.
     if (!(analysis.diagonal > 0) && !analysis.digest.bounds.isEmpty())
         analysis.diagonal = analysis.digest.bounds.diagonal().norm();
     analysis.secondsClasses = since(start);
@@ -144,19 +146,26 @@ std::vector<char> meshesOnlyTilesDraw(const Scene& input, const AnalysisOptions&
     for (std::size_t n = 0; n < input.nodes.size(); ++n)
         if (const int mesh = input.nodes[n].mesh; mesh >= 0) {
             nodesOfMesh[std::size_t(mesh)].insert(int(n));
-            if (animated[n]) only[std::size_t(mesh)] = 0;
+            if (animated[n] || !tilesCanCarry(input.meshes[std::size_t(mesh)], world[n].topLeftCorner<3, 3>()))
+                only[std::size_t(mesh)] = 0;
         }
     for (std::size_t m = 0; m < input.meshes.size(); ++m)
-        if (!tilesCanCarry(input.meshes[m]) || (options.keepInputInstances && scaledInstances(nodesOfMesh[m], world)))
-            only[m] = 0;
+        if (options.keepInputInstances && scaledInstances(nodesOfMesh[m], world)) only[m] = 0;
     return only;
 }
 
 }  // namespace
 
-bool tilesCanCarry(const Mesh& mesh) {
-    return std::all_of(mesh.primitives.begin(), mesh.primitives.end(),
-                       [](const Primitive& p) { return p.attributes.empty() && p.targets.empty(); });
+bool tilesCanCarry(const Mesh& mesh, const Eigen::Matrix3d& placement) {
+    // A tangent baked under a placement that scales unevenly is turned by it, as glTF viewers turn it, but X3D
+    // browsers turn tangents by the normal matrix (X_ITE does), and the two differ in direction.
+    const bool even = uniformScaleOf(placement).has_value();
+    auto carried = [&](const VertexAttribute& a) {
+        return !a.isJoints() && a.name.rfind("WEIGHTS_", 0) != 0 && (even || a.name != "TANGENT");
+    };
+    return std::all_of(mesh.primitives.begin(), mesh.primitives.end(), [&](const Primitive& p) {
+        return p.targets.empty() && std::all_of(p.attributes.begin(), p.attributes.end(), carried);
+    });
 }
 
 SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options) {

@@ -1,6 +1,7 @@
 #include "plan/storage_costs.hpp"
 
 #include "plan/primitives_by_kind.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <algorithm>
 
@@ -93,7 +94,8 @@ void StorageCosts::measureKinds() {
 
 StorageCosts::Attributes StorageCosts::attributesOf(std::size_t t) const {
     const WorldPrimitive& from = analysis_.soup[analysis_.tiles[t].sources.front().primitive];
-    return {!from.primitive.normals.empty(), !from.primitive.texcoords.empty(), !from.primitive.colors.empty()};
+    return {!from.primitive.normals.empty(), !from.primitive.texcoords.empty(), !from.primitive.colors.empty(),
+            attributeSignature(from.primitive)};
 }
 
 const StorageCosts::KindCosts& StorageCosts::kindOf(std::size_t t) {

@@ -11,6 +11,7 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -43,6 +44,9 @@ public:
     // A mesh of these tiles: their triangles, and with `overhead` that of a primitive per material and
     // attributes.
     double meshOf(const std::vector<std::size_t>& tiles, bool overhead = true);
+    // Whether the writer stores positions on a quantization grid (Draco): a frame that keeps the world's axes
+    // then spares nothing, where in printed coordinates (X3D) its translation and scale may spare digits.
+    bool positionsOnGrid() const { return model_.seamGridBits > 0; }
     // Measures every kind of tile (its attributes) now, which `merged` and `regionMayPay` would measure when
     // first asked: run beside other work, so that the first question does not wait for the writer.
     void measureKinds();
@@ -50,7 +54,8 @@ public:
 private:
     static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
     static constexpr std::size_t kSampleTriangles = 20000;
-    using Attributes = std::tuple<bool, bool, bool>;  // normals, texture coordinates, colours
+    // Normals, texture coordinates, colours, the other attributes' names (attributeSignature).
+    using Attributes = std::tuple<bool, bool, bool, std::string>;
     struct KindCosts {
         double perTriangle = 0, overhead = 0;
     };

@@ -142,8 +142,25 @@ private:
             work_.texcoords.push_back(Eigen::Vector2d((1 - t) * work_.texcoords[lo] + t * work_.texcoords[hi]));
         if (!work_.colors.empty())
             work_.colors.push_back(Eigen::Vector4d((1 - t) * work_.colors[lo] + t * work_.colors[hi]));
+        for (VertexAttribute& attribute : work_.attributes) cutAttribute(attribute, lo, hi, t);
         cuts_.emplace(key, index);
         return index;
+    }
+
+    // The attribute at the point t of the way from vertex lo to hi, appended: blended, a TANGENT's direction
+    // brought back to unit length and its handedness (w, which is +1 or -1) the nearer end's.
+    static void cutAttribute(VertexAttribute& attribute, std::uint32_t lo, std::uint32_t hi, double t) {
+        const std::size_t at = attribute.values.size();
+        for (int k = 0; k < attribute.components; ++k)
+            attribute.values.push_back((1 - t) * attribute.vertex(lo)[k] + t * attribute.vertex(hi)[k]);
+        if (attribute.name != "TANGENT" || attribute.components != 4) return;
+        Eigen::Map<Eigen::Vector3d> direction(&attribute.values[at]);
+        const double length = direction.norm();
+        if (length > 0)
+            direction /= length;
+        else
+            direction = Eigen::Map<const Eigen::Vector3d>(attribute.vertex(lo));
+        attribute.values[at + 3] = attribute.vertex(t < 0.5 ? lo : hi)[3];
     }
 
     // Only the vertices the kept triangles use, in their original order.
@@ -154,6 +171,8 @@ private:
             for (std::uint32_t corner : triangle) remap[corner] = 0;
         Primitive region;
         region.material = work_.material;
+        for (const VertexAttribute& attribute : work_.attributes)
+            region.attributes.push_back({attribute.name, attribute.components, {}});
         for (std::size_t v = 0; v < remap.size(); ++v) {
             if (remap[v] == unused) continue;
             remap[v] = static_cast<std::uint32_t>(region.positions.size());
@@ -161,6 +180,8 @@ private:
             if (!work_.normals.empty()) region.normals.push_back(work_.normals[v]);
             if (!work_.texcoords.empty()) region.texcoords.push_back(work_.texcoords[v]);
             if (!work_.colors.empty()) region.colors.push_back(work_.colors[v]);
+            for (std::size_t a = 0; a < work_.attributes.size(); ++a)
+                region.attributes[a].appendVertex(work_.attributes[a], v);
         }
         region.triangles.reserve(work_.triangles.size());
         for (const Triangle& triangle : work_.triangles)

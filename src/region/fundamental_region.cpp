@@ -3,6 +3,7 @@
 #include "symcompress/detail/fundamental_region.hpp"
 
 #include "fundamental_region_parts.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <Eigen/Geometry>
 
@@ -42,6 +43,9 @@ void checkTile(const Primitive& tile) {
         if (!t.allFinite()) fail("the tile has a non-finite texcoord");
     for (const Eigen::Vector4d& c : tile.colors)
         if (!c.allFinite()) fail("the tile has a non-finite color");
+    for (const VertexAttribute& attribute : tile.attributes)
+        if (attribute.count() != count || attribute.values.size() != count * std::size_t(attribute.components))
+            fail("the tile's " + attribute.name + " has a count other than its vertex count");
     double area = 0;
     for (const Triangle& triangle : tile.triangles) {
         for (std::uint32_t corner : triangle)
@@ -123,11 +127,13 @@ void roundAxisNormals(DirichletCone& cone) {
 
 Eigen::Matrix3d roundSignedPermutation(const Eigen::Matrix3d& matrix) { return matrix.array().round().matrix(); }
 
-// The tile's positions and normals in the frame (origin at the centre, axes the columns of `rotation`).
+// The tile in the frame (origin at the centre, axes the columns of `rotation`).
 Primitive toFrame(const Primitive& tile, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& centre) {
     Primitive local = tile;
     for (Eigen::Vector3d& p : local.positions) p = rotation.transpose() * (p - centre);
     for (Eigen::Vector3d& n : local.normals) n = rotation.transpose() * n;
+    for (VertexAttribute& attribute : local.attributes)
+        transformAttribute(attribute, rotation.transpose(), rotation.transpose(), false);
     return local;
 }
 
@@ -220,6 +226,15 @@ Primitive rebuildFromRegion(const FundamentalRegion& region) {
         for (const Eigen::Vector3d& n : part.normals) whole.normals.push_back((linear * n).normalized());
         whole.texcoords.insert(whole.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
         whole.colors.insert(whole.colors.end(), part.colors.begin(), part.colors.end());
+        if (k == 0)
+            for (const VertexAttribute& attribute : part.attributes)
+                whole.attributes.push_back({attribute.name, attribute.components, {}});
+        for (std::size_t a = 0; a < part.attributes.size(); ++a) {
+            VertexAttribute turned = part.attributes[a];
+            transformAttribute(turned, linear, linear, false);
+            whole.attributes[a].values.insert(whole.attributes[a].values.end(), turned.values.begin(),
+                                              turned.values.end());
+        }
         // A mirror reverses orientation; reversing the corner order makes the copy face outward again.
         const bool mirror = linear.determinant() < 0;
         for (const Triangle& t : part.triangles) {

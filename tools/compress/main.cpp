@@ -274,8 +274,7 @@ void printReport(const CompressionReport& report) {
         std::printf("  kept            %zu nodes of meshes the input already shares\n", stats.inputInstancesKept);
     if (stats.nodeFrames)
         std::printf(
-            "  node frames     %zu meshes (for %zu tiles) written in the frame of the nodes their tiles came from, "
-            "which turned them off the world's axes\n",
+            "  node frames     %zu meshes (for %zu tiles) written in the frame of the nodes their tiles came from\n",
             stats.nodeFrames, stats.tilesInNodeFrames);
     if (stats.animatedNodesKept)
         std::printf("  animated        %zu nodes kept as they are, for the scene's animations (%zu)\n",

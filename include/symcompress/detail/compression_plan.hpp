@@ -94,9 +94,10 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options = 
 // their primitives' materials only. The meshes kept as they are (KeptInstance, animated subtrees) stay whole.
 SceneAnalysis analyzeSceneTakingGeometry(Scene& input, const AnalysisOptions& options = {});
 
-// Whether tiles can carry everything the mesh's primitives hold (not Primitive::attributes or morph targets,
-// which the tiling, the classes and the regions do not handle yet).
-bool tilesCanCarry(const Mesh& mesh);
+// Whether tiles can carry everything the mesh's primitives hold where `placement` (the linear part of a node's
+// world transform) draws it: not morph targets or skin joints and weights (a mesh that moves is kept as it is),
+// and tangents only under a placement that scales alike on every axis.
+bool tilesCanCarry(const Mesh& mesh, const Eigen::Matrix3d& placement);
 
 // The cost model of a file written with `write`: every part measured by the format's writer (gltfMeshBytes,
 // x3dMeshBytes and their node measures), and for Draco glTF the seams' grid.
@@ -109,9 +110,6 @@ struct PlanOptions {
     bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
     bool regions = true;        // fundamental regions where they pay
     bool assemblies = true;     // the scene's symmetry and repeated assemblies
-    // A kept mesh (KeptInstance) that one node draws at a rigid placement stored in world space with the parts
-    // stored as they are (false: its own mesh and node; the job measures both where there are such meshes).
-    bool mergeKeptMeshes = true;
     // > 0: the error budget (relative to the diagonal) that each stored mesh's quantization shares with the
     // deviation of the copies it rebuilds (CompressOptions::maxError); 0: the writer's fixed bits.
     double maxError = 0;
@@ -122,8 +120,8 @@ struct PlanOptions {
     StorageCostModel costs;
     ProgressCallback progress;
     // A plan made from the same analysis with the same costs (and assemblies on): its scene symmetry and
-    // repeated assemblies are taken as they are instead of sought again (they do not depend on `regions` or
-    // `mergeKeptMeshes`, the options the job's other plans change).
+    // repeated assemblies are taken as they are instead of sought again (they do not depend on `regions`, the
+    // option the job's other plans change).
     const CompressionPlan* sharedPartsFrom = nullptr;
 };
 
@@ -164,7 +162,6 @@ struct FramedTiles {
 // emitScene.
 struct CompressionPlan {
     bool shareInputInstances = true;          // false: the input's own shared meshes stored as they are too
-    bool mergeKeptMeshes = true;              // PlanOptions::mergeKeptMeshes
     std::vector<SharedPart> shared;           // in the order they are written
     std::vector<std::size_t> tilesAsTheyAre;  // in the order they are merged (one mesh per material)
     std::vector<FramedTiles> framedTiles;     // of tilesAsTheyAre, those stored in their nodes' frames
