@@ -168,6 +168,7 @@ struct VertexAttribute {
     std::size_t count() const { return components > 0 ? values.size() / std::size_t(components) : 0; }
     bool isJoints() const { return name.rfind("JOINTS_", 0) == 0; }  // skin joint indices, whole numbers
     const double* vertex(std::size_t v) const { return values.data() + v * std::size_t(components); }
+    VertexAttribute withoutValues() const { return {name, components, {}}; }  // to append vertices to
     // Vertex v of `from` (an attribute of the same name and size) appended.
     void appendVertex(const VertexAttribute& from, std::size_t v) {
         values.insert(values.end(), from.vertex(v), from.vertex(v) + from.components);

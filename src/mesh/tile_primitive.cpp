@@ -19,8 +19,7 @@ Primitive tilePrimitive(const Tile& tile, const std::vector<WorldPrimitive>& sou
         colors = colors && !primitive.colors.empty();
     }
     // Its other attributes every source has (splitIntoTiles never mixes them).
-    for (const VertexAttribute& attribute : first.attributes)
-        out.attributes.push_back({attribute.name, attribute.components, {}});
+    for (const VertexAttribute& attribute : first.attributes) out.attributes.push_back(attribute.withoutValues());
     std::unordered_map<std::uint64_t, std::uint32_t> localIndex;  // (primitive, vertex) -> index in out
     for (const TriangleSource& source : tile.sources) {
         const Primitive& primitive = soup[source.primitive].primitive;

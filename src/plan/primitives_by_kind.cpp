@@ -45,8 +45,7 @@ void PrimitivesByKind::append(Primitive& into, const Primitive& part) {
     into.texcoords.insert(into.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
     into.colors.insert(into.colors.end(), part.colors.begin(), part.colors.end());
     if (into.attributes.empty())
-        for (const VertexAttribute& attribute : part.attributes)
-            into.attributes.push_back({attribute.name, attribute.components, {}});
+        for (const VertexAttribute& attribute : part.attributes) into.attributes.push_back(attribute.withoutValues());
     for (std::size_t a = 0; a < part.attributes.size(); ++a)
         into.attributes[a].values.insert(into.attributes[a].values.end(), part.attributes[a].values.begin(),
                                          part.attributes[a].values.end());
@@ -82,8 +81,7 @@ Primitive triangleOf(const Primitive& part, std::size_t t) {
         if (!part.colors.empty()) one.colors.push_back(part.colors[v]);
     }
     for (const VertexAttribute& attribute : part.attributes) {
-        VertexAttribute& corners =
-            one.attributes.emplace_back(VertexAttribute{attribute.name, attribute.components, {}});
+        VertexAttribute& corners = one.attributes.emplace_back(attribute.withoutValues());
         for (std::uint32_t v : part.triangles[t]) corners.appendVertex(attribute, v);
     }
     one.triangles = {{0, 1, 2}};

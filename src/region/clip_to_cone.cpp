@@ -172,7 +172,7 @@ private:
         Primitive region;
         region.material = work_.material;
         for (const VertexAttribute& attribute : work_.attributes)
-            region.attributes.push_back({attribute.name, attribute.components, {}});
+            region.attributes.push_back(attribute.withoutValues());
         for (std::size_t v = 0; v < remap.size(); ++v) {
             if (remap[v] == unused) continue;
             remap[v] = static_cast<std::uint32_t>(region.positions.size());

@@ -228,7 +228,7 @@ Primitive rebuildFromRegion(const FundamentalRegion& region) {
         whole.colors.insert(whole.colors.end(), part.colors.begin(), part.colors.end());
         if (k == 0)
             for (const VertexAttribute& attribute : part.attributes)
-                whole.attributes.push_back({attribute.name, attribute.components, {}});
+                whole.attributes.push_back(attribute.withoutValues());
         for (std::size_t a = 0; a < part.attributes.size(); ++a) {
             VertexAttribute turned = part.attributes[a];
             transformAttribute(turned, linear, linear, false);
