@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
-# Does the compressed X3D render as its reference (issue 15)? For every shared model and bundled sample (or
-# the models named): compresses to X3D (`symcompress -q IN -o out.x3d`), verifies it with symdecompress, and
-# renders it against the input (X3D inputs) or the plain conversion (`symcompress convert IN -o ref.x3d`,
-# other inputs) with ../shared/bench/render/render_compare.sh, lit and normals modes, views a-c. Prints a
-# table: the X3D output's bytes, verified, each view's share of differing object pixels, PASS or FAIL.
-#   bench/x3d_renders.sh [--build DIR] [--keep DIR] [MODEL...]    MODEL: a path under ../shared/models or samples/
-# --keep DIR keeps every model's folder (inputs linked, ref.x3d, out.x3d, the renders under lit/ and normals/).
+# Does the compressed output render as its reference (issue 15)? For every shared model, pbr model and bundled
+# sample (or the models named): compresses to FORMAT (glb: three.js renders it; x3d: X_ITE) with
+# `symcompress -q IN -o out.FORMAT`, verifies it with symdecompress, and renders it against the input (an
+# input of that format, glTF for glb) or the input's plain conversion (`symcompress convert IN -o ref.FORMAT`,
+# uncompressed), so that one renderer draws both, with ../shared/bench/render/render_compare.sh, lit and
+# normals modes, views a-c. Prints a table: the output's bytes, verified, each view's share of differing object
+# pixels (a triangle count that differs beside it), PASS or FAIL.
+#   bench/renders.sh [--format glb|x3d] [--build DIR] [--keep DIR] [MODEL...]
+# MODEL: a path under ../shared/models or samples/; FORMAT defaults to glb. --keep DIR keeps every model's
+# folder (the input's files, ref.FORMAT, out.FORMAT, the renders under lit/ and normals/).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="$here/build" keep=''
+build="$here/build" keep='' format=glb
 while [ $# -gt 0 ]; do
   case "$1" in
+    --format) format="$2"; shift 2 ;;
     --build) build=$(readlink -f "$2"); shift 2 ;;
     --keep) keep=$(readlink -f "$2"); shift 2 ;;
     *) break ;;
@@ -21,14 +25,17 @@ render="$(readlink -f "$here/../shared/bench/render/render_compare.sh")"
 if [ $# -gt 0 ]; then
   inputs=("$@")
 else
-  mapfile -t inputs < <(cd "$models" && ls */*.gltf */*.glb */*.x3d */*.obj */*.ply */*.stl)
+  mapfile -t inputs < <(cd "$models" && ls */*.gltf */*.glb */*.x3d */*.obj */*.ply */*.stl pbr/*/*.gltf pbr/*/*.glb \
+    2>/dev/null)
   for s in "$here"/samples/*.glb; do inputs+=("samples/$(basename "$s")"); done
 fi
 work="${keep:-$(mktemp -d)}"
 [ -n "$keep" ] || trap 'rm -rf "$work"' EXIT
 mkdir -p "$work"
 
-echo "| model | X3D bytes | verified | lit a | lit b | lit c | normals a | normals b | normals c | result |"
+case "$format" in glb | x3d) ;; *) echo "renders.sh: --format is glb or x3d, not '$format'" >&2; exit 2 ;; esac
+
+echo "| model | $format bytes | verified | lit a | lit b | lit c | normals a | normals b | normals c | result |"
 echo "| --- | ---: | :---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |"
 for input in "${inputs[@]}"; do
   if [[ "$input" == samples/* ]]; then source="$here/$input"; else source="$models/$input"; fi
@@ -39,18 +46,22 @@ for input in "${inputs[@]}"; do
   if [[ "$input" == samples/* ]]; then cp "$source" "$dir"/; else cp -r "$(dirname "$source")"/. "$dir"/; fi
   chmod -R u+w "$dir"
   in="$dir/$(basename "$source")"
-  if [[ "${in,,}" == *.x3d ]]; then ref="$in"; else
-    ref="$dir/ref.x3d"
-    "$build/symcompress" convert "$in" -o "$ref" >/dev/null 2>&1
-  fi
-  "$build/symcompress" -q "$in" -o "$dir/out.x3d"
-  bytes=$(stat -c %s "$dir/out.x3d")
+  case "$format:${in,,}" in
+    x3d:*.x3d | glb:*.gltf | glb:*.glb) ref="$in" ;;
+    *)
+      ref="$dir/ref.$format"
+      "$build/symcompress" convert "$in" -o "$ref" --no-draco >/dev/null 2>&1
+      ;;
+  esac
+  out="$dir/out.$format"
+  "$build/symcompress" -q "$in" -o "$out"
+  bytes=$(stat -c %s "$out")
   verified=yes
-  "$build/symdecompress" "$dir/out.x3d" -o "$dir/flat.ply" --verify "$in" >/dev/null 2>&1 || verified=no
+  "$build/symdecompress" "$out" -o "$dir/flat.ply" --verify "$in" >/dev/null 2>&1 || verified=no
   cells=() result=PASS
   for mode in lit normals; do
     set +e
-    PATH=/usr/bin:$PATH "$render" "$ref" "$dir/out.x3d" --mode "$mode" --views abc --out "$dir/$mode" \
+    PATH=/usr/bin:$PATH "$render" "$ref" "$out" --mode "$mode" --views abc --out "$dir/$mode" \
       >"$dir/$mode.txt" 2>"$dir/$mode.err"
     status=$?
     set -e

@@ -220,6 +220,76 @@ TEST_CASE(
     CHECK(rebuiltMesh.triangles.size() == baked.triangles.size());
 }
 
+TEST_CASE("A part baked in several materials is stored once: a mesh per material names the same Draco geometry",
+          "[compress]") {
+    // 6 copies of the torus knot, turned and moved, each in a material of its own: 0-2 of a colour alone (their
+    // texture coordinates, read by nothing, are dropped), 3-5 textured; copy 5's texture coordinates differ, so
+    // that it must stay apart.
+    const Scene knotScene = readScene(modelPath("vulkan_torusknot/torusknot.gltf"));
+    const TriangleMesh knot = worldMesh(knotScene);
+    Scene scene;
+    Texture image;
+    image.bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 1, 2, 3};
+    image.mimeType = "image/png";
+    scene.textures = {image};
+    std::mt19937_64 random(12);
+    std::normal_distribution<double> normal;
+    for (int k = 0; k < 6; ++k) {
+        Material& material = scene.materials.emplace_back();
+        material.baseColorFactor = Eigen::Vector4d(0.1 * k + 0.2, 0.5, 0.3, 1);
+        if (k >= 3) material.baseColorTexture.texture = 0;
+        const Eigen::Matrix3d linear =
+            Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
+                .normalized()
+                .toRotationMatrix();
+        const Eigen::Vector3d shift = Eigen::Vector3d(normal(random), normal(random), normal(random)) * 300;
+        Primitive copy;
+        copy.material = k;
+        for (const auto& p : knot.positions) {
+            copy.positions.push_back((linear * p + shift).cast<float>().cast<double>());
+            copy.texcoords.push_back(Eigen::Vector2d(p.x(), p.y()) * (k == 5 ? 0.2 : 0.1));
+        }
+        copy.triangles = knot.triangles;
+        Mesh& mesh = scene.meshes.emplace_back();
+        mesh.primitives.push_back(std::move(copy));
+        Node& node = scene.nodes.emplace_back();
+        node.mesh = k;
+        scene.roots.push_back(k);
+    }
+    TemporaryFolder folder;
+    const auto input = writePlainGlb(scene, folder, "knots");
+
+    const nlohmann::json report = compressAndVerify(input, folder, "knots-compressed");
+    CHECK(report["classes"] == 6);
+    CHECK(report["material_variants"] == 4);
+    CHECK(report["attribute_mismatches"] == 1);
+    CHECK(report["triangles_stored"] == 2 * knot.triangles.size());
+    CHECK(report["ablation"]["instancing"].get<double>() * 2 < report["ablation"]["draco_alone"].get<double>());
+    // Two Draco geometries (the knot, and copy 5 apart), named by primitives of all 6 materials.
+    const nlohmann::json json = glbJson(folder / "knots-compressed.glb");
+    std::set<int> views, materials;
+    for (const auto& mesh : json["meshes"])
+        for (const auto& primitive : mesh["primitives"]) {
+            views.insert(primitive["extensions"]["KHR_draco_mesh_compression"]["bufferView"].get<int>());
+            materials.insert(primitive["material"].get<int>());
+        }
+    CHECK(views.size() == 2);
+    CHECK(materials == std::set<int>{0, 1, 2, 3, 4, 5});
+    // Rebuilt, each material draws one knot, the textured ones with their texture coordinates.
+    const Scene rebuilt = expandInstances(readScene(folder / "knots-compressed.glb"));
+    std::map<int, std::size_t> trianglesOf;
+    for (const Mesh& mesh : rebuilt.meshes)
+        for (const Primitive& p : mesh.primitives) {
+            trianglesOf[p.material] += p.triangles.size();
+            if (p.material >= 3) CHECK(p.texcoords.size() == p.positions.size());
+        }
+    for (int k = 0; k < 6; ++k) CHECK(trianglesOf[k] == knot.triangles.size());
+
+    // Where the writer stores each mesh's geometry apart (X3D), the materials' classes are planned apart.
+    const nlohmann::json x3d = compressAndVerify(input, folder, "knots-x3d", {}, ".x3d");
+    CHECK(x3d["material_variants"] == 0);
+}
+
 TEST_CASE("Copies turned over face the way they do: flat cards, and a rebuild turned inside out is not verified",
           "[compress]") {
     // A flat card (a 30 x 30 grid of one-sided quads, its inner vertices moved in the plane so that only the

@@ -66,6 +66,8 @@ struct CompressionStats {
     std::string sceneGroup = "C1";         // the scene's symmetry group, where one part of the scene is stored for all
     std::size_t tilesInSceneSymmetry = 0;  // tiles drawn by that part's nodes
     std::size_t inputInstancesKept = 0;    // nodes of the input's own shared meshes, kept
+    // Meshes drawing a shared part's geometry in another material (a family of classes), the geometry stored once.
+    std::size_t materialVariants = 0;
     // Meshes written in the frame of the input nodes their tiles came from, which turned them off the world's
     // axes (CompressionPlan::framedTiles, SharedPart::frame), and the tiles they draw.
     std::size_t nodeFrames = 0, tilesInNodeFrames = 0;

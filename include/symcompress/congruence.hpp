@@ -45,6 +45,13 @@ struct CongruenceClass {
     std::vector<std::size_t> members;
     std::vector<Isometry> placements;
     std::vector<double> deviations;  // d_A of each placement, relative to the scene's diagonal
+    // Classes of other materials whose prototypes are congruent to this one's make a family: one stored mesh can
+    // draw all their members, each in its own material. `family` is the family's first class (this class's own
+    // index when it leads one or stands alone); fromFamily takes that class's prototype onto this one's, within
+    // the tolerance, at familyDeviation (relative to the scene's diagonal).
+    std::size_t family = 0;
+    Isometry fromFamily;
+    double familyDeviation = 0;
 };
 
 struct CongruenceOptions {

@@ -27,6 +27,16 @@ StorageCostModel costModelFor(FileFormat format, const WriteOptions& write) {
         model.quickMeshBytes = [once](const Primitive& part) { return double(gltfMeshBytes(part, once)); };
         model.nodeBytes = [](const Node& node) { return double(gltfNodeBytes(node)); };
         model.nodesBytes = [write](const std::vector<Node>& nodes) { return gltfNodesBytes(nodes, write); };
+        // The writer stores a primitive's geometry once for every material (gltfWriter): one more material costs
+        // a mesh whose primitive names the same accessors, each attribute named again in Draco's extension.
+        model.materialVariantBytes = [draco = write.draco](const Primitive& part) {
+            std::size_t attributes = 1 + !part.normals.empty() + !part.texcoords.empty() + !part.colors.empty(),
+                        names = 8 + (part.normals.empty() ? 0 : 6) + (part.texcoords.empty() ? 0 : 10) +
+                                (part.colors.empty() ? 0 : 7);
+            for (const VertexAttribute& attribute : part.attributes) ++attributes, names += attribute.name.size();
+            // {"primitives":[{"attributes":{..},"material":N,"indices":N}]}, and Draco's {"bufferView":N,..}
+            return 56.0 + double(names + 6 * attributes) * (draco ? 2 : 1) + (draco ? 64 : 12);
+        };
     }
     return model;
 }

@@ -124,14 +124,15 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
     });
     std::multimap<double, std::size_t> classByArea;
     std::vector<std::unique_ptr<TileProbe>> prototypeProbes;
-    auto sameInvariants = [&](const TileShape& shape, std::size_t k, double epsilon) {
+    auto sameInvariants = [&](const TileShape& shape, std::size_t k, double epsilon, bool anyMaterial = false) {
         const TileShape& prototype = result.shapes[result.classes[k].prototype];
         // The RMS radii's relative difference is one of the terms whose largest descriptorDifference is: beyond
         // epsilon, so is the whole (most classes in the area window of a large scene are rejected here).
         const double x = prototype.descriptor.rmsRadius, y = shape.descriptor.rmsRadius;
         const double larger = std::max(std::abs(x), std::abs(y));
         if ((larger > 0 ? std::abs(x - y) / larger : 0.0) > epsilon) return false;
-        return prototype.material == shape.material && descriptorDifference(prototype.descriptor, shape.descriptor) <= epsilon &&
+        return (anyMaterial || prototype.material == shape.material) &&
+               descriptorDifference(prototype.descriptor, shape.descriptor) <= epsilon &&
                samePrincipalMoments(prototype, shape, epsilon);
     };
     auto newProbe = [&](std::size_t tile) {
@@ -215,6 +216,42 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
             result.classes.push_back(std::move(created));
             prototypeProbes.push_back(attempt.probe ? std::move(attempt.probe) : newProbe(tile));
         }
+    }
+
+    // Families: each class joins the first earlier class of another material whose prototype is congruent to its
+    // own, if any (only prototypes are compared: the classes are few beside the tiles).
+    std::vector<std::optional<std::pair<std::size_t, FoundIsometry>>> joins(result.classes.size());
+    withThreads(options.threads, [&] {
+        tbb::parallel_for(std::size_t(0), result.classes.size(), [&](std::size_t k) {
+            const TileShape& shape = result.shapes[result.classes[k].prototype];
+            const double area = shape.descriptor.area, epsilon = descriptorTolerance(shape.diagonal, tolerance);
+            std::vector<std::size_t> candidates;  // in the classes' order: the first that fits leads
+            for (auto it = classByArea.lower_bound(area * (1 - epsilon));
+                 it != classByArea.end() && it->first <= area * (1 + epsilon); ++it)
+                if (it->second < k && sameInvariants(shape, it->second, epsilon, true))
+                    candidates.push_back(it->second);
+            std::sort(candidates.begin(), candidates.end());
+            for (std::size_t j : candidates)
+                if (auto found = findIsometry(result.shapes[result.classes[j].prototype], *prototypeProbes[j], shape,
+                                              *prototypeProbes[k], tolerance)) {
+                    joins[k] = std::pair{j, *found};
+                    return;
+                }
+        });
+    });
+    for (std::size_t k = 0; k < result.classes.size(); ++k) {
+        CongruenceClass& c = result.classes[k];
+        c.family = k;
+        if (!joins[k]) continue;
+        const auto& [j, found] = *joins[k];
+        const CongruenceClass& lead = result.classes[j];  // j < k: its own family settled, through its lead
+        const TileShape& prototype = result.shapes[lead.prototype];
+        Isometry fromLead;
+        fromLead.linear = found.linear;
+        fromLead.translation = result.shapes[c.prototype].moments.centroid - found.linear * prototype.moments.centroid;
+        c.family = lead.family;
+        c.fromFamily = fromLead * lead.fromFamily;
+        c.familyDeviation = found.deviation / result.sceneDiagonal + lead.familyDeviation;
     }
 
     // The group of each prototype, in parallel; a member's is its prototype's carried over by its

@@ -5,11 +5,12 @@
 // smaller) unless WriteOptions::gpuInstancing is false. Geometry is
 // compressed with KHR_draco_mesh_compression unless WriteOptions::draco is false.
 #include "common/image_size.hpp"
-#include "common/with_threads.hpp"
 #include "common/number_text.hpp"
+#include "common/with_threads.hpp"
 #include "gltf_builder.hpp"
 #include "gltf_gpu_instancing.hpp"
 #include "image_reference.hpp"
+#include "primitive_encodings.hpp"
 #include "rotation_and_scale.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
@@ -30,6 +31,7 @@
 #include <exception>
 #include <optional>
 #include <set>
+#include <unordered_map>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -459,11 +461,31 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
         std::exception_ptr error;
     };
     std::vector<Encoding> encodings;
+    // Primitives equal but for their material (one part drawn in several: a family of classes, or an input's meshes
+    // that share accessors) are encoded once and name the same accessors, at the texture coordinate bits the
+    // finest of their materials asks. Morph targets are no part of the fingerprint: their primitives stay apart.
+    struct FingerprintHash {
+        std::size_t operator()(const PrimitiveFingerprint& key) const { return std::size_t(key.first); }
+    };
+    std::unordered_map<PrimitiveFingerprint, std::size_t, FingerprintHash> byGeometry;
+    std::vector<std::size_t> encodingOf;  // of each primitive written, in order
     for (const Mesh& mesh : scene.meshes)
         for (const Primitive& primitive : mesh.primitives) {
             if (primitive.triangles.empty()) continue;
+            const int texcoordBits = texcoordBitsFor(scene, primitive, options.texcoordBits);
+            if (primitive.targets.empty()) {
+                const auto [first, added] =
+                    byGeometry.try_emplace(fingerprintOf(primitive, options, false), encodings.size());
+                if (!added) {
+                    int& bits = encodings[first->second].options.texcoordBits;
+                    bits = std::max(bits, texcoordBits);
+                    encodingOf.push_back(first->second);
+                    continue;
+                }
+            }
+            encodingOf.push_back(encodings.size());
             WriteOptions forPrimitive = options;
-            forPrimitive.texcoordBits = texcoordBitsFor(scene, primitive, options.texcoordBits);
+            forPrimitive.texcoordBits = texcoordBits;
             encodings.push_back({&primitive, std::move(forPrimitive), {}, nullptr});
         }
     withThreads(options.threads, [&] {
@@ -476,15 +498,25 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
             }
         });
     });
+    std::vector<Json> written(encodings.size());  // each encoding's primitives as written, without a material
     std::size_t next = 0;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         Json primitives = Json::array();
         for (const Primitive& primitive : scene.meshes[m].primitives) {
             if (primitive.triangles.empty()) continue;
-            Encoding& encoding = encodings[next++];
+            const std::size_t e = encodingOf[next++];
+            Encoding& encoding = encodings[e];
             if (encoding.error) std::rethrow_exception(encoding.error);
-            addPrimitive(builder, primitive, encoding.encoded, primitives);
-            encoding.encoded = {};  // its bytes are in the buffer now
+            if (written[e].is_null()) {
+                written[e] = Json::array();
+                addPrimitive(builder, *encoding.primitive, encoding.encoded, written[e]);
+                for (Json& part : written[e]) part.erase("material");
+                encoding.encoded = {};  // its bytes are in the buffer now
+            }
+            for (Json part : written[e]) {
+                if (primitive.material >= 0) part["material"] = primitive.material;
+                primitives.push_back(std::move(part));
+            }
             usedDraco = options.draco;
         }
         if (primitives.empty()) continue;

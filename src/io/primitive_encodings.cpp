@@ -56,7 +56,7 @@ private:
 
 }  // namespace
 
-PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOptions& options) {
+PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOptions& options, bool withMaterial) {
     Fingerprinter f;
     f.values(primitive.positions);
     f.values(primitive.normals);
@@ -69,7 +69,7 @@ PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOption
         f.word(std::uint64_t(attribute.components));
         f.values(attribute.values);
     }
-    f.word(std::uint64_t(std::int64_t(primitive.material)));
+    if (withMaterial) f.word(std::uint64_t(std::int64_t(primitive.material)));
     f.word(primitive.positionGrid.has_value());
     if (const auto& grid = primitive.positionGrid) {
         for (int k = 0; k < 3; ++k) f.number(grid->origin[k]);

@@ -16,8 +16,9 @@ namespace symcompress {
 // not its morph targets, which are never Draco-encoded)
 // and of the write options its encoding depends on. Two lanes with their own constants, so that two different
 // inputs agree in both by chance with a probability of about 2^-128.
+// withMaterial false: of the geometry alone, the same for the primitive in any material.
 using PrimitiveFingerprint = std::pair<std::uint64_t, std::uint64_t>;
-PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOptions& options);
+PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOptions& options, bool withMaterial = true);
 
 // Thread-safe: the writer encodes a scene's primitives in parallel.
 class PrimitiveEncodings {

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -73,15 +74,20 @@ void count(const SharedPart& part, CompressionStats& stats) {
 // Triangles with two corners at one point draw nothing; kept, they would cost Draco's edgebreaker (which
 // drops them) a sequential primitive (the subpass scene has 4100 of them). Morphed and skinned primitives
 // keep theirs: their corners may part once they move.
-void dropPointLikeTriangles(Scene& out, CompressionStats& stats) {
+// A mesh of `variants` (another material over a stored geometry, emitScene) is dropped from alike, and counted
+// once with its geometry.
+void dropPointLikeTriangles(Scene& out, const std::vector<std::vector<int>>& variants, CompressionStats& stats) {
+    std::vector<char> counted(out.meshes.size(), 1);
+    for (const std::vector<int>& meshes : variants)
+        for (std::size_t i = 1; i < meshes.size(); ++i) counted[std::size_t(meshes[i])] = 0;
     std::size_t pointLike = 0;
-    for (Mesh& mesh : out.meshes)
-        for (Primitive& p : mesh.primitives) {
+    for (std::size_t m = 0; m < out.meshes.size(); ++m)
+        for (Primitive& p : out.meshes[m].primitives) {
             const std::size_t before = p.triangles.size();
             const bool moves = !p.targets.empty() || std::any_of(p.attributes.begin(), p.attributes.end(),
                                                                  [](const VertexAttribute& a) { return a.isJoints(); });
             if (moves) {
-                stats.trianglesStored += before;
+                stats.trianglesStored += counted[m] ? before : 0;
                 continue;
             }
             p.triangles.erase(std::remove_if(p.triangles.begin(), p.triangles.end(),
@@ -91,6 +97,7 @@ void dropPointLikeTriangles(Scene& out, CompressionStats& stats) {
                                                         p.positions[t[0]] == p.positions[t[2]];
                                              }),
                               p.triangles.end());
+            if (!counted[m]) continue;
             pointLike += before - p.triangles.size();
             stats.trianglesStored += p.triangles.size();
         }
@@ -124,9 +131,11 @@ Eigen::Matrix4d centredIfFar(Mesh& mesh, double budget) {
 
 // Each stored mesh's share of the error budget (a distance): what the deviation of the copies it draws
 // leaves of it (`deviation`, by mesh), less `instanceShare` where several nodes draw it (a GPU batch may round
-// their rotations and translations), in the mesh's frame: divided by the largest stretch of a node that draws it, since a
-// corner moved by e in the mesh moves by s e in the world.
-void shareErrorBudget(Scene& out, double budget, double instanceShare, const std::vector<double>& deviation) {
+// their rotations and translations), in the mesh's frame: divided by the largest stretch of a node that draws it, since
+// a corner moved by e in the mesh moves by s e in the world. Meshes of one geometry in several materials (`variants`)
+// take the least share of any of them: equal, the writer stores their geometry once.
+void shareErrorBudget(Scene& out, double budget, double instanceShare, const std::vector<double>& deviation,
+                      const std::vector<std::vector<int>>& variants) {
     std::vector<double> stretch(out.meshes.size(), 0);
     std::vector<int> drawers(out.meshes.size(), 0);
     std::vector<std::pair<int, Eigen::Matrix4d>> stack;  // node, its parent's world transform
@@ -146,6 +155,12 @@ void shareErrorBudget(Scene& out, double budget, double instanceShare, const std
         const double share =
             (budget - deviation[m] - (drawers[m] > 1 ? instanceShare : 0)) / std::max(stretch[m], 1e-300);
         for (Primitive& primitive : out.meshes[m].primitives) primitive.maxPositionError = std::max(share, 0.0);
+    }
+    for (const std::vector<int>& meshes : variants) {
+        double least = std::numeric_limits<double>::infinity();
+        for (int m : meshes) least = std::min(least, out.meshes[std::size_t(m)].primitives.front().maxPositionError);
+        for (int m : meshes)
+            for (Primitive& primitive : out.meshes[std::size_t(m)].primitives) primitive.maxPositionError = least;
     }
 }
 
@@ -194,6 +209,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     stats.animatedNodesKept += keepAnimatedSubtrees(input, analysis.animatedSubtrees, out, keptMesh);
     keepCamerasAndLights(input, analysis, out, stats);
     std::vector<double> deviation(out.meshes.size(), 0);  // of what each mesh draws, as a distance
+    std::vector<std::vector<int>> variantsOf;             // meshes of one geometry in a family's materials
     for (const SharedPart& part : plan.shared) {
         const int mesh = int(out.meshes.size());
         Eigen::Matrix4d frame = Eigen::Matrix4d::Identity();
@@ -202,8 +218,27 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         if (!frame.isIdentity()) ++stats.nodeFrames, stats.tilesInNodeFrames += part.tiles.size();
         deviation.resize(out.meshes.size(), 0);
         deviation.back() = part.deviation * analysis.diagonal;
-        for (const PlacedCopy& node : part.nodes)
-            result.instanceNodes.push_back(addRootNode(out, mesh, node.transform * frame, node.source));
+        std::map<int, int> inMaterial;  // a family's other materials -> the mesh drawing the geometry in it
+        for (const PlacedCopy& node : part.nodes) {
+            int drawn = mesh;
+            if (node.material && *node.material != part.mesh.primitives.front().material) {
+                auto [entry, added] = inMaterial.try_emplace(*node.material, int(out.meshes.size()));
+                if (added) {
+                    Mesh variant = out.meshes[std::size_t(mesh)];
+                    for (Primitive& primitive : variant.primitives) primitive.material = *node.material;
+                    out.meshes.push_back(std::move(variant));
+                    deviation.push_back(deviation[std::size_t(mesh)]);
+                    ++stats.materialVariants;
+                }
+                drawn = entry->second;
+            }
+            result.instanceNodes.push_back(addRootNode(out, drawn, node.transform * frame, node.source));
+        }
+        if (!inMaterial.empty()) {
+            std::vector<int> sameGeometry{mesh};
+            for (const auto& [material, variant] : inMaterial) sameGeometry.push_back(variant);
+            variantsOf.push_back(std::move(sameGeometry));
+        }
         if (!part.named)
             for (std::size_t t : part.tiles)
                 if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())
@@ -251,9 +286,9 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
                                "storing them as they are, which would lose them too");
     deviation.resize(out.meshes.size(), 0);
     if (plan.maxError > 0)
-        shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceShare * analysis.diagonal,
-                         deviation);
-    dropPointLikeTriangles(out, stats);
+        shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceShare * analysis.diagonal, deviation,
+                         variantsOf);
+    dropPointLikeTriangles(out, variantsOf, stats);
     return result;
 }
 

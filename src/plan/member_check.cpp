@@ -25,6 +25,15 @@ bool sameAttributeNames(const Primitive& a, const Primitive& b) {
                       });
 }
 
+// Whether the prototype has what the member's drawing needs: the same normals, colours and other attributes, and
+// texture coordinates where the member has them. A member without them may be drawn with the prototype's: its
+// material reads none (they were pruned as unread, or it never had them), so they change nothing it shows.
+bool carriesAttributes(const Primitive& prototype, const Primitive& member) {
+    return prototype.normals.empty() == member.normals.empty() &&
+           (member.texcoords.empty() || !prototype.texcoords.empty()) &&
+           prototype.colors.empty() == member.colors.empty() && sameAttributeNames(prototype, member);
+}
+
 // Whether the values `x` of an attribute (turned by `linear` where they are a direction) and `y` agree: a
 // TANGENT's direction within the normals' angle and its handedness the same (a viewer builds the bitangent
 // from the placed normal and tangent, so a mirrored placement keeps w), texture coordinates and colours
@@ -108,9 +117,7 @@ bool sameOrientation(const OrientedMoments& p, const OrientedMoments& m, const I
 Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitive& member, const Isometry& j,
                                       double tolerance, double* deviation) {
     if (prototype.triangles.size() != member.triangles.size() ||
-        prototype.positions.size() != member.positions.size() || prototype.normals.empty() != member.normals.empty() ||
-        prototype.texcoords.empty() != member.texcoords.empty() || prototype.colors.empty() != member.colors.empty() ||
-        !sameAttributeNames(prototype, member))
+        prototype.positions.size() != member.positions.size() || !carriesAttributes(prototype, member))
         return Reproduction::Differs;
     std::vector<Eigen::Vector3d> both;
     both.reserve(prototype.positions.size() + member.positions.size());
@@ -153,7 +160,7 @@ Reproduction reproducesWithAttributes(const Primitive& prototype, const Primitiv
     auto same = [&](std::uint32_t u, std::uint32_t v) {
         if (!prototype.normals.empty() && (j.linear * prototype.normals[u]).dot(member.normals[v]) < kNormalCosine)
             return false;
-        if (!prototype.texcoords.empty() &&
+        if (!member.texcoords.empty() &&
             (prototype.texcoords[u] - member.texcoords[v]).cwiseAbs().maxCoeff() > kTexcoordTolerance)
             return false;
         if (!prototype.colors.empty() &&
@@ -217,7 +224,7 @@ bool sameAttributes(const Primitive& a, const Triangle& s, const Eigen::Vector3d
         (linear * interpolated(a.normals, s, weights)).normalized().dot(interpolated(b.normals, t, onto).normalized()) <
             kNormalCosine)
         return false;
-    if (!a.texcoords.empty() &&
+    if (!a.texcoords.empty() && !b.texcoords.empty() &&
         (interpolated(a.texcoords, s, weights) - interpolated(b.texcoords, t, onto)).cwiseAbs().maxCoeff() >
             kTexcoordTolerance)
         return false;
@@ -311,9 +318,7 @@ double TileSurface::closest(const Eigen::Vector3d& p, double bound, std::uint32_
 std::optional<double> surfaceDeviation(const TileSurface& prototype, const TileSurface& member, const Isometry& j,
                                        double tolerance, bool geometryOnly) {
     const Primitive &p = prototype.primitive(), &m = member.primitive();
-    if (!geometryOnly && (p.normals.empty() != m.normals.empty() || p.texcoords.empty() != m.texcoords.empty() ||
-                          p.colors.empty() != m.colors.empty() || !sameAttributeNames(p, m)))
-        return std::nullopt;
+    if (!geometryOnly && !carriesAttributes(p, m)) return std::nullopt;
     // The orientation first: it costs a product of 3x3 matrices, the rest two searches per sample point.
     if (!sameOrientation(prototype.moments(), member.moments(), j, std::max(member.diagonal(), tolerance)))
         return std::nullopt;

@@ -42,8 +42,8 @@ std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<b
         double apart = 0;
         for (std::size_t j = 0; j < assembly.copies.size(); ++j) {
             for (std::size_t t : assembly.copies[j]) apart += context.costs.apart(t);
-            shared.nodes.push_back(
-                {assembly.placements[j].matrix() * translationTo(center), context.sourceOf(assembly.copies[j][0])});
+            shared.nodes.push_back({assembly.placements[j].matrix() * translationTo(center),
+                                    context.sourceOf(assembly.copies[j][0]), std::nullopt});
         }
         const double nodes = context.costs.nodes(shared.nodes);
         if (context.costs.meshOf(assembly.copies[0]) + nodes >= apart) continue;

@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <tuple>
 
 namespace symcompress {
@@ -151,11 +153,12 @@ bool anyNamed(const PlanContext& context, const CongruenceClass& c, const std::v
     });
 }
 
-// One class: its stored part, if any, and the members stored as they are appended to `plan`.
-void planClass(const PlanContext& context, std::size_t k, const std::vector<bool>& drawn, CompressionPlan& plan) {
+// One class (or family of classes, as one), numbered k: its stored part, if any, and the members stored as they
+// are appended to `plan`.
+void planClass(const PlanContext& context, std::size_t k, const CongruenceClass& c, const std::vector<bool>& drawn,
+               CompressionPlan& plan) {
     const SceneAnalysis& analysis = context.analysis;
     const std::vector<Tile>& tiles = analysis.tiles;
-    const CongruenceClass& c = analysis.classification.classes[k];
     const TileShape& shape = analysis.classification.shapes[c.prototype];
     StorageCosts& costs = context.costs;
     const PlanOptions& options = context.options;
@@ -198,9 +201,15 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
         std::vector<PlacedCopy> nodes;
         for (std::size_t i : placed)
             for (const Eigen::Matrix4d& copy : copiesInTile)
-                nodes.push_back({placements[i].matrix() * copy, named ? context.sourceOf(c.members[i]) : nullptr});
+                nodes.push_back({placements[i].matrix() * copy, named ? context.sourceOf(c.members[i]) : nullptr,
+                                 tiles[c.members[i]].material});
         return nodes;
     };
+    // A family's members in materials other than the stored mesh's: a mesh each over the same geometry.
+    std::set<int> materials;
+    for (std::size_t i : placed) materials.insert(tiles[c.members[i]].material);
+    const double variants =
+        materials.size() > 1 ? double(materials.size() - 1) * options.costs.materialVariantBytes(prototype) : 0;
     auto regionCopies = [](const FundamentalRegion& r) {
         std::vector<Eigen::Matrix4d> copiesInTile;
         for (std::size_t j = 0; j < r.instances.size(); ++j) copiesInTile.push_back(instanceTransform(r, j));
@@ -217,10 +226,12 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
     double regional = kNever;
     double instanced = kNever;
     if (placed.size() > 1 || (options.regions && shape.symmetry.order() > 1))
-        instanced = costs.alone(c.prototype) + costs.nodes(nodesOf({atCenter}, true));
+        instanced = costs.alone(c.prototype) + costs.nodes(nodesOf({atCenter}, true)) + variants;
     if (options.regions && shape.symmetry.order() > 1) {
         const std::vector<Eigen::Matrix3d> group = attributeGroup(context, shape, prototype, prototypeSurface);
-        auto regionNodes = [&](const FundamentalRegion& r) { return costs.nodes(nodesOf(regionCopies(r), true)); };
+        auto regionNodes = [&](const FundamentalRegion& r) {
+            return costs.nodes(nodesOf(regionCopies(r), true)) + variants;
+        };
         const double alone = costs.alone(c.prototype), perNode = (instanced - alone) / copies;
         double placedDeviation = 0;
         for (std::size_t i : placed) placedDeviation = std::max(placedDeviation, deviations[i]);
@@ -241,9 +252,10 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
         // Stored as they are, the members lose their nodes' names and extras anyway (one mesh per material):
         // shared without them where that is what makes sharing pay (731 named grass cards: 16.6 KB of Draco
         // against 6 KB of GPU instances, 9.5 KB more with their names).
-        const double unnamed = costs.alone(c.prototype) + costs.nodes(nodesOf({atCenter}, false));
+        const double unnamed = costs.alone(c.prototype) + costs.nodes(nodesOf({atCenter}, false)) + variants;
         const double unnamedRegion =
-            region ? costs.asMesh(region->region) + costs.nodes(nodesOf(regionCopies(*region), false)) : kNever;
+            region ? costs.asMesh(region->region) + costs.nodes(nodesOf(regionCopies(*region), false)) + variants
+                   : kNever;
         if (std::min(unnamed, unnamedRegion) < asTheyAre) named = false, instanced = unnamed, regional = unnamedRegion;
     }
     if (single || asTheyAre <= std::min(instanced, regional)) {
@@ -282,6 +294,46 @@ void planClass(const PlanContext& context, std::size_t k, const std::vector<bool
     plan.shared.push_back(std::move(shared));
 }
 
+// The classes as planned: each as it is, or, where the writer stores a part's geometry once for every material
+// it is drawn in, a family of classes as one class in the place of its first (the others left empty). Its
+// prototype is that of a class whose tiles have texture coordinates where some have them (it can then draw
+// those without: member_check's carriesAttributes), every member placed from it through the family's first.
+std::vector<CongruenceClass> classesToPlan(const PlanContext& context) {
+    const std::vector<CongruenceClass>& classes = context.analysis.classification.classes;
+    if (!context.options.costs.materialVariantBytes) return classes;
+    std::map<std::size_t, std::vector<std::size_t>> families;  // first class -> its classes, in order
+    for (std::size_t k = 0; k < classes.size(); ++k) families[classes[k].family].push_back(k);
+    auto hasTexcoords = [&](std::size_t k) {
+        const Tile& tile = context.analysis.tiles[classes[k].prototype];
+        return !context.analysis.soup[tile.sources.front().primitive].primitive.texcoords.empty();
+    };
+    std::vector<CongruenceClass> planned(classes.size());
+    for (const auto& [first, members] : families) {
+        if (members.size() == 1) {
+            planned[first] = classes[first];
+            continue;
+        }
+        std::vector<std::size_t> order = members;
+        const auto head = std::find_if(order.begin(), order.end(), hasTexcoords);
+        if (head != order.end()) std::rotate(order.begin(), head, head + 1);
+        const CongruenceClass& lead = classes[order.front()];
+        const Isometry toHead = lead.fromFamily.inverse();
+        CongruenceClass& into = planned[first];
+        into.prototype = lead.prototype;
+        for (std::size_t k : order) {
+            const CongruenceClass& c = classes[k];
+            const bool same = k == order.front();
+            for (std::size_t i = 0; i < c.members.size(); ++i) {
+                into.members.push_back(c.members[i]);
+                into.placements.push_back(same ? c.placements[i] : c.placements[i] * c.fromFamily * toHead);
+                into.deviations.push_back(same ? c.deviations[i]
+                                               : c.deviations[i] + c.familyDeviation + lead.familyDeviation);
+            }
+        }
+    }
+    return planned;
+}
+
 }  // namespace
 
 CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>& drawn) {
@@ -289,10 +341,12 @@ CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>&
     const TileClassification& classification = context.analysis.classification;
     // The classes are independent (StorageCosts is safe to share: a class measures its own mesh, the kinds'
     // measures are taken under a lock): planned in parallel, each into its own plan, then appended in order.
+    const std::vector<CongruenceClass> planned = classesToPlan(context);
     std::vector<CompressionPlan> ofClass(classification.classes.size());
     withThreads(context.analysis.options.threads, [&] {
-        tbb::parallel_for(std::size_t(0), classification.classes.size(),
-                          [&](std::size_t k) { planClass(context, k, drawn, ofClass[k]); });
+        tbb::parallel_for(std::size_t(0), classification.classes.size(), [&](std::size_t k) {
+            if (!planned[k].members.empty()) planClass(context, k, planned[k], drawn, ofClass[k]);
+        });
     });
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         ++plan.classes;

@@ -16,6 +16,14 @@ StorageCosts::StorageCosts(const SceneAnalysis& analysis, const StorageCostModel
             memberOf_[classes[k].members[i]] = i;
         }
     classMesh_.assign(classes.size(), -1);
+    // Where a family's classes are planned as one (StorageCostModel::materialVariantBytes), their mesh is shared by
+    // all its members.
+    for (std::size_t k = 0; k < classes.size(); ++k) sharers_.push_back(double(classes[k].members.size()));
+    if (model.materialVariantBytes)
+        for (std::size_t k = 0; k < classes.size(); ++k)
+            if (classes[k].family != k) sharers_[classes[k].family] += double(classes[k].members.size());
+    for (std::size_t k = 0; k < classes.size(); ++k)
+        if (model.materialVariantBytes) sharers_[k] = sharers_[classes[k].family];
 }
 
 double StorageCosts::asMesh(const Primitive& part) const {
@@ -39,17 +47,25 @@ double StorageCosts::node(const Eigen::Matrix4d& transform, const Node* source) 
 }
 
 double StorageCosts::nodes(const std::vector<PlacedCopy>& copies) const {
-    std::vector<Node> drawing(copies.size());
-    for (std::size_t i = 0; i < copies.size(); ++i) {
-        drawing[i].mesh = 0;  // they draw one mesh (a node that draws none cannot be an instance)
-        drawing[i].transform = copies[i].transform;
-        if (!copies[i].source) continue;
-        drawing[i].name = copies[i].source->name;
-        drawing[i].extrasJson = copies[i].source->extrasJson;
+    // The copies in one material draw one mesh (a node that draws none cannot be an instance); a family's other
+    // materials draw meshes of their own, batched apart.
+    std::map<std::optional<int>, std::vector<Node>> byMaterial;
+    for (const PlacedCopy& copy : copies) {
+        Node& drawing = byMaterial[copy.material].emplace_back();
+        drawing.mesh = 0;
+        drawing.transform = copy.transform;
+        if (!copy.source) continue;
+        drawing.name = copy.source->name;
+        drawing.extrasJson = copy.source->extrasJson;
     }
-    if (model_.nodesBytes) return model_.nodesBytes(drawing);
     double bytes = 0;
-    for (const Node& one : drawing) bytes += node(one);
+    for (const auto& [material, drawing] : byMaterial) {
+        if (model_.nodesBytes) {
+            bytes += model_.nodesBytes(drawing);
+            continue;
+        }
+        for (const Node& one : drawing) bytes += node(one);
+    }
     return bytes;
 }
 
@@ -66,7 +82,7 @@ double StorageCosts::alone(std::size_t t) {
 double StorageCosts::apart(std::size_t t) {
     if (classOf_[t] == kNone) return std::min(merged(t), model_.bytesPerInstance + alone(t));
     const CongruenceClass& c = analysis_.classification.classes[classOf_[t]];
-    return std::min(merged(t), node(c.placements[memberOf_[t]].matrix(), nullptr) + alone(t) / double(c.members.size()));
+    return std::min(merged(t), node(c.placements[memberOf_[t]].matrix(), nullptr) + alone(t) / sharers_[classOf_[t]]);
 }
 
 bool StorageCosts::regionMayPay(std::size_t t) {

@@ -68,6 +68,7 @@ private:
     const StorageCostModel& model_;
     std::vector<std::size_t> classOf_, memberOf_;  // a tile's class, and its index among the class's members
     std::vector<double> classMesh_;                // < 0: not measured yet
+    std::vector<double> sharers_;                  // by class: the members its mesh draws (its family's, or its own)
     std::mutex kindsMutex_;  // the classes are planned in parallel: kinds_ is measured under it
     std::map<Attributes, KindCosts> kinds_;
 };

@@ -252,7 +252,6 @@ void printReport(const CompressionReport& report) {
         const std::map<std::string, const char*> plans{
             {"draco_alone", "every tile as it is"},
             {"instancing", "instancing without regions"},
-            {"kept_meshes_apart", "the kept meshes each with its node"},
             {"world_frame", "the tiles stored as they are all in the world's frame"}};
         const auto plan = plans.find(report.plan);
         std::printf("  plan            %s: its file was smaller than the full plan's\n",
@@ -270,6 +269,9 @@ void printReport(const CompressionReport& report) {
         std::printf(
             "  assemblies      %zu groups of tiles that recur together, stored once for %zu copies (%zu tiles)\n",
             stats.assemblies, stats.assemblyCopies, stats.tilesInAssemblies);
+    if (stats.materialVariants)
+        std::printf("  materials       %zu meshes draw a shared geometry in another material, stored once\n",
+                    stats.materialVariants);
     if (stats.inputInstancesKept)
         std::printf("  kept            %zu nodes of meshes the input already shares\n", stats.inputInstancesKept);
     if (stats.nodeFrames)

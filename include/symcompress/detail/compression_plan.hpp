@@ -44,6 +44,10 @@ struct StorageCostModel {
     // WriteOptions::maxRelativePositionError: the seam grid moves no corner farther than this fraction of its
     // tile's diagonal either.
     double seamGridRelativeError = 0;
+    // Where the writer stores a part's geometry once for every material it is drawn in (glTF: meshes whose
+    // primitives name the same accessors): what drawing the part in one more material costs. Unset: classes of
+    // different materials (a family, CongruenceClass::family) are planned apart.
+    std::function<double(const Primitive&)> materialVariantBytes;
 };
 
 struct AnalysisOptions {
@@ -129,6 +133,9 @@ struct PlanOptions {
 struct PlacedCopy {
     Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  // world
     const Node* source = nullptr;  // the input node whose tile it draws (its name and extras are kept), if any
+    // The material it draws the mesh in, where that may differ from the mesh's own (a member of a family of
+    // classes): emitScene gives it a mesh of that material over the same geometry, which the writer stores once.
+    std::optional<int> material;
 };
 
 // One mesh stored once and the nodes that draw it: a decision of one of the planners.
