@@ -285,9 +285,14 @@ TEST_CASE("A part baked in several materials is stored once: a mesh per material
         }
     for (int k = 0; k < 6; ++k) CHECK(trianglesOf[k] == knot.triangles.size());
 
-    // Where the writer stores each mesh's geometry apart (X3D), the materials' classes are planned apart.
+    // X3D: one geometry node, USEd by a Shape in each other material.
     const nlohmann::json x3d = compressAndVerify(input, folder, "knots-x3d", {}, ".x3d");
-    CHECK(x3d["material_variants"] == 0);
+    CHECK(x3d["material_variants"] == 4);
+    CHECK(x3d["ablation"]["instancing"].get<double>() * 2 < x3d["ablation"]["draco_alone"].get<double>());
+    const std::string text = readTextFile(folder / "knots-x3d.x3d");
+    std::size_t uses = 0;
+    for (std::size_t at = text.find("Set USE='"); at != std::string::npos; at = text.find("Set USE='", at + 1)) ++uses;
+    CHECK(uses == 4);
 }
 
 TEST_CASE("Copies turned over face the way they do: flat cards, and a rebuild turned inside out is not verified",

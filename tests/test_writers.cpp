@@ -169,10 +169,15 @@ TEST_CASE("gltfMeshBytes and x3dMeshBytes are what a mesh of its own adds to the
     two.nodes.push_back(one.nodes[0]);
     two.nodes[1].mesh = 1;
     two.roots = {0, 1};
-    // glTF writes the same part twice once (primitives equal but for their material share their accessors): the
-    // second moved there, by a length float32 holds exactly (Draco codes it as many bytes).
+    // Both writers write the same part twice once (glTF: primitives equal but for their material share their
+    // accessors; X3D: a geometry node of the same text is USEd): the second part differs where it costs as many
+    // bytes. glTF: moved by a length float32 holds exactly (Draco codes it alike); X3D: its triangles listed
+    // backwards.
     Scene twoApart = two;
     for (Eigen::Vector3d& p : twoApart.meshes[1].primitives[0].positions) p.x() += 8;
+    Scene twoListedOtherwise = two;
+    std::vector<Triangle>& triangles = twoListedOtherwise.meshes[1].primitives[0].triangles;
+    std::reverse(triangles.begin(), triangles.end());
     TemporaryFolder folder;
     struct Case {
         const char* extension;
@@ -185,7 +190,7 @@ TEST_CASE("gltfMeshBytes and x3dMeshBytes are what a mesh of its own adds to the
         options.draco = c.draco;
         const auto first = folder / (std::string("one") + c.extension), second = folder / (std::string("two") + c.extension);
         writeScene(one, first, options);
-        writeScene(std::string(c.extension) == ".glb" ? twoApart : two, second, options);
+        writeScene(std::string(c.extension) == ".glb" ? twoApart : twoListedOtherwise, second, options);
         const double added = double(std::filesystem::file_size(second)) - double(std::filesystem::file_size(first));
         const bool x3d = std::string(c.extension) == ".x3d";
         const auto measure = [&](const Primitive& p) { return double(x3d ? x3dMeshBytes(p, options) : gltfMeshBytes(p, options)); };

@@ -1,8 +1,9 @@
 // X3D writer: XML encoding with X3D 3.3 Interchange nodes, so that X3D 3 and 4 readers (X_ITE, assimp,
-// meshlab) load it, unless a material needs X3D 4's PhysicalMaterial or texture fields (x3d_materials.hpp). Each mesh becomes one DEF'd Group of Shapes the first time a node draws it
-// and a USE afterwards; node transforms become Transforms (any affine matrix, mirrors included, through
-// rotation, scale and scaleOrientation); animations become a TimeSensor, interpolators and ROUTEs. `.x3dz`
-// is the same, gzip-compressed.
+// meshlab) load it, unless a material needs X3D 4's PhysicalMaterial or texture fields (x3d_materials.hpp). Each mesh
+// becomes one DEF'd Group of Shapes the first time a node draws it and a USE afterwards, and a geometry node that an
+// earlier Shape wrote the same (one part in several materials) a USE of that one; node transforms become Transforms
+// (any affine matrix, mirrors included, through rotation, scale and scaleOrientation); animations become a TimeSensor,
+// interpolators and ROUTEs. `.x3dz` is the same, gzip-compressed.
 #include "common/color_space.hpp"
 #include "common/markup_text.hpp"
 #include "common/number_text.hpp"
@@ -27,7 +28,9 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <type_traits>
+#include <unordered_map>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -275,7 +278,7 @@ public:
         for (int root : scene_.roots) writeNode(root, 1);
         for (std::size_t a = 0; a < scene_.animations.size(); ++a) writeAnimation(scene_.animations[a], a);
         out_ += "</Scene>\n</X3D>\n";
-        return std::move(out_);
+        return withGeometryDefs();
     }
 
 private:
@@ -667,6 +670,7 @@ private:
         if (!creased)
             for (std::uint32_t v = 0; v < primitive.positions.size(); ++v) written.push_back(v);
         indent(depth + 1);
+        const std::size_t geometryStart = out_.size();
         const std::string solid = std::string("solid='") + (doubleSided ? "false" : "true") + "'";
         const bool faceSet = creased && creased->creaseAngle < M_PI;  // a triangle set smooths at every point
         if (creased && !faceSet) {
@@ -743,8 +747,46 @@ private:
         if (!primitive.colors.empty()) writeColors(primitive, written, depth + 2);
         indent(depth + 1);
         out_ += faceSet ? "</IndexedFaceSet>\n" : "</IndexedTriangleSet>\n";
+        shareGeometry(geometryStart, faceSet ? "IndexedFaceSet" : "IndexedTriangleSet");
         indent(depth);
         out_ += "</Shape>\n";
+    }
+
+    // The geometry node just written from `start`, where an earlier Shape wrote the same text (one part drawn in
+    // several materials: a family of classes), becomes a USE of that one, which gets a DEF (withGeometryDefs).
+    void shareGeometry(std::size_t start, const std::string& node) {
+        const std::string_view text = std::string_view(out_).substr(start);
+        std::vector<WrittenGeometry>& same = geometries_[std::hash<std::string_view>()(text)];
+        const auto earlier = std::find_if(same.begin(), same.end(), [&](const WrittenGeometry& g) {
+            return std::string_view(out_).substr(g.start, g.length) == text;
+        });
+        if (earlier == same.end()) {
+            same.push_back({start, text.size(), {}});
+            return;
+        }
+        if (earlier->def.empty()) earlier->def = uniqueName("geometry");
+        out_.resize(start);
+        out_ += "<" + node + " USE='" + earlier->def + "'/>\n";
+    }
+
+    // The text with a DEF in each geometry node that a later Shape USEs.
+    std::string withGeometryDefs() {
+        std::vector<std::pair<std::size_t, std::string>> defs;  // where (after the node's name), what
+        for (const auto& [hash, same] : geometries_)
+            for (const WrittenGeometry& g : same)
+                if (!g.def.empty()) defs.push_back({out_.find(' ', g.start), " DEF='" + g.def + "'"});
+        if (defs.empty()) return std::move(out_);
+        std::sort(defs.begin(), defs.end());
+        std::string text;
+        text.reserve(out_.size() + defs.size() * 24);
+        std::size_t from = 0;
+        for (const auto& [at, def] : defs) {
+            text.append(out_, from, at - from);
+            text += def;
+            from = at;
+        }
+        text.append(out_, from);
+        return text;
     }
 
     // glTF's COLOR_0 (linear, multiplying the base colour) as X3D's Color, or ColorRGBA where an alpha is below 1:
@@ -782,6 +824,11 @@ private:
     std::string out_;
     std::vector<bool> written_;
     std::set<int> materialWritten_;
+    struct WrittenGeometry {
+        std::size_t start, length;  // in out_
+        std::string def;            // where a later Shape USEs it
+    };
+    std::unordered_map<std::size_t, std::vector<WrittenGeometry>> geometries_;  // by the hash of their text
     std::vector<int> sameImage_ = firstTextureOfSameImage(scene_.textures);
     std::set<int> textureWritten_;
     std::set<std::string> names_;
