@@ -284,6 +284,82 @@ TEST_CASE("gltfNodeBytes and x3dNodeBytes are what a node drawing a stored mesh 
     CHECK(sizes.size() >= 6);  // the transform and the name are what is measured
 }
 
+TEST_CASE(
+    "glTF animations: key times shared by their channels are written once, and long keys are coded by meshopt "
+    "without loss where the file is smaller for it",
+    "[io]") {
+    // Three nodes turned, moved and scaled over the same `keys` times: a smooth curve of float32 values.
+    auto animated = [](std::size_t keys) {
+        Scene scene;
+        Primitive triangle;
+        triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+        triangle.triangles = {{0, 1, 2}};
+        scene.meshes.push_back({"", {triangle}});
+        scene.nodes.resize(3);
+        scene.roots = {0, 1, 2};
+        Animation animation{"walk", {}};
+        for (int n = 0; n < 3; ++n) {
+            scene.nodes[std::size_t(n)].mesh = 0;
+            AnimationChannel channel;
+            channel.node = n;
+            channel.path = n == 0   ? AnimationChannel::Path::Rotation
+                           : n == 1 ? AnimationChannel::Path::Translation
+                                    : AnimationChannel::Path::Scale;
+            for (std::size_t k = 0; k < keys; ++k) {
+                const double t = double(k) / 30;
+                channel.times.push_back(double(float(t)));
+                const Eigen::Quaterniond turn(Eigen::AngleAxisd(t, Eigen::Vector3d(0.3, 0.9, 0.2).normalized()));
+                const std::vector<double> value =
+                    n == 0 ? std::vector<double>{turn.x(), turn.y(), turn.z(), turn.w()}
+                           : std::vector<double>{std::sin(t), 0.5 * t, 1 + 0.1 * std::cos(t)};
+                for (double x : value) channel.values.push_back(double(float(x)));
+            }
+            animation.channels.push_back(channel);
+        }
+        scene.animations.push_back(animation);
+        validateScene(scene);
+        return scene;
+    };
+    TemporaryFolder folder;
+    auto samplersOf = [](const nlohmann::json& json) {
+        std::set<int> inputs;
+        for (const auto& sampler : json["animations"][0]["samplers"]) inputs.insert(sampler["input"].get<int>());
+        return inputs;
+    };
+    auto meshoptViews = [](const nlohmann::json& json) {
+        std::size_t views = 0;
+        for (const auto& view : json["bufferViews"]) views += view.contains("extensions");
+        return views;
+    };
+    for (const std::size_t keys : {std::size_t(300), std::size_t(3)})
+        for (const bool draco : {true, false}) {
+            INFO(keys << " keys, draco " << draco);
+            const Scene scene = animated(keys);
+            WriteOptions options;
+            options.draco = draco;
+            const auto file = folder / ("walk" + std::to_string(keys) + (draco ? "d" : "p") + ".glb");
+            writeScene(scene, file, options);
+            const nlohmann::json json = glbJson(file);
+            CHECK(samplersOf(json).size() == 1);
+            // Coded where it pays: long keys of compressed output; never in plain output.
+            const bool coded = keys == 300 && draco;
+            CHECK(meshoptViews(json) == (coded ? 3 : 0));
+            const bool required = json.contains("extensionsRequired") &&
+                                  std::count(json["extensionsRequired"].begin(), json["extensionsRequired"].end(),
+                                             "EXT_meshopt_compression");
+            CHECK(required == coded);
+            // Read back, every value as written.
+            const Scene read = readScene(file);
+            REQUIRE(read.animations.size() == 1);
+            REQUIRE(read.animations[0].channels.size() == 3);
+            for (std::size_t c = 0; c < 3; ++c) {
+                CHECK(read.animations[0].channels[c].times == scene.animations[0].channels[c].times);
+                CHECK(read.animations[0].channels[c].values == scene.animations[0].channels[c].values);
+            }
+            if (interopAvailable()) CHECK(validatorErrors(file).empty());
+        }
+}
+
 TEST_CASE("Animations are written to X3D as a TimeSensor, interpolators and ROUTEs", "[io][x3d]") {
     Scene scene;
     Primitive triangle;

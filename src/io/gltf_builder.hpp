@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -96,16 +98,31 @@ public:
             for (int c = 0; c < components; ++c) flat.push_back(static_cast<float>(value[c]));
         return addFloatAccessor(flat, components, type, withBounds, kArrayBuffer);
     }
-    // The same over values already flat; `target` 0 for data that is not a vertex attribute (animations).
+    // The same over values already flat; `target` 0 for data that is not a vertex attribute (animations, skins'
+    // matrices): written once for every use of the same values (an animation's channels share their key times).
     int addFloatAccessor(const std::vector<float>& flat, int components, const char* type, bool withBounds,
                          int target) {
-        Json accessor = {{"bufferView", addBufferView(flat.data(), flat.size() * sizeof(float), target)},
+        std::string key;
+        if (target == 0) {
+            key = std::string(type) + (withBounds ? "+" : "-");
+            key.append(reinterpret_cast<const char*>(flat.data()), flat.size() * sizeof(float));
+            if (const auto found = dataAccessors_.find(key); found != dataAccessors_.end()) return found->second;
+        }
+        Json accessor = {{"bufferView", target == 0 ? addDataView(flat, components)
+                                                    : addBufferView(flat.data(), flat.size() * sizeof(float), target)},
                          {"componentType", kFloat},
                          {"count", flat.size() / std::size_t(components)},
                          {"type", type}};
         if (withBounds) addBounds(accessor, flat, components);
-        return addAccessor(std::move(accessor));
+        const int index = addAccessor(std::move(accessor));
+        if (target == 0) dataAccessors_.emplace(std::move(key), index);
+        return index;
     }
+
+    // Where set, data that is no vertex attribute is stored encoded by it (the writer's meshopt ATTRIBUTES, filter
+    // NONE: lossless) where that is smaller: an animation's keys, a skin's matrices. Its arguments: the bytes and
+    // an element's size.
+    std::function<std::vector<unsigned char>(const std::vector<unsigned char>&, std::size_t)> dataEncoder;
 
     static void addBounds(Json& accessor, const std::vector<float>& flat, int components) {
         std::vector<float> lo(components, std::numeric_limits<float>::max()),
@@ -125,10 +142,53 @@ public:
 
     std::vector<unsigned char>& binary() { return binary_; }
 
+    // What has been added so far, to measure what follows and take it back (rollback): the writer tries the
+    // animations' data encoded and plain.
+    struct Mark {
+        std::size_t binary, fallback, views, accessors;
+    };
+    Mark mark() const {
+        return {binary_.size(), fallbackBytes_, root_.contains("bufferViews") ? root_["bufferViews"].size() : 0,
+                root_.contains("accessors") ? root_["accessors"].size() : 0};
+    }
+    // The bytes added since `from`: binary data, and the JSON of the views and accessors.
+    std::size_t bytesSince(const Mark& from) const {
+        std::size_t bytes = binary_.size() - from.binary;
+        for (const char* list : {"bufferViews", "accessors"})
+            if (root_.contains(list))
+                for (std::size_t i = list[0] == 'b' ? from.views : from.accessors; i < root_[list].size(); ++i)
+                    bytes += jsonText(root_[list][i]).size() + 1;
+        return bytes;
+    }
+    void rollback(const Mark& to) {
+        binary_.resize(to.binary);
+        fallbackBytes_ = to.fallback;
+        if (root_.contains("bufferViews")) root_["bufferViews"].get_ref<Json::array_t&>().resize(to.views);
+        if (root_.contains("accessors")) root_["accessors"].get_ref<Json::array_t&>().resize(to.accessors);
+        for (auto entry = dataAccessors_.begin(); entry != dataAccessors_.end();)
+            entry = entry->second >= int(to.accessors) ? dataAccessors_.erase(entry) : std::next(entry);
+    }
+
 private:
+    // A view of float data that is no vertex attribute, encoded where dataEncoder makes it smaller by more than
+    // the extension's JSON (some 100 bytes).
+    int addDataView(const std::vector<float>& flat, int components) {
+        const std::size_t size = flat.size() * sizeof(float), element = std::size_t(components) * sizeof(float);
+        if (dataEncoder && element % 4 == 0 && element <= 256 && !flat.empty()) {
+            const auto* bytes = reinterpret_cast<const unsigned char*>(flat.data());
+            const std::vector<unsigned char> encoded =
+                dataEncoder(std::vector<unsigned char>(bytes, bytes + size), element);
+            constexpr std::size_t kExtensionJson = 100;
+            if (encoded.size() + kExtensionJson < size)
+                return addMeshoptBufferView(encoded, flat.size() / std::size_t(components), element, "NONE");
+        }
+        return addBufferView(flat.data(), size);
+    }
+
     Json& root_;
     std::vector<unsigned char> binary_;
     std::size_t fallbackBytes_ = 0;
+    std::map<std::string, int> dataAccessors_;  // the accessors of data that is no vertex attribute, by content
 };
 
 // One Draco-compressed glTF primitive, encoded but not yet in the builder: its bytes, its accessors (name and

@@ -9,6 +9,7 @@
 #include "common/with_threads.hpp"
 #include "gltf_builder.hpp"
 #include "gltf_gpu_instancing.hpp"
+#include "gltf_instance_encoding.hpp"
 #include "image_reference.hpp"
 #include "primitive_encodings.hpp"
 #include "rotation_and_scale.hpp"
@@ -540,25 +541,53 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     }
     writeGpuBatches(gpu, scene, meshIndex, builder, root);
     if (!gpu.batches.empty()) extensions.add("EXT_mesh_gpu_instancing", true);
-    // Required: the fallback buffer holds no data for a viewer that cannot decode the views.
-    if (builder.fallbackBytes()) extensions.add("EXT_meshopt_compression", true);
     for (Json& node : extraNodes) root["nodes"].push_back(std::move(node));
     root["scenes"] = {{{"nodes", numbering.list(scene.roots)}}};
     root["scene"] = 0;
     // Animations and skins name nodes that are never batched, renumbered as the nodes are.
-    for (Animation animation : scene.animations) {
-        for (AnimationChannel& channel : animation.channels) channel.node = numbering.index[std::size_t(channel.node)];
-        root["animations"].push_back(writeAnimation(animation, builder));
+    auto writeAnimationsAndSkins = [&] {
+        Json animations = Json::array(), skins = Json::array();
+        for (Animation animation : scene.animations) {
+            for (AnimationChannel& channel : animation.channels)
+                channel.node = numbering.index[std::size_t(channel.node)];
+            animations.push_back(writeAnimation(animation, builder));
+        }
+        for (Skin skin : scene.skins) {
+            for (int& joint : skin.joints) joint = numbering.index[std::size_t(joint)];
+            if (skin.skeleton >= 0) skin.skeleton = numbering.index[std::size_t(skin.skeleton)];
+            skins.push_back(writeSkin(skin, builder));
+        }
+        return std::pair{animations, skins};
+    };
+    // Compressed output: their data coded losslessly by meshopt where the file is smaller for it (a file with no
+    // other meshopt view pays for the fallback buffer and the extension's names, some 150 bytes).
+    const GltfBuilder::Mark before = builder.mark();
+    auto [animations, skins] = writeAnimationsAndSkins();
+    if (options.draco && !(animations.empty() && skins.empty())) {
+        const std::size_t plain = builder.bytesSince(before);
+        builder.rollback(before);
+        builder.dataEncoder = meshoptEncoded;
+        auto encoded = writeAnimationsAndSkins();
+        constexpr std::size_t kMeshoptFileBytes = 150;
+        const std::size_t coded =
+            builder.bytesSince(before) + (before.fallback == 0 && builder.fallbackBytes() > 0 ? kMeshoptFileBytes : 0);
+        builder.rollback(before);
+        if (coded < plain) {
+            std::tie(animations, skins) = writeAnimationsAndSkins();
+        } else {
+            builder.dataEncoder = nullptr;
+            std::tie(animations, skins) = writeAnimationsAndSkins();
+        }
     }
-    for (Skin skin : scene.skins) {
-        for (int& joint : skin.joints) joint = numbering.index[std::size_t(joint)];
-        if (skin.skeleton >= 0) skin.skeleton = numbering.index[std::size_t(skin.skeleton)];
-        root["skins"].push_back(writeSkin(skin, builder));
-    }
+    for (Json& animation : animations) root["animations"].push_back(std::move(animation));
+    for (Json& skin : skins) root["skins"].push_back(std::move(skin));
     for (const Camera& camera : scene.cameras) root["cameras"].push_back(writeCamera(camera));
     for (const Light& light : scene.lights)
         root["extensions"]["KHR_lights_punctual"]["lights"].push_back(writeLight(light));
     if (usedDraco) extensions.add("KHR_draco_mesh_compression", true);
+    // Required: the fallback buffer holds no data for a viewer that cannot decode the views (GPU batches,
+    // animations, skins).
+    if (builder.fallbackBytes()) extensions.add("EXT_meshopt_compression", true);
     if (!scene.lights.empty()) extensions.add("KHR_lights_punctual", false);
     for (const std::string& extension : extensions.used) root["extensionsUsed"].push_back(extension);
     for (const std::string& extension : extensions.required) root["extensionsRequired"].push_back(extension);

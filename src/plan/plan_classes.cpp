@@ -246,7 +246,9 @@ void planClass(const PlanContext& context, std::size_t k, const CongruenceClass&
                 costs, alone, perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
     }
     const bool single = placed.size() == 1 && !region;
-    const double asTheyAre = copies * costs.merged(c.prototype);
+    // A family's members in other materials, stored as they are, are primitives of their own.
+    const double asTheyAre =
+        copies * costs.merged(c.prototype) + double(materials.size() - 1) * costs.primitiveOverhead(c.prototype);
     bool named = true;
     if (!single && asTheyAre <= std::min(instanced, regional) && anyNamed(context, c, placed)) {
         // Stored as they are, the members lose their nodes' names and extras anyway (one mesh per material):

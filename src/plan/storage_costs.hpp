@@ -32,6 +32,9 @@ public:
     double nodes(const std::vector<PlacedCopy>& copies) const;
     // Tile t's triangles in a mesh with other parts.
     double merged(std::size_t t) { return double(analysis_.tiles[t].mesh.triangles.size()) * kindOf(t).perTriangle; }
+    // What a primitive of tile t's kind costs before its triangles (the tiles stored as they are in another
+    // material need one of their own).
+    double primitiveOverhead(std::size_t t) { return kindOf(t).overhead; }
     // Tile t as a mesh of its own (its class's prototype).
     double alone(std::size_t t);
     // The cheaper way of storing tile t apart from a group of tiles: as it is, or drawn by its class's mesh
