@@ -350,6 +350,18 @@ CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>&
             if (!planned[k].members.empty()) planClass(context, k, planned[k], drawn, ofClass[k]);
         });
     });
+    // A family that shares nothing is planned class by class, as without families: its members stored as they
+    // are then come in their classes' order.
+    const std::vector<CongruenceClass>& classes = classification.classes;
+    for (std::size_t k = 0; k < classes.size(); ++k)
+        if (planned[k].members.empty() && ofClass[classes[k].family].shared.empty())  // merged into its family's
+            planClass(context, k, classes[k], drawn, ofClass[k]);
+    for (std::size_t k = 0; k < classes.size(); ++k)
+        if (classes[k].family == k && planned[k].members.size() > classes[k].members.size() &&
+            ofClass[k].shared.empty()) {
+            ofClass[k] = CompressionPlan();
+            planClass(context, k, classes[k], drawn, ofClass[k]);
+        }
     for (std::size_t k = 0; k < classification.classes.size(); ++k) {
         ++plan.classes;
         if (classification.shapes[classification.classes[k].prototype].symmetry.order() > 1) ++plan.symmetricClasses;
