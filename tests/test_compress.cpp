@@ -57,6 +57,14 @@ std::filesystem::path writePlainGlb(const Scene& scene, const TemporaryFolder& f
     return file;
 }
 
+// A texture whose image is a PNG signature and a few bytes: carried as it is, never decoded.
+Texture pngSignatureTexture() {
+    Texture image;
+    image.bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 1, 2, 3};
+    image.mimeType = "image/png";
+    return image;
+}
+
 // Open edges (used by one triangle) after welding at 1e-6 of the diagonal, far below a 14-bit step.
 std::ptrdiff_t openEdges(const TriangleMesh& mesh) {
     Eigen::AlignedBox3d box;
@@ -171,10 +179,7 @@ TEST_CASE(
     // Read by a normal map (tangents nothing reads are dropped); its image bytes are carried, not decoded.
     baked.material = 0;
     Scene scene = sceneOfOneMesh("knots", baked);
-    Texture image;
-    image.bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 1, 2, 3};
-    image.mimeType = "image/png";
-    scene.textures = {image};
+    scene.textures = {pngSignatureTexture()};
     scene.materials.emplace_back().normalTexture.texture = 0;
     TemporaryFolder folder;
     const auto input = writePlainGlb(scene, folder, "knots");
@@ -228,10 +233,7 @@ TEST_CASE("A part baked in several materials is stored once: a mesh per material
     const Scene knotScene = readScene(modelPath("vulkan_torusknot/torusknot.gltf"));
     const TriangleMesh knot = worldMesh(knotScene);
     Scene scene;
-    Texture image;
-    image.bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 1, 2, 3};
-    image.mimeType = "image/png";
-    scene.textures = {image};
+    scene.textures = {pngSignatureTexture()};
     std::mt19937_64 random(12);
     std::normal_distribution<double> normal;
     for (int k = 0; k < 6; ++k) {
