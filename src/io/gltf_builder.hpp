@@ -65,7 +65,7 @@ public:
     // `encoded`, meshopt's ATTRIBUTES of `count` elements of `stride` bytes under `filter` ("NONE": none), which
     // goes in the binary buffer; returns its index.
     int addMeshoptBufferView(const std::vector<unsigned char>& encoded, std::size_t count, std::size_t stride,
-                             const std::string& filter) {
+                             const std::string& filter, int target = 0) {
         while (binary_.size() % 4) binary_.push_back(0);
         Json compressed = {{"buffer", 0},     {"byteLength", encoded.size()}, {"byteStride", stride},
                            {"count", count},  {"mode", "ATTRIBUTES"}};
@@ -73,6 +73,7 @@ public:
         if (filter != "NONE") compressed["filter"] = filter;
         Json view = {{"buffer", 1}, {"byteLength", count * stride}};
         if (fallbackBytes_) view["byteOffset"] = fallbackBytes_;
+        if (target) view["target"] = target;
         view["extensions"]["EXT_meshopt_compression"] = compressed;
         binary_.insert(binary_.end(), encoded.begin(), encoded.end());
         fallbackBytes_ += (count * stride + 3) / 4 * 4;
@@ -108,8 +109,7 @@ public:
             key.append(reinterpret_cast<const char*>(flat.data()), flat.size() * sizeof(float));
             if (const auto found = dataAccessors_.find(key); found != dataAccessors_.end()) return found->second;
         }
-        Json accessor = {{"bufferView", target == 0 ? addDataView(flat, components)
-                                                    : addBufferView(flat.data(), flat.size() * sizeof(float), target)},
+        Json accessor = {{"bufferView", addDataView(flat, components, target)},
                          {"componentType", kFloat},
                          {"count", flat.size() / std::size_t(components)},
                          {"type", type}};
@@ -119,9 +119,9 @@ public:
         return index;
     }
 
-    // Where set, data that is no vertex attribute is stored encoded by it (the writer's meshopt ATTRIBUTES, filter
-    // NONE: lossless) where that is smaller: an animation's keys, a skin's matrices. Its arguments: the bytes and
-    // an element's size.
+    // Where set, float data is stored encoded by it (the writer's meshopt ATTRIBUTES, filter NONE: lossless) where
+    // that is smaller: an animation's keys, a skin's matrices, a plain primitive's vertices. Its arguments: the
+    // bytes and an element's size.
     std::function<std::vector<unsigned char>(const std::vector<unsigned char>&, std::size_t)> dataEncoder;
 
     static void addBounds(Json& accessor, const std::vector<float>& flat, int components) {
@@ -142,37 +142,10 @@ public:
 
     std::vector<unsigned char>& binary() { return binary_; }
 
-    // What has been added so far, to measure what follows and take it back (rollback): the writer tries the
-    // animations' data encoded and plain.
-    struct Mark {
-        std::size_t binary, fallback, views, accessors;
-    };
-    Mark mark() const {
-        return {binary_.size(), fallbackBytes_, root_.contains("bufferViews") ? root_["bufferViews"].size() : 0,
-                root_.contains("accessors") ? root_["accessors"].size() : 0};
-    }
-    // The bytes added since `from`: binary data, and the JSON of the views and accessors.
-    std::size_t bytesSince(const Mark& from) const {
-        std::size_t bytes = binary_.size() - from.binary;
-        for (const char* list : {"bufferViews", "accessors"})
-            if (root_.contains(list))
-                for (std::size_t i = list[0] == 'b' ? from.views : from.accessors; i < root_[list].size(); ++i)
-                    bytes += jsonText(root_[list][i]).size() + 1;
-        return bytes;
-    }
-    void rollback(const Mark& to) {
-        binary_.resize(to.binary);
-        fallbackBytes_ = to.fallback;
-        if (root_.contains("bufferViews")) root_["bufferViews"].get_ref<Json::array_t&>().resize(to.views);
-        if (root_.contains("accessors")) root_["accessors"].get_ref<Json::array_t&>().resize(to.accessors);
-        for (auto entry = dataAccessors_.begin(); entry != dataAccessors_.end();)
-            entry = entry->second >= int(to.accessors) ? dataAccessors_.erase(entry) : std::next(entry);
-    }
-
 private:
-    // A view of float data that is no vertex attribute, encoded where dataEncoder makes it smaller by more than
-    // the extension's JSON (some 100 bytes).
-    int addDataView(const std::vector<float>& flat, int components) {
+    // A view of float data, encoded where dataEncoder makes it smaller by more than the extension's JSON (some 100
+    // bytes).
+    int addDataView(const std::vector<float>& flat, int components, int target) {
         const std::size_t size = flat.size() * sizeof(float), element = std::size_t(components) * sizeof(float);
         if (dataEncoder && element % 4 == 0 && element <= 256 && !flat.empty()) {
             const auto* bytes = reinterpret_cast<const unsigned char*>(flat.data());
@@ -180,9 +153,9 @@ private:
                 dataEncoder(std::vector<unsigned char>(bytes, bytes + size), element);
             constexpr std::size_t kExtensionJson = 100;
             if (encoded.size() + kExtensionJson < size)
-                return addMeshoptBufferView(encoded, flat.size() / std::size_t(components), element, "NONE");
+                return addMeshoptBufferView(encoded, flat.size() / std::size_t(components), element, "NONE", target);
         }
-        return addBufferView(flat.data(), size);
+        return addBufferView(flat.data(), size, target);
     }
 
     Json& root_;

@@ -430,8 +430,28 @@ std::size_t gltfNodeBytes(const Node& node) {
     return bytes + 3;  // its index in the scene's list of nodes, typically
 }
 
-void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& options) {
-    Json root = {{"asset", {{"version", "2.0"}}}};
+namespace {
+
+// A glTF file's JSON and binary buffer, before the buffers are described.
+struct GltfFile {
+    Json root;
+    std::vector<unsigned char> binary;
+    std::size_t fallbackBytes = 0;  // EXT_meshopt_compression's fallback buffer
+    // EXT_meshopt_compression's views are of buffer 1, whose data only the binary buffer's encoded bytes hold.
+    Json fallbackBuffer() const {
+        return {{"byteLength", fallbackBytes}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}};
+    }
+    std::size_t bytes() const {
+        return jsonText(root).size() + binary.size() + (fallbackBytes ? jsonText(fallbackBuffer()).size() + 1 : 0);
+    }
+};
+
+// The file of `scene`; with `codeData`, the data that neither Draco nor an image codes (animations' keys, skins'
+// matrices, the vertices of morphed primitives) coded by meshopt without loss where each view is smaller for it.
+GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions& options, bool codeData) {
+    GltfFile out;
+    Json& root = out.root;
+    root = {{"asset", {{"version", "2.0"}}}};
     if (!options.extrasJson.empty()) {
         try {
             root["asset"]["extras"] = Json::parse(options.extrasJson);
@@ -444,6 +464,7 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     if (!root["asset"].contains("extras") || !root["asset"]["extras"].contains("symcompress_digest"))
         root["asset"]["generator"] = "symcompress";
     GltfBuilder builder(root);
+    if (codeData) builder.dataEncoder = meshoptEncoded;
     ExtensionsInUse extensions;
     TextureWriter textures(scene, builder, root, file, extensions);
     for (const Material& material : scene.materials)
@@ -545,42 +566,15 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     root["scenes"] = {{{"nodes", numbering.list(scene.roots)}}};
     root["scene"] = 0;
     // Animations and skins name nodes that are never batched, renumbered as the nodes are.
-    auto writeAnimationsAndSkins = [&] {
-        Json animations = Json::array(), skins = Json::array();
-        for (Animation animation : scene.animations) {
-            for (AnimationChannel& channel : animation.channels)
-                channel.node = numbering.index[std::size_t(channel.node)];
-            animations.push_back(writeAnimation(animation, builder));
-        }
-        for (Skin skin : scene.skins) {
-            for (int& joint : skin.joints) joint = numbering.index[std::size_t(joint)];
-            if (skin.skeleton >= 0) skin.skeleton = numbering.index[std::size_t(skin.skeleton)];
-            skins.push_back(writeSkin(skin, builder));
-        }
-        return std::pair{animations, skins};
-    };
-    // Compressed output: their data coded losslessly by meshopt where the file is smaller for it (a file with no
-    // other meshopt view pays for the fallback buffer and the extension's names, some 150 bytes).
-    const GltfBuilder::Mark before = builder.mark();
-    auto [animations, skins] = writeAnimationsAndSkins();
-    if (options.draco && !(animations.empty() && skins.empty())) {
-        const std::size_t plain = builder.bytesSince(before);
-        builder.rollback(before);
-        builder.dataEncoder = meshoptEncoded;
-        auto encoded = writeAnimationsAndSkins();
-        constexpr std::size_t kMeshoptFileBytes = 150;
-        const std::size_t coded =
-            builder.bytesSince(before) + (before.fallback == 0 && builder.fallbackBytes() > 0 ? kMeshoptFileBytes : 0);
-        builder.rollback(before);
-        if (coded < plain) {
-            std::tie(animations, skins) = writeAnimationsAndSkins();
-        } else {
-            builder.dataEncoder = nullptr;
-            std::tie(animations, skins) = writeAnimationsAndSkins();
-        }
+    for (Animation animation : scene.animations) {
+        for (AnimationChannel& channel : animation.channels) channel.node = numbering.index[std::size_t(channel.node)];
+        root["animations"].push_back(writeAnimation(animation, builder));
     }
-    for (Json& animation : animations) root["animations"].push_back(std::move(animation));
-    for (Json& skin : skins) root["skins"].push_back(std::move(skin));
+    for (Skin skin : scene.skins) {
+        for (int& joint : skin.joints) joint = numbering.index[std::size_t(joint)];
+        if (skin.skeleton >= 0) skin.skeleton = numbering.index[std::size_t(skin.skeleton)];
+        root["skins"].push_back(writeSkin(skin, builder));
+    }
     for (const Camera& camera : scene.cameras) root["cameras"].push_back(writeCamera(camera));
     for (const Light& light : scene.lights)
         root["extensions"]["KHR_lights_punctual"]["lights"].push_back(writeLight(light));
@@ -592,13 +586,35 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     for (const std::string& extension : extensions.used) root["extensionsUsed"].push_back(extension);
     for (const std::string& extension : extensions.required) root["extensionsRequired"].push_back(extension);
 
-    std::vector<unsigned char>& binary = builder.binary();
-    // EXT_meshopt_compression's views are of buffer 1, whose data only the binary buffer's encoded bytes hold.
-    const Json fallback = {{"byteLength", builder.fallbackBytes()},
-                           {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}};
+    out.binary = std::move(builder.binary());
+    out.fallbackBytes = builder.fallbackBytes();
+    return out;
+}
+
+}  // namespace
+
+void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& options) {
+    // Compressed output with data Draco does not code is built twice, that data plain and coded by meshopt, and
+    // the smaller kept (a file with no other meshopt view pays for its fallback buffer and the extension's names);
+    // the primitives' Draco encodings are made once for both.
+    const bool dataToCode =
+        options.draco && (!scene.animations.empty() || !scene.skins.empty() ||
+                          std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& mesh) {
+                              return std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
+                                                 [](const Primitive& p) { return !p.targets.empty(); });
+                          }));
+    WriteOptions once = options;
+    if (dataToCode && !once.encodings) once.encodings = makePrimitiveEncodings();
+    GltfFile built = buildGltf(scene, file, once, false);
+    if (dataToCode)
+        if (GltfFile coded = buildGltf(scene, file, once, true); coded.bytes() < built.bytes())
+            built = std::move(coded);
+    Json& root = built.root;
+    const std::vector<unsigned char>& binary = built.binary;
+    const Json fallback = built.fallbackBuffer();
     if (formatFromExtension(file) == FileFormat::Glb) {
         if (!binary.empty()) root["buffers"] = {{{"byteLength", binary.size()}}};
-        if (builder.fallbackBytes()) root["buffers"].push_back(fallback);
+        if (built.fallbackBytes) root["buffers"].push_back(fallback);
         writeFileAtomically(file, glbFile(root, binary));
         return;
     }
@@ -606,7 +622,7 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     if (!binary.empty()) {
         const fs::path bin = fs::path(file).replace_extension(".bin");
         root["buffers"] = {{{"byteLength", binary.size()}, {"uri", bin.filename().string()}}};
-        if (builder.fallbackBytes()) root["buffers"].push_back(fallback);
+        if (built.fallbackBytes) root["buffers"].push_back(fallback);
         writeFileAtomically(bin, std::string_view(reinterpret_cast<const char*>(binary.data()), binary.size()));
     }
     writeFileAtomically(file, jsonText(root, 1));
