@@ -358,6 +358,11 @@ TEST_CASE(
             }
             if (interopAvailable()) CHECK(validatorErrors(file).empty());
         }
+    // --no-gpu-instancing, for viewers without the extensions: no meshopt.
+    WriteOptions without;
+    without.gpuInstancing = false;
+    writeScene(animated(300), folder / "walk-without.glb", without);
+    CHECK(meshoptViews(glbJson(folder / "walk-without.glb")) == 0);
 }
 
 TEST_CASE("Animations are written to X3D as a TimeSensor, interpolators and ROUTEs", "[io][x3d]") {

@@ -55,8 +55,9 @@ struct WriteOptions {
     // false: each primitive encoded once, at the speed compressionLevel asks first and the fewest position bits,
     // without the trials of other speeds and bits: a quick measure, for comparing two ways of storing a part.
     bool encodingTrials = true;
-    // glTF: leaves drawing one mesh written as one node with EXT_mesh_gpu_instancing where that is smaller
-    // (--no-gpu-instancing: a node each, for viewers without the extension).
+    // glTF: leaves drawing one mesh written as one node with EXT_mesh_gpu_instancing where that is smaller, and
+    // animation, skin and morph data coded by EXT_meshopt_compression where that is (--no-gpu-instancing: a node
+    // each and no meshopt, for viewers without the extensions).
     bool gpuInstancing = true;
     // How far, relative to the scene's bounding-box diagonal, the rounding of an instance's rotation (to
     // normalized SHORT, or through meshopt's filters) may move a vertex (else the batch keeps FLOAT rotations):

@@ -597,12 +597,12 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     // Compressed output with data Draco does not code is built twice, that data plain and coded by meshopt, and
     // the smaller kept (a file with no other meshopt view pays for its fallback buffer and the extension's names);
     // the primitives' Draco encodings are made once for both.
-    const bool dataToCode =
-        options.draco && (!scene.animations.empty() || !scene.skins.empty() ||
-                          std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& mesh) {
-                              return std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
-                                                 [](const Primitive& p) { return !p.targets.empty(); });
-                          }));
+    const bool dataToCode = options.draco && options.gpuInstancing &&
+                            (!scene.animations.empty() || !scene.skins.empty() ||
+                             std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& mesh) {
+                                 return std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
+                                                    [](const Primitive& p) { return !p.targets.empty(); });
+                             }));
     WriteOptions once = options;
     if (dataToCode && !once.encodings) once.encodings = makePrimitiveEncodings();
     GltfFile built = buildGltf(scene, file, once, false);

@@ -337,7 +337,8 @@ void addWriteOptions(CLI::App& command, WriteOptions& options) {
         "glTF: write plain accessors instead of KHR_draco_mesh_compression");
     command.add_flag(
         "--no-gpu-instancing", [&options](std::int64_t) { options.gpuInstancing = false; },
-        "glTF: a node per instance, never EXT_mesh_gpu_instancing (for viewers without the extension)");
+        "glTF: a node per instance, never EXT_mesh_gpu_instancing nor EXT_meshopt_compression (for viewers "
+        "without them)");
     command.add_option("--position-bits", options.positionBits,
                        "Draco position quantization bits for every mesh (compress: in place of the bits the error "
                        "budget gives each mesh)")
