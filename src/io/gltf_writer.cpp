@@ -486,10 +486,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     // Primitives equal but for their material (one part drawn in several: a family of classes, or an input's meshes
     // that share accessors) are encoded once and name the same accessors, at the texture coordinate bits the
     // finest of their materials asks. Morph targets are no part of the fingerprint: their primitives stay apart.
-    struct FingerprintHash {
-        std::size_t operator()(const PrimitiveFingerprint& key) const { return std::size_t(key.first); }
-    };
-    std::unordered_map<PrimitiveFingerprint, std::size_t, FingerprintHash> byGeometry;
+    std::unordered_map<PrimitiveFingerprint, std::size_t, PrimitiveFingerprintHash> byGeometry;
     std::vector<std::size_t> encodingOf;  // of each primitive written, in order
     for (const Mesh& mesh : scene.meshes)
         for (const Primitive& primitive : mesh.primitives) {

@@ -20,6 +20,11 @@ namespace symcompress {
 using PrimitiveFingerprint = std::pair<std::uint64_t, std::uint64_t>;
 PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOptions& options, bool withMaterial = true);
 
+// Its first lane: already a hash.
+struct PrimitiveFingerprintHash {
+    std::size_t operator()(const PrimitiveFingerprint& key) const { return std::size_t(key.first); }
+};
+
 // Thread-safe: the writer encodes a scene's primitives in parallel.
 class PrimitiveEncodings {
 public:
@@ -27,11 +32,8 @@ public:
     void insert(const PrimitiveFingerprint& key, const EncodedPrimitive& encoded);
 
 private:
-    struct KeyHash {
-        std::size_t operator()(const PrimitiveFingerprint& key) const { return std::size_t(key.first); }
-    };
     mutable std::mutex mutex_;
-    std::unordered_map<PrimitiveFingerprint, EncodedPrimitive, KeyHash> encodings_;
+    std::unordered_map<PrimitiveFingerprint, EncodedPrimitive, PrimitiveFingerprintHash> encodings_;
 };
 
 }  // namespace symcompress
