@@ -80,8 +80,11 @@ public:
         root_["bufferViews"].push_back(view);
         return static_cast<int>(root_["bufferViews"].size()) - 1;
     }
-    // The bytes the fallback buffer stands for (0: no view is meshopt's).
-    std::size_t fallbackBytes() const { return fallbackBytes_; }
+    // The bytes the fallback buffer stands for (0: no view is meshopt's), data that is no vertex attribute written.
+    std::size_t fallbackBytes() {
+        writePendingData();
+        return fallbackBytes_;
+    }
 
     void setByteStride(int view, std::size_t stride) { root_["bufferViews"][std::size_t(view)]["byteStride"] = stride; }
 
@@ -103,18 +106,20 @@ public:
     // matrices): written once for every use of the same values (an animation's channels share their key times).
     int addFloatAccessor(const std::vector<float>& flat, int components, const char* type, bool withBounds,
                          int target) {
-        std::string key;
+        std::string key = std::to_string(target) + type + (withBounds ? "+" : "-");
+        const std::size_t groupKey = key.size();
         if (target == 0) {
-            key = std::string(type) + (withBounds ? "+" : "-");
             key.append(reinterpret_cast<const char*>(flat.data()), flat.size() * sizeof(float));
             if (const auto found = dataAccessors_.find(key); found != dataAccessors_.end()) return found->second;
         }
-        Json accessor = {{"bufferView", addDataView(flat, components, target)},
-                         {"componentType", kFloat},
-                         {"count", flat.size() / std::size_t(components)},
-                         {"type", type}};
+        Json accessor = {{"componentType", kFloat}, {"count", flat.size() / std::size_t(components)}, {"type", type}};
         if (withBounds) addBounds(accessor, flat, components);
         const int index = addAccessor(std::move(accessor));
+        PendingData& pending = pendingData_[key.substr(0, groupKey)];
+        pending.target = target;
+        pending.components = components;
+        pending.accessors.emplace_back(index, pending.values.size() * sizeof(float));
+        pending.values.insert(pending.values.end(), flat.begin(), flat.end());
         if (target == 0) dataAccessors_.emplace(std::move(key), index);
         return index;
     }
@@ -140,7 +145,11 @@ public:
         accessor["max"] = shortest(hi);
     }
 
-    std::vector<unsigned char>& binary() { return binary_; }
+    // The binary buffer, complete: data that is no vertex attribute is written first.
+    std::vector<unsigned char>& binary() {
+        writePendingData();
+        return binary_;
+    }
 
 private:
     // A view of float data, encoded where dataEncoder makes it smaller by more than the extension's JSON (some 100
@@ -158,10 +167,35 @@ private:
         return addBufferView(flat.data(), size, target);
     }
 
+    // Float data goes in one view for each target and type (an animation's key times, its rotations; the positions
+    // of plain primitives and their morph targets' displacements): a view's JSON is written once, and meshopt codes
+    // one long stream better than many short ones. Its accessors name their view once it is written.
+    struct PendingData {
+        int target = 0;
+        int components = 1;
+        std::vector<float> values;
+        std::vector<std::pair<int, std::size_t>> accessors;  // each accessor and its offset in bytes
+    };
+    void writePendingData() {
+        for (auto& [type, pending] : pendingData_) {
+            const int view = addDataView(pending.values, pending.components, pending.target);
+            // Vertex attributes that share a view are read at its stride, which glTF then asks to be given.
+            if (pending.target == kArrayBuffer && pending.accessors.size() > 1)
+                setByteStride(view, std::size_t(pending.components) * sizeof(float));
+            for (const auto& [accessor, offset] : pending.accessors) {
+                Json& json = root_["accessors"][std::size_t(accessor)];
+                json["bufferView"] = view;
+                if (offset) json["byteOffset"] = offset;
+            }
+        }
+        pendingData_.clear();
+    }
+
     Json& root_;
     std::vector<unsigned char> binary_;
     std::size_t fallbackBytes_ = 0;
     std::map<std::string, int> dataAccessors_;  // the accessors of data that is no vertex attribute, by content
+    std::map<std::string, PendingData> pendingData_;  // by target, type and whether bounds are written
 };
 
 // One Draco-compressed glTF primitive, encoded but not yet in the builder: its bytes, its accessors (name and

@@ -373,10 +373,11 @@ std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& option
     GltfBuilder builder(root);
     writePrimitive(builder, primitive, options, "(a mesh measured for the plan)", primitives);
     const Json mesh = {{"primitives", primitives}};
-    return jsonText(root).size() + jsonText(mesh).size() + builder.binary().size();
+    const std::size_t binary = builder.binary().size();  // first: it writes the views the JSON names
+    return jsonText(root).size() + jsonText(mesh).size() + binary;
 }
 
-// Animation channels as glTF samplers (float keys and values in buffer views of their own) and channels.
+// Animation channels as glTF samplers (float keys and values, in the views of their types) and channels.
 Json writeAnimation(const Animation& animation, GltfBuilder& builder) {
     Json channels = Json::array(), samplers = Json::array();
     for (const AnimationChannel& channel : animation.channels) {
