@@ -133,8 +133,8 @@ bool sameValues(const std::map<std::string, std::set<std::vector<double>>>& a,
 }
 
 // The scene without the tangents of primitives whose material has no normal map (core or clear-coat's): no
-// viewer reads them (the validator's UNUSED_MESH_TANGENT), and symcompress prunes them by default (but on a
-// primitive with morph targets, whose targets may displace them).
+// viewer reads them (the validator's UNUSED_MESH_TANGENT), and symcompress prunes them by default, with their
+// morph targets' displacements.
 Scene withoutUnreadTangents(Scene scene) {
     for (Mesh& mesh : scene.meshes)
         for (Primitive& primitive : mesh.primitives) {
@@ -143,10 +143,13 @@ Scene withoutUnreadTangents(Scene scene) {
             if (material)
                 for (const MaterialExtension& extension : material->extensions)
                     for (const auto& [key, use] : extension.textures) normalMap |= key == "clearcoatNormalTexture";
-            if (!normalMap && primitive.targets.empty())
-                primitive.attributes.erase(std::remove_if(primitive.attributes.begin(), primitive.attributes.end(),
-                                                          [](const VertexAttribute& a) { return a.name == "TANGENT"; }),
-                                           primitive.attributes.end());
+            const auto tangents = [](const VertexAttribute& a) { return a.name == "TANGENT"; };
+            if (normalMap) continue;
+            primitive.attributes.erase(
+                std::remove_if(primitive.attributes.begin(), primitive.attributes.end(), tangents),
+                primitive.attributes.end());
+            for (MorphTarget& target : primitive.targets)
+                target.erase(std::remove_if(target.begin(), target.end(), tangents), target.end());
         }
     return scene;
 }

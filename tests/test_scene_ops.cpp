@@ -160,6 +160,33 @@ TEST_CASE("dropUnreadAttributes keeps texture coordinates only where a texture r
     validateScene(scene);
 }
 
+TEST_CASE("dropUnreadAttributes drops tangents no normal map reads, from morph targets too", "[scene]") {
+    Primitive morphed = unitTriangle();
+    morphed.attributes.push_back({"TANGENT", 4, {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}});
+    morphed.targets.push_back(
+        {{"POSITION", 3, {0, 0, 1, 0, 0, 1, 0, 0, 1}}, {"TANGENT", 3, {0, 1, 0, 0, 1, 0, 0, 1, 0}}});
+    Scene scene;
+    scene.textures.resize(1);
+    scene.textures[0].bytes = {0x89, 'P', 'N', 'G'};
+    scene.materials.resize(2);
+    scene.materials[1].normalTexture.texture = 0;
+    Mesh mesh;
+    for (int material : {0, 1}) {
+        mesh.primitives.push_back(morphed);
+        mesh.primitives.back().material = material;
+    }
+    scene.meshes.push_back(mesh);
+    CHECK(dropUnreadAttributes(scene) == 1);
+    const auto& kept = scene.meshes[0].primitives;
+    CHECK(kept[0].attributes.empty());
+    REQUIRE(kept[0].targets.size() == 1);
+    REQUIRE(kept[0].targets[0].size() == 1);
+    CHECK(kept[0].targets[0][0] == morphed.targets[0][0]);  // the positions' displacement stays
+    CHECK(kept[1].attributes == morphed.attributes);        // a normal map reads them
+    CHECK(kept[1].targets == morphed.targets);
+    validateScene(scene);
+}
+
 TEST_CASE("validateScene checks animation channels", "[scene]") {
     Scene scene = sceneWithOneMesh(unitTriangle());
     scene.nodes.resize(1);

@@ -151,23 +151,25 @@ std::size_t dropUnreadAttributes(Scene& scene) {
     std::size_t dropped = 0;
     for (Mesh& mesh : scene.meshes)
         for (Primitive& primitive : mesh.primitives) {
-            if (!primitive.targets.empty()) continue;
             const Material* material =
                 primitive.material >= 0 ? &scene.materials[std::size_t(primitive.material)] : nullptr;
-            bool any = false;
-            if (!primitive.texcoords.empty() && !(material && readsTexcoords(*material, 0))) {
-                primitive.texcoords.clear();
-                primitive.texcoords.shrink_to_fit();
-                any = true;
-            }
             const auto unread = [&](const VertexAttribute& attribute) {
                 if (attribute.name == "TANGENT") return !(material && readsTangents(*material));
                 const int set = texcoordSet(attribute.name);
                 return set >= 0 && !(material && readsTexcoords(*material, set));
             };
+            bool any = false;
+            if (!primitive.texcoords.empty() && unread({"TEXCOORD_0", 2, {}})) {
+                primitive.texcoords.clear();
+                primitive.texcoords.shrink_to_fit();
+                any = true;
+            }
             const auto end = std::remove_if(primitive.attributes.begin(), primitive.attributes.end(), unread);
             any = any || end != primitive.attributes.end();
             primitive.attributes.erase(end, primitive.attributes.end());
+            // A morph target displaces only what its primitive has (and what is unread moves nothing seen).
+            for (MorphTarget& target : primitive.targets)
+                target.erase(std::remove_if(target.begin(), target.end(), unread), target.end());
             dropped += any;
         }
     return dropped;
