@@ -42,6 +42,11 @@ struct SurfaceComparison {
 // The rebuilt surface against the reference: vertex-to-surface both ways (d_A), area, bounds, orientation.
 SurfaceComparison compareSurfaces(const TriangleMesh& rebuilt, const TriangleMesh& reference, double boundsTolerance);
 
+// The parts of the scene that animation `animation` moves (the nodes it targets and all under them, the meshes
+// their joints skin), drawn at `time` as a viewer draws them: keyed translations, rotations and scales
+// interpolated as their samplers say, morph targets at their weights, skinned vertices by their joints.
+TriangleMesh posedMesh(const Scene& scene, std::size_t animation, double time);
+
 // What symdecompress found: the rebuilt surface against the original (when given) or the digest stored in
 // the file (else nothing to verify against).
 struct RebuildReport {
@@ -53,6 +58,11 @@ struct RebuildReport {
     double areaRatio = 0;
     bool sameBounds = false;      // Original only
     double flippedArea = 0;       // Original only
+    // Original only: the original's animations, each at its keys' times (at most kPosesPerAnimation of them), the
+    // moved parts against the original's (posedMesh); relative to the original pose's diagonal, infinite where
+    // the animations differ in number or one draws what the other does not.
+    std::size_t posesCompared = 0;
+    double posedDeviation = 0;
     // The stored error budget, else (a file written with fixed bits) the stored tolerance plus half a 14-bit
     // quantization step.
     double allowedDeviation = 0;

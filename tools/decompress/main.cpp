@@ -26,6 +26,9 @@ void print(const RebuildReport& report) {
     std::printf("  against %s: max deviation %.2e of the diagonal (allowed %.2e), area ratio %.9f: %s\n",
                 against.c_str(), report.maxDeviation, report.allowedDeviation, report.areaRatio,
                 report.verified ? "verified" : "NOT VERIFIED");
+    if (report.posesCompared > 0)
+        std::printf("  animations: %zu poses drawn, max deviation %.2e of the diagonal\n", report.posesCompared,
+                    report.posedDeviation);
 }
 
 }  // namespace
