@@ -160,3 +160,42 @@ TEST_CASE("symdecompress draws every animation: a changed key is not verified, t
     CHECK(std::any_of(x3d.warnings.begin(), x3d.warnings.end(),
                       [](const std::string& w) { return w.find("animations are not compared") != std::string::npos; }));
 }
+
+TEST_CASE("Draco rounds skin weights only as far as skinWeightError allows in every pose", "[io][verify]") {
+    const Scene scene = bendingStrip(90);
+    TemporaryFolder folder;
+    // Each vertex's weights in the file, found by its position (the strip's six are far apart).
+    auto weightsRead = [&](double error) {
+        WriteOptions options;
+        options.skinWeightError = error;
+        writeScene(scene, folder / "strip.glb", options);
+        const Scene read = readScene(folder / "strip.glb");
+        const Primitive& original = scene.meshes[0].primitives[0];
+        const Primitive& back = read.meshes.at(0).primitives.at(0);
+        REQUIRE(back.positions.size() == 6);
+        const VertexAttribute* weights = nullptr;
+        for (const VertexAttribute& attribute : back.attributes)
+            if (attribute.name == "WEIGHTS_0") weights = &attribute;
+        REQUIRE(weights);
+        double largest = 0;
+        for (std::size_t v = 0; v < 6; ++v) {
+            std::size_t nearest = 0;
+            for (std::size_t o = 1; o < 6; ++o)
+                if ((original.positions[o] - back.positions[v]).norm() <
+                    (original.positions[nearest] - back.positions[v]).norm())
+                    nearest = o;
+            for (int c = 0; c < 4; ++c)
+                largest =
+                    std::max(largest, std::abs(weights->vertex(v)[c] - original.attributes[1].vertex(nearest)[c]));
+        }
+        return largest;
+    };
+    // The tip is 2.0025 from the origin at rest (its farthest): 1e-4 asks 17 bits, 4 weights * half a step
+    // * 2.0025 * 2 (the motion between keys) = 6.1e-5 (16 bits would be 1.2e-4).
+    const double rounded = weightsRead(1e-4);
+    CHECK(rounded > 0);
+    CHECK(rounded <= 0.5 / ((1 << 17) - 1) + 1e-9);
+    // An error that no 24 bits keep: the weights as read.
+    CHECK(weightsRead(1e-12) == 0);
+    CHECK(weightsRead(0) == 0);
+}

@@ -50,6 +50,10 @@ struct WriteOptions {
     int normalBits = 10;
     int texcoordBits = 12;
     int colorBits = 8;
+    // > 0: how far (a distance) the rounding of a skin's weights may move a vertex in any pose; the glTF writer
+    // sets each skinned primitive's weightBits from it. 0: weights kept as read (float32).
+    double skinWeightError = 0;
+    int weightBits = 0;  // Draco's quantization of WEIGHTS_n; 0: none (float32 as read)
     int compressionLevel =
         10;  // Draco speed 10 - compressionLevel; 10: the smallest of several (dracoSpeedsWorthTrying)
     // false: each primitive encoded once, at the speed compressionLevel asks first and the fewest position bits,

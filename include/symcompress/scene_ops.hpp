@@ -27,6 +27,27 @@ std::string animationChannelProblem(const AnimationChannel& channel, std::size_t
 std::string cameraProblem(const Camera& camera);
 std::string lightProblem(const Light& light);
 
+// The channel's value at `time`: the first key's before it, the last key's after it (glTF clamps), else
+// interpolated as its sampler says (step, linear with slerp for rotations, cubic spline), a rotation normalized.
+std::vector<double> sampleChannel(const AnimationChannel& channel, double time);
+
+// Every node's world transform at `time` of animation `animation` (an index past the last: at rest), its keyed
+// translation, rotation and scale replacing its own (glTF allows no matrix on an animated node).
+std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, std::size_t animation, double time);
+
+// A skin's joint matrices in a pose: each joint's world transform times its inverse bind matrix.
+std::vector<Eigen::Matrix4d> jointMatrices(const Skin& skin, const std::vector<Eigen::Matrix4d>& world);
+
+// Vertex v of a skinned primitive at `position` (its morph targets applied) drawn by `joints`: the sum of its
+// joints' matrices weighted by WEIGHTS_n; by `otherwise` where it has no joints or weights.
+Eigen::Vector3d skinnedPosition(const Primitive& primitive, std::size_t v, const Eigen::Vector3d& position,
+                                const std::vector<Eigen::Matrix4d>& joints, const Eigen::Matrix4d& otherwise);
+
+// How far from the origin a vertex of the skinned primitive gets when carried by any one joint that weighs it,
+// at rest and at every key time of every animation: rounding its weights by at most d each moves it by at most
+// (weights a vertex) * d * this reach.
+double skinReach(const Scene& scene, const Primitive& primitive, const Skin& skin);
+
 // A primitive placed in world space: attributes transformed (normals by the inverse transpose and
 // renormalized), winding flipped where the world transform has a negative determinant.
 struct WorldPrimitive {

@@ -24,6 +24,8 @@ namespace {
 // The shares of the error budget left for the rounding of GPU-instanced rotations (normalized shorts, meshopt's
 // quaternion filter) and of their translations and scales (meshopt's exponential filter).
 constexpr double kRotationShare = 1.0 / 64, kTranslationShare = 1.0 / 64;
+// The share for the rounding of skin weights, in a scene with skins.
+constexpr double kSkinWeightShare = 1.0 / 32;
 
 double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -155,7 +157,9 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         planOptions.instanceShare = options.maxError * (kRotationShare + kTranslationShare);
         write.instanceRotationDeviation = options.maxError * kRotationShare;
         write.instanceTranslationDeviation = options.maxError * kTranslationShare;
-        write.maxPositionError = (options.maxError - planOptions.instanceShare) * analysis.diagonal;
+        const double skinShare = scene.skins.empty() ? 0 : options.maxError * kSkinWeightShare;
+        write.skinWeightError = skinShare * analysis.diagonal;
+        write.maxPositionError = (options.maxError - planOptions.instanceShare - skinShare) * analysis.diagonal;
         write.maxRelativePositionError = options.closeUpError * options.maxError;
     }
     planOptions.costs = costModelFor(formatFromExtension(output), write);

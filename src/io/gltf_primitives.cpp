@@ -47,13 +47,14 @@ void addDracoAttribute(draco::TriangleSoupMeshBuilder& builder, const Primitive&
 
 // The Draco quantization of one of Primitive::attributes: tangents at 8 bits a component (gltfpack's too; the
 // lantern's normal-mapped render is as far from its input at 8 bits as unquantized, 0.17% of pixels, for 31.7
-// KB against 88.7 KB), further UV sets and colours as the first; 0 (none: as read) for joints, weights (whose
-// sums viewers and the validator check) and an application's attributes.
+// KB against 88.7 KB), further UV sets and colours as the first, weights as the writer bounds them (weightBitsFor);
+// 0 (none: as read) for joints and an application's attributes.
 constexpr int kTangentBits = 8;
 int quantizationBits(const std::string& name, const WriteOptions& options) {
     if (name == "TANGENT") return kTangentBits;
     if (name.rfind("TEXCOORD_", 0) == 0) return options.texcoordBits;
     if (name.rfind("COLOR_", 0) == 0) return options.colorBits;
+    if (name.rfind("WEIGHTS_", 0) == 0) return options.weightBits;
     return 0;
 }
 

@@ -365,6 +365,31 @@ int texcoordBitsFor(const Scene& scene, const Primitive& primitive, int bits) {
     return std::clamp(int(std::ceil(std::log2(std::min(steps, 1e9)))), bits, 20);
 }
 
+// Draco's bits for the skin weights of mesh `m`'s primitive: the fewest (of 8 to 24) whose rounding, half a step
+// of each weight's span, moves no vertex by more than `error` in any pose (a vertex moves by at most the rounding
+// of each of its weights times how far from the origin any one joint carries it: skinReach, at every key), with
+// a factor 2 for the motion between keys; 0 (float32 as read) where no skin draws the mesh, where even 24 bits do
+// not, or where no error is allowed.
+int weightBitsFor(const Scene& scene, const std::vector<std::vector<int>>& skinsOfMesh, std::size_t m,
+                  const Primitive& primitive, double error) {
+    if (!(error > 0) || skinsOfMesh[m].empty()) return 0;
+    std::size_t weights = 0;
+    double span = 0;
+    for (const VertexAttribute& attribute : primitive.attributes)
+        if (attribute.name.rfind("WEIGHTS_", 0) == 0 && !attribute.values.empty()) {
+            weights += std::size_t(attribute.components);
+            const auto [lo, hi] = std::minmax_element(attribute.values.begin(), attribute.values.end());
+            span = std::max(span, *hi - *lo);
+        }
+    if (weights == 0) return 0;
+    double reach = 0;
+    for (int skin : skinsOfMesh[m])
+        reach = std::max(reach, skinReach(scene, primitive, scene.skins[std::size_t(skin)]));
+    for (int bits = 8; bits <= 24; ++bits)
+        if (2 * double(weights) * span / (2 * ((1 << bits) - 1)) * reach <= error) return bits;
+    return 0;
+}
+
 }  // namespace
 
 std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& options) {
@@ -489,16 +514,23 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     // finest of their materials asks. Morph targets are no part of the fingerprint: their primitives stay apart.
     std::unordered_map<PrimitiveFingerprint, std::size_t, PrimitiveFingerprintHash> byGeometry;
     std::vector<std::size_t> encodingOf;  // of each primitive written, in order
-    for (const Mesh& mesh : scene.meshes)
-        for (const Primitive& primitive : mesh.primitives) {
+    std::vector<std::vector<int>> skinsOfMesh(scene.meshes.size());
+    for (const Node& node : scene.nodes)
+        if (node.mesh >= 0 && node.skin >= 0) skinsOfMesh[std::size_t(node.mesh)].push_back(node.skin);
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        for (const Primitive& primitive : scene.meshes[m].primitives) {
             if (primitive.triangles.empty()) continue;
             const int texcoordBits = texcoordBitsFor(scene, primitive, options.texcoordBits);
+            const int weightBits = weightBitsFor(scene, skinsOfMesh, m, primitive, options.skinWeightError);
             if (primitive.targets.empty()) {
                 const auto [first, added] =
                     byGeometry.try_emplace(fingerprintOf(primitive, options, false), encodings.size());
                 if (!added) {
-                    int& bits = encodings[first->second].options.texcoordBits;
-                    bits = std::max(bits, texcoordBits);
+                    WriteOptions& shared = encodings[first->second].options;
+                    shared.texcoordBits = std::max(shared.texcoordBits, texcoordBits);
+                    // The finer of two: none (float32 as read) is the finest.
+                    shared.weightBits =
+                        shared.weightBits == 0 || weightBits == 0 ? 0 : std::max(shared.weightBits, weightBits);
                     encodingOf.push_back(first->second);
                     continue;
                 }
@@ -506,6 +538,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             encodingOf.push_back(encodings.size());
             WriteOptions forPrimitive = options;
             forPrimitive.texcoordBits = texcoordBits;
+            forPrimitive.weightBits = weightBits;
             encodings.push_back({&primitive, std::move(forPrimitive), {}, nullptr});
         }
     withThreads(options.threads, [&] {

@@ -1,126 +1,37 @@
 // The parts of a scene that an animation moves, as a viewer draws them at one of its times: the decoder's check
 // that animations, skins and morph targets come out as they went in (glTF 2.0, sections 3.7.2 "Skins", 3.7.2.2
 // "Morph Targets", 3.11 "Animations" and Appendix C "Interpolation").
+#include "symcompress/scene_ops.hpp"
 #include "symcompress/verify.hpp"
-
-#include "io/rotation_and_scale.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
 namespace symcompress {
-namespace {
-
-// The channel's value at `time`: the first key's before it, the last key's after it (glTF clamps), else
-// interpolated as the sampler says; a rotation normalized.
-std::vector<double> sampleChannel(const AnimationChannel& channel, double time) {
-    const std::size_t width = channel.components(), keys = channel.times.size();
-    const bool cubic = channel.interpolation == AnimationChannel::Interpolation::CubicSpline;
-    // Key k's value (a cubic spline stores in-tangent, value, out-tangent) and, for splines, its tangents.
-    auto part = [&](std::size_t k, std::size_t which) {
-        const std::size_t at = (cubic ? 3 * k + which : k) * width;
-        return std::vector<double>(channel.values.begin() + std::ptrdiff_t(at),
-                                   channel.values.begin() + std::ptrdiff_t(at + width));
-    };
-    const std::size_t valueAt = cubic ? 1 : 0;
-    const auto after = std::upper_bound(channel.times.begin(), channel.times.end(), time);
-    if (after == channel.times.begin()) return part(0, valueAt);
-    if (after == channel.times.end()) return part(keys - 1, valueAt);
-    const std::size_t k = std::size_t(after - channel.times.begin()) - 1;
-    const double span = channel.times[k + 1] - channel.times[k], u = (time - channel.times[k]) / span;
-    const bool rotation = channel.path == AnimationChannel::Path::Rotation;
-    std::vector<double> out(width);
-    switch (channel.interpolation) {
-    case AnimationChannel::Interpolation::Step: return part(k, 0);
-    case AnimationChannel::Interpolation::Linear:
-        if (rotation) {
-            const std::vector<double> a = part(k, 0), b = part(k + 1, 0);
-            const Eigen::Quaterniond q = Eigen::Quaterniond(a[3], a[0], a[1], a[2])
-                                             .normalized()
-                                             .slerp(u, Eigen::Quaterniond(b[3], b[0], b[1], b[2]).normalized());
-            return {q.x(), q.y(), q.z(), q.w()};
-        }
-        for (std::size_t c = 0; c < width; ++c) out[c] = (1 - u) * part(k, 0)[c] + u * part(k + 1, 0)[c];
-        break;
-    case AnimationChannel::Interpolation::CubicSpline: {
-        const double u2 = u * u, u3 = u2 * u;
-        const std::vector<double> v0 = part(k, 1), b0 = part(k, 2), a1 = part(k + 1, 0), v1 = part(k + 1, 1);
-        for (std::size_t c = 0; c < width; ++c)
-            out[c] = (2 * u3 - 3 * u2 + 1) * v0[c] + (u3 - 2 * u2 + u) * span * b0[c] + (-2 * u3 + 3 * u2) * v1[c] +
-                     (u3 - u2) * span * a1[c];
-        break;
-    }
-    }
-    if (rotation) {
-        const double length = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
-        if (length > 0)
-            for (double& x : out) x /= length;
-    }
-    return out;
-}
-
-// The node's local transform with the animated parts of its TRS replaced. glTF allows no matrix on an animated
-// node, so its transform is a rotation and a scale (asRotationAndScale); one that shears keeps its transform.
-Eigen::Matrix4d animatedTransform(const Eigen::Matrix4d& rest, const std::vector<const AnimationChannel*>& channels,
-                                  double time) {
-    const auto trs = asRotationAndScale(rest.topLeftCorner<3, 3>());
-    if (!trs) return rest;
-    Eigen::Vector3d translation = rest.topRightCorner<3, 1>(), scale = trs->second;
-    Eigen::Quaterniond rotation(trs->first);
-    for (const AnimationChannel* channel : channels) {
-        const std::vector<double> value = sampleChannel(*channel, time);
-        switch (channel->path) {
-        case AnimationChannel::Path::Translation: translation = {value[0], value[1], value[2]}; break;
-        case AnimationChannel::Path::Rotation:
-            rotation = Eigen::Quaterniond(value[3], value[0], value[1], value[2]);
-            break;
-        case AnimationChannel::Path::Scale: scale = {value[0], value[1], value[2]}; break;
-        case AnimationChannel::Path::Weights: break;
-        }
-    }
-    Eigen::Matrix4d out = Eigen::Matrix4d::Identity();
-    out.topLeftCorner<3, 3>() = rotation.toRotationMatrix() * scale.asDiagonal();
-    out.topRightCorner<3, 1>() = translation;
-    return out;
-}
-
-const VertexAttribute* attributeNamed(const Primitive& primitive, const std::string& name) {
-    for (const VertexAttribute& attribute : primitive.attributes)
-        if (attribute.name == name) return &attribute;
-    return nullptr;
-}
-
-}  // namespace
 
 TriangleMesh posedMesh(const Scene& scene, std::size_t animation, double time) {
     const std::size_t count = scene.nodes.size();
+    const std::vector<Eigen::Matrix4d> world = posedWorldTransforms(scene, animation, time);
     std::vector<std::vector<const AnimationChannel*>> channelsOf(count);
     for (const AnimationChannel& channel : scene.animations.at(animation).channels)
         channelsOf[std::size_t(channel.node)].push_back(&channel);
-    // Parents, and which nodes the animation moves: those it targets and everything under them.
-    std::vector<int> parent(count, -1);
-    for (std::size_t n = 0; n < count; ++n)
-        for (int child : scene.nodes[n].children) parent[std::size_t(child)] = int(n);
+    // Which nodes the animation moves: those it targets and everything under them.
     std::vector<char> moved(count, 0);
-    std::vector<Eigen::Matrix4d> world(count);
-    std::vector<char> done(count, 0);
-    const std::function<void(std::size_t)> place = [&](std::size_t n) {
-        if (done[n]) return;
-        const int up = parent[n];
-        if (up >= 0) place(std::size_t(up));
-        const Eigen::Matrix4d local = channelsOf[n].empty()
-                                          ? scene.nodes[n].transform
-                                          : animatedTransform(scene.nodes[n].transform, channelsOf[n], time);
-        world[n] = up >= 0 ? Eigen::Matrix4d(world[std::size_t(up)] * local) : local;
-        moved[n] = !channelsOf[n].empty() || (up >= 0 && moved[std::size_t(up)]);
-        done[n] = 1;
-    };
-    for (std::size_t n = 0; n < count; ++n) place(n);
+    std::vector<int> stack;
+    for (std::size_t n = 0; n < count; ++n)
+        if (!channelsOf[n].empty()) stack.push_back(int(n));
+    while (!stack.empty()) {
+        const auto n = std::size_t(stack.back());
+        stack.pop_back();
+        if (moved[n]) continue;
+        moved[n] = 1;
+        stack.insert(stack.end(), scene.nodes[n].children.begin(), scene.nodes[n].children.end());
+    }
 
     // The nodes drawn: under the scene's roots.
     std::vector<char> drawn(count, 0);
-    std::vector<int> stack(scene.roots.begin(), scene.roots.end());
+    stack.assign(scene.roots.begin(), scene.roots.end());
     while (!stack.empty()) {
         const auto n = std::size_t(stack.back());
         stack.pop_back();
@@ -143,12 +54,7 @@ TriangleMesh posedMesh(const Scene& scene, std::size_t animation, double time) {
         for (const AnimationChannel* channel : channelsOf[n])
             if (channel->path == AnimationChannel::Path::Weights) weights = sampleChannel(*channel, time);
         // A skinned mesh is drawn by its joints (glTF ignores its node's transform).
-        std::vector<Eigen::Matrix4d> joints;
-        if (skin)
-            for (std::size_t j = 0; j < skin->joints.size(); ++j)
-                joints.push_back(world[std::size_t(skin->joints[j])] * (skin->inverseBindMatrices.empty()
-                                                                            ? Eigen::Matrix4d::Identity()
-                                                                            : skin->inverseBindMatrices[j]));
+        const std::vector<Eigen::Matrix4d> joints = skin ? jointMatrices(*skin, world) : std::vector<Eigen::Matrix4d>();
         for (const Primitive& primitive : mesh.primitives) {
             const auto first = std::uint32_t(out.positions.size());
             for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
@@ -158,21 +64,7 @@ TriangleMesh posedMesh(const Scene& scene, std::size_t animation, double time) {
                         if (displaced.name == "POSITION")
                             p += weights[t] * Eigen::Vector3d(displaced.vertex(v)[0], displaced.vertex(v)[1],
                                                               displaced.vertex(v)[2]);
-                Eigen::Vector4d placed = Eigen::Vector4d::Zero();
-                const Eigen::Vector4d h(p.x(), p.y(), p.z(), 1);
-                bool skinned = false;
-                for (int set = 0; skin && set < 4; ++set) {
-                    const VertexAttribute* ids = attributeNamed(primitive, "JOINTS_" + std::to_string(set));
-                    const VertexAttribute* amounts = attributeNamed(primitive, "WEIGHTS_" + std::to_string(set));
-                    if (!ids || !amounts) break;
-                    for (int c = 0; c < std::min(ids->components, amounts->components); ++c) {
-                        const auto joint = std::size_t(ids->vertex(v)[c]);
-                        if (joint < joints.size()) placed += amounts->vertex(v)[c] * (joints[joint] * h);
-                    }
-                    skinned = true;
-                }
-                if (!skinned) placed = world[n] * h;
-                out.positions.push_back(placed.head<3>());
+                out.positions.push_back(skinnedPosition(primitive, v, p, joints, world[n]));
             }
             for (const Triangle& t : primitive.triangles)
                 out.triangles.push_back({first + t[0], first + t[1], first + t[2]});
