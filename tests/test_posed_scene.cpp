@@ -95,6 +95,10 @@ TEST_CASE("posedMesh: a skinned strip bent by its elbow, each vertex where its w
     }
     // The tip at 90 degrees, worked out by hand: (1, 0, 0) + (-0.1, 1, 0).
     CHECK((posedMesh(scene, 0, 1).positions[5] - Eigen::Vector3d(0.9, 1, 0)).norm() < 1e-12);
+    // Weights that sum to a half are scaled to 1, as three.js does: the same poses.
+    Scene halved = scene;
+    for (double& w : halved.meshes[0].primitives[0].attributes[1].values) w /= 2;
+    CHECK((posedMesh(halved, 0, 0.5).positions[3] - posedMesh(scene, 0, 0.5).positions[3]).norm() < 1e-12);
 }
 
 TEST_CASE("posedMesh interpolates as the sampler says: step, linear, cubic spline, morph weights", "[verify]") {
@@ -190,11 +194,13 @@ TEST_CASE("Draco rounds skin weights only as far as skinWeightError allows in ev
         }
         return largest;
     };
-    // The tip is 2.0025 from the origin at rest (its farthest): 1e-4 asks 17 bits, 4 weights * half a step
-    // * 2.0025 * 2 (the motion between keys) = 6.1e-5 (16 bits would be 1.2e-4).
+    // Bent 90 degrees, the tip is drawn by the elbow alone, 1.42 from where the root joint would put it (the most
+    // of any vertex and pose): 1e-4 asks 16 bits, 4 weights * half a step * 1.42 * 2 (the motion between keys) =
+    // 8.7e-5 (15 bits would be 1.7e-4).
     const double rounded = weightsRead(1e-4);
     CHECK(rounded > 0);
-    CHECK(rounded <= 0.5 / ((1 << 17) - 1) + 1e-9);
+    CHECK(rounded <= 0.5 / ((1 << 16) - 1) + 1e-9);
+    CHECK(rounded > 0.5 / ((1 << 18) - 1));
     // An error that no 24 bits keep: the weights as read.
     CHECK(weightsRead(1e-12) == 0);
     CHECK(weightsRead(0) == 0);

@@ -39,14 +39,16 @@ std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, std::size_
 std::vector<Eigen::Matrix4d> jointMatrices(const Skin& skin, const std::vector<Eigen::Matrix4d>& world);
 
 // Vertex v of a skinned primitive at `position` (its morph targets applied) drawn by `joints`: the sum of its
-// joints' matrices weighted by WEIGHTS_n; by `otherwise` where it has no joints or weights.
+// joints' matrices weighted by WEIGHTS_n, the weights scaled to sum to 1 as viewers do (glTF asks that they do;
+// three.js scales those that do not); by `otherwise` where it has no joints or weights.
 Eigen::Vector3d skinnedPosition(const Primitive& primitive, std::size_t v, const Eigen::Vector3d& position,
                                 const std::vector<Eigen::Matrix4d>& joints, const Eigen::Matrix4d& otherwise);
 
-// How far from the origin a vertex of the skinned primitive gets when carried by any one joint that weighs it,
-// at rest and at every key time of every animation: rounding its weights by at most d each moves it by at most
-// (weights a vertex) * d * this reach.
-double skinReach(const Scene& scene, const Primitive& primitive, const Skin& skin);
+// How far rounding the skinned primitive's weights can move its vertices, per unit of rounding: the largest, over
+// its vertices (of weights summing to s > 0) at rest and at every key time of every animation, of the distance
+// from where one of its joints alone would carry it to where all of them do, over s. Rounding each of a vertex's
+// k weights by at most d moves it by at most k d times this, over 1 - k d / s (the scaling to a sum of 1).
+double skinWeightSensitivity(const Scene& scene, const Primitive& primitive, const Skin& skin);
 
 // A primitive placed in world space: attributes transformed (normals by the inverse transpose and
 // renormalized), winding flipped where the world transform has a negative determinant.

@@ -366,27 +366,35 @@ int texcoordBitsFor(const Scene& scene, const Primitive& primitive, int bits) {
 }
 
 // Draco's bits for the skin weights of mesh `m`'s primitive: the fewest (of 8 to 24) whose rounding, half a step
-// of each weight's span, moves no vertex by more than `error` in any pose (a vertex moves by at most the rounding
-// of each of its weights times how far from the origin any one joint carries it: skinReach, at every key), with
-// a factor 2 for the motion between keys; 0 (float32 as read) where no skin draws the mesh, where even 24 bits do
-// not, or where no error is allowed.
+// d of the weights' span for each of a vertex's k weights, moves no vertex by more than `error` at rest and at any
+// key (k d skinWeightSensitivity / (1 - k d / s), s the least sum of a vertex's weights), and twice that for the
+// motion between keys. 0 (float32 as read) where no skin draws the mesh, where even 24 bits do not, or where no
+// error is allowed.
 int weightBitsFor(const Scene& scene, const std::vector<std::vector<int>>& skinsOfMesh, std::size_t m,
                   const Primitive& primitive, double error) {
     if (!(error > 0) || skinsOfMesh[m].empty()) return 0;
     std::size_t weights = 0;
     double span = 0;
+    std::vector<double> sums(primitive.positions.size(), 0.0);
     for (const VertexAttribute& attribute : primitive.attributes)
         if (attribute.name.rfind("WEIGHTS_", 0) == 0 && !attribute.values.empty()) {
             weights += std::size_t(attribute.components);
             const auto [lo, hi] = std::minmax_element(attribute.values.begin(), attribute.values.end());
             span = std::max(span, *hi - *lo);
+            for (std::size_t v = 0; v < sums.size() && v < attribute.count(); ++v)
+                for (int c = 0; c < attribute.components; ++c) sums[v] += attribute.vertex(v)[c];
         }
-    if (weights == 0) return 0;
-    double reach = 0;
+    double leastSum = std::numeric_limits<double>::infinity();
+    for (double sum : sums)
+        if (sum > 0) leastSum = std::min(leastSum, sum);
+    if (weights == 0 || !std::isfinite(leastSum)) return 0;
+    double sensitivity = 0;
     for (int skin : skinsOfMesh[m])
-        reach = std::max(reach, skinReach(scene, primitive, scene.skins[std::size_t(skin)]));
-    for (int bits = 8; bits <= 24; ++bits)
-        if (2 * double(weights) * span / (2 * ((1 << bits) - 1)) * reach <= error) return bits;
+        sensitivity = std::max(sensitivity, skinWeightSensitivity(scene, primitive, scene.skins[std::size_t(skin)]));
+    for (int bits = 8; bits <= 24; ++bits) {
+        const double rounding = double(weights) * span / (2 * ((1 << bits) - 1));
+        if (rounding < leastSum && 2 * rounding * sensitivity / (1 - rounding / leastSum) <= error) return bits;
+    }
     return 0;
 }
 

@@ -128,35 +128,52 @@ Eigen::Vector3d skinnedPosition(const Primitive& primitive, std::size_t v, const
                                 const std::vector<Eigen::Matrix4d>& joints, const Eigen::Matrix4d& otherwise) {
     const Eigen::Vector4d h(position.x(), position.y(), position.z(), 1);
     Eigen::Vector4d placed = Eigen::Vector4d::Zero();
-    bool skinned = false;
+    double total = 0;
+    std::size_t firstJoint = joints.size();
     for (int set = 0; !joints.empty() && set < 4; ++set) {
         const VertexAttribute* ids = attributeNamed(primitive, "JOINTS_" + std::to_string(set));
         const VertexAttribute* amounts = attributeNamed(primitive, "WEIGHTS_" + std::to_string(set));
         if (!ids || !amounts) break;
         for (int c = 0; c < std::min(ids->components, amounts->components); ++c) {
             const auto joint = std::size_t(ids->vertex(v)[c]);
-            if (joint < joints.size()) placed += amounts->vertex(v)[c] * (joints[joint] * h);
+            if (joint >= joints.size()) continue;
+            if (firstJoint == joints.size()) firstJoint = joint;
+            placed += amounts->vertex(v)[c] * (joints[joint] * h);
+            total += amounts->vertex(v)[c];
         }
-        skinned = true;
     }
-    return (skinned ? placed : Eigen::Vector4d(otherwise * h)).head<3>();
+    if (firstJoint == joints.size()) return (otherwise * h).head<3>();
+    // Weights that do not sum to 1 are scaled to, as three.js does (normalizeSkinWeights); none: the first joint.
+    if (!(total > 0)) return (joints[firstJoint] * h).head<3>();
+    return placed.head<3>() / total;
 }
 
-double skinReach(const Scene& scene, const Primitive& primitive, const Skin& skin) {
-    double reach = 0;
+double skinWeightSensitivity(const Scene& scene, const Primitive& primitive, const Skin& skin) {
+    std::vector<const VertexAttribute*> ids, amounts;
+    for (int set = 0; set < 4; ++set) {
+        ids.push_back(attributeNamed(primitive, "JOINTS_" + std::to_string(set)));
+        amounts.push_back(attributeNamed(primitive, "WEIGHTS_" + std::to_string(set)));
+        if (!ids.back() || !amounts.back()) {
+            ids.pop_back();
+            amounts.pop_back();
+            break;
+        }
+    }
+    double sensitivity = 0;
     auto measure = [&](const std::vector<Eigen::Matrix4d>& world) {
         const std::vector<Eigen::Matrix4d> joints = jointMatrices(skin, world);
-        for (int set = 0; set < 4; ++set) {
-            const VertexAttribute* ids = attributeNamed(primitive, "JOINTS_" + std::to_string(set));
-            const VertexAttribute* amounts = attributeNamed(primitive, "WEIGHTS_" + std::to_string(set));
-            if (!ids || !amounts) break;
-            for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
-                const Eigen::Vector4d h(primitive.positions[v].x(), primitive.positions[v].y(),
-                                        primitive.positions[v].z(), 1);
-                for (int c = 0; c < std::min(ids->components, amounts->components); ++c)
-                    if (const auto joint = std::size_t(ids->vertex(v)[c]); joint < joints.size())
-                        reach = std::max(reach, (joints[joint] * h).head<3>().norm());
-            }
+        for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
+            double sum = 0;
+            for (const VertexAttribute* a : amounts)
+                for (int c = 0; c < a->components; ++c) sum += a->vertex(v)[c];
+            if (!(sum > 0)) continue;
+            const Eigen::Vector3d posed = skinnedPosition(primitive, v, primitive.positions[v], joints, world[0]);
+            const Eigen::Vector4d h(primitive.positions[v].x(), primitive.positions[v].y(), primitive.positions[v].z(),
+                                    1);
+            for (std::size_t set = 0; set < ids.size(); ++set)
+                for (int c = 0; c < std::min(ids[set]->components, amounts[set]->components); ++c)
+                    if (const auto joint = std::size_t(ids[set]->vertex(v)[c]); joint < joints.size())
+                        sensitivity = std::max(sensitivity, ((joints[joint] * h).head<3>() - posed).norm() / sum);
         }
     };
     measure(posedWorldTransforms(scene, scene.animations.size(), 0));  // at rest
@@ -168,7 +185,7 @@ double skinReach(const Scene& scene, const Primitive& primitive, const Skin& ski
         times.erase(std::unique(times.begin(), times.end()), times.end());
         for (double time : times) measure(posedWorldTransforms(scene, a, time));
     }
-    return reach;
+    return sensitivity;
 }
 
 }  // namespace symcompress
