@@ -59,7 +59,7 @@ struct RebuildReport {
     bool sameBounds = false;      // Original only
     double flippedArea = 0;       // Original only
     // Original only: the original's animations, each at its keys' times (at most kPosesPerAnimation of them), the
-    // moved parts against the original's (posedMesh); relative to the original pose's diagonal, infinite where
+    // moved parts against the original's (posedMesh); relative to the original's diagonal at rest, infinite where
     // the animations differ in number or one draws what the other does not.
     std::size_t posesCompared = 0;
     double posedDeviation = 0;

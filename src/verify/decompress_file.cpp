@@ -32,8 +32,9 @@ double allowedAreaChange(double area, double perimeters, double allowed, double 
 constexpr std::size_t kPosesPerAnimation = 16;
 
 // Every animation of the original drawn at its keys' times, the rebuilt scene's moved parts against the
-// original's: an animation, skin or morph target that did not come out as it went in moves them apart.
-void comparePoses(const Scene& rebuilt, const Scene& original, RebuildReport& report) {
+// original's: an animation, skin or morph target that did not come out as it went in moves them apart. Relative to
+// the whole original's diagonal at rest (`diagonal`), as the budget is: the moved parts are a part of the scene.
+void comparePoses(const Scene& rebuilt, const Scene& original, double diagonal, RebuildReport& report) {
     // A format without skins or morph targets (X3D) draws those meshes at rest: a loss its writer reported, which
     // the rest pose's check covers; their poses are not compared.
     const auto morphed = [](const Scene& scene) {
@@ -62,9 +63,11 @@ void comparePoses(const Scene& rebuilt, const Scene& original, RebuildReport& re
             const TriangleMesh moved = posedMesh(rebuilt, a, time), reference = posedMesh(original, a, time);
             ++report.posesCompared;
             if (moved.triangles.empty() && reference.triangles.empty()) continue;
-            const double deviation = moved.triangles.empty() || reference.triangles.empty()
+            const Eigen::AlignedBox3d posed = digestOf(reference, 0).bounds;
+            const double deviation = moved.triangles.empty() || reference.triangles.empty() || !(diagonal > 0)
                                          ? std::numeric_limits<double>::infinity()
-                                         : compareSurfaces(moved, reference, report.allowedDeviation).maxDeviation;
+                                         : compareSurfaces(moved, reference, report.allowedDeviation).maxDeviation *
+                                               posed.diagonal().norm() / diagonal;
             report.posedDeviation = std::max(report.posedDeviation, deviation);
         }
     }
@@ -75,7 +78,6 @@ void comparePoses(const Scene& rebuilt, const Scene& original, RebuildReport& re
 // sliver or two, not a part.
 void verifyAgainstOriginal(const TriangleMesh& rebuilt, const Scene& rebuiltScene, const Scene& original,
                            RebuildReport& report) {
-    comparePoses(rebuiltScene, original, report);
     const TriangleMesh reference = worldMesh(original);
     const SurfaceComparison comparison = compareSurfaces(rebuilt, reference, report.allowedDeviation);
     report.against = RebuildReport::Against::Original;
@@ -90,6 +92,7 @@ void verifyAgainstOriginal(const TriangleMesh& rebuilt, const Scene& rebuiltScen
     for (const Triangle& t : reference.triangles)
         for (int k = 0; k < 3; ++k) perimeters += (reference.positions[t[k]] - reference.positions[t[(k + 1) % 3]]).norm();
     const double diagonal = digest.bounds.isEmpty() ? 0 : digest.bounds.diagonal().norm();
+    comparePoses(rebuiltScene, original, diagonal, report);
     report.verified = comparison.maxDeviation <= allowed &&
                       std::abs(comparison.areaRatio - 1) * digest.area <=
                           allowedAreaChange(digest.area, perimeters, allowed, diagonal) &&
