@@ -31,6 +31,9 @@ std::string lightProblem(const Light& light);
 // interpolated as its sampler says (step, linear with slerp for rotations, cubic spline), a rotation normalized.
 std::vector<double> sampleChannel(const AnimationChannel& channel, double time);
 
+// The times of an animation's keys, every channel's, in order, each once.
+std::vector<double> keyTimes(const Animation& animation);
+
 // Every node's world transform at `time` of animation `animation` (an index past the last: at rest), its keyed
 // translation, rotation and scale replacing its own (glTF allows no matrix on an animated node).
 std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, std::size_t animation, double time);

@@ -91,6 +91,15 @@ const VertexAttribute* attributeNamed(const Primitive& primitive, const std::str
 
 }  // namespace
 
+std::vector<double> keyTimes(const Animation& animation) {
+    std::vector<double> times;
+    for (const AnimationChannel& channel : animation.channels)
+        times.insert(times.end(), channel.times.begin(), channel.times.end());
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    return times;
+}
+
 std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, std::size_t animation, double time) {
     const std::size_t count = scene.nodes.size();
     std::vector<std::vector<const AnimationChannel*>> channelsOf(count);
@@ -177,14 +186,8 @@ double skinWeightSensitivity(const Scene& scene, const Primitive& primitive, con
         }
     };
     measure(posedWorldTransforms(scene, scene.animations.size(), 0));  // at rest
-    for (std::size_t a = 0; a < scene.animations.size(); ++a) {
-        std::vector<double> times;
-        for (const AnimationChannel& channel : scene.animations[a].channels)
-            times.insert(times.end(), channel.times.begin(), channel.times.end());
-        std::sort(times.begin(), times.end());
-        times.erase(std::unique(times.begin(), times.end()), times.end());
-        for (double time : times) measure(posedWorldTransforms(scene, a, time));
-    }
+    for (std::size_t a = 0; a < scene.animations.size(); ++a)
+        for (double time : keyTimes(scene.animations[a])) measure(posedWorldTransforms(scene, a, time));
     return sensitivity;
 }
 

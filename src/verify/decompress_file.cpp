@@ -52,11 +52,7 @@ void comparePoses(const Scene& rebuilt, const Scene& original, double diagonal, 
         return;
     }
     for (std::size_t a = 0; a < original.animations.size(); ++a) {
-        std::vector<double> times;
-        for (const AnimationChannel& channel : original.animations[a].channels)
-            times.insert(times.end(), channel.times.begin(), channel.times.end());
-        std::sort(times.begin(), times.end());
-        times.erase(std::unique(times.begin(), times.end()), times.end());
+        const std::vector<double> times = keyTimes(original.animations[a]);
         const std::size_t poses = std::min(times.size(), kPosesPerAnimation);
         for (std::size_t i = 0; i < poses; ++i) {
             const double time = times[poses > 1 ? i * (times.size() - 1) / (poses - 1) : 0];

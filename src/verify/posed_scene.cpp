@@ -16,29 +16,23 @@ TriangleMesh posedMesh(const Scene& scene, std::size_t animation, double time) {
     std::vector<std::vector<const AnimationChannel*>> channelsOf(count);
     for (const AnimationChannel& channel : scene.animations.at(animation).channels)
         channelsOf[std::size_t(channel.node)].push_back(&channel);
-    // Which nodes the animation moves: those it targets and everything under them.
-    std::vector<char> moved(count, 0);
-    std::vector<int> stack;
+    // The nodes under `seeds`, themselves included.
+    auto under = [&](std::vector<int> stack) {
+        std::vector<char> found(count, 0);
+        while (!stack.empty()) {
+            const auto n = std::size_t(stack.back());
+            stack.pop_back();
+            if (found[n]) continue;
+            found[n] = 1;
+            stack.insert(stack.end(), scene.nodes[n].children.begin(), scene.nodes[n].children.end());
+        }
+        return found;
+    };
+    // Which nodes the animation moves (those it targets and everything under them), and which are drawn.
+    std::vector<int> targeted;
     for (std::size_t n = 0; n < count; ++n)
-        if (!channelsOf[n].empty()) stack.push_back(int(n));
-    while (!stack.empty()) {
-        const auto n = std::size_t(stack.back());
-        stack.pop_back();
-        if (moved[n]) continue;
-        moved[n] = 1;
-        stack.insert(stack.end(), scene.nodes[n].children.begin(), scene.nodes[n].children.end());
-    }
-
-    // The nodes drawn: under the scene's roots.
-    std::vector<char> drawn(count, 0);
-    stack.assign(scene.roots.begin(), scene.roots.end());
-    while (!stack.empty()) {
-        const auto n = std::size_t(stack.back());
-        stack.pop_back();
-        if (drawn[n]) continue;
-        drawn[n] = 1;
-        stack.insert(stack.end(), scene.nodes[n].children.begin(), scene.nodes[n].children.end());
-    }
+        if (!channelsOf[n].empty()) targeted.push_back(int(n));
+    const std::vector<char> moved = under(targeted), drawn = under(scene.roots);
 
     TriangleMesh out;
     for (std::size_t n = 0; n < count; ++n) {
