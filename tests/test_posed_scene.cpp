@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 using namespace symcompress;
+using symcompress::testing::glbJson;
 using symcompress::testing::TemporaryFolder;
 
 namespace {
@@ -74,6 +76,9 @@ Scene movedTriangle(AnimationChannel channel) {
     return scene;
 }
 
+// The scene drawn at `time` of its first animation.
+TriangleMesh posedAtFirst(const Scene& scene, double time) { return posedMesh(scene, scene.animations[0], time); }
+
 }  // namespace
 
 TEST_CASE("posedMesh: a skinned strip bent by its elbow, each vertex where its weights put it", "[verify]") {
@@ -83,7 +88,7 @@ TEST_CASE("posedMesh: a skinned strip bent by its elbow, each vertex where its w
         INFO("time " << time);
         const double angle = std::min(std::max(time, 0.0), 1.0) * M_PI / 2;
         const Eigen::Matrix3d turn = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-        const TriangleMesh posed = posedMesh(scene, 0, time);
+        const TriangleMesh posed = posedAtFirst(scene, time);
         REQUIRE(posed.positions.size() == 6);
         REQUIRE(posed.triangles.size() == 4);
         for (std::size_t v = 0; v < 6; ++v) {
@@ -94,11 +99,11 @@ TEST_CASE("posedMesh: a skinned strip bent by its elbow, each vertex where its w
         }
     }
     // The tip at 90 degrees, worked out by hand: (1, 0, 0) + (-0.1, 1, 0).
-    CHECK((posedMesh(scene, 0, 1).positions[5] - Eigen::Vector3d(0.9, 1, 0)).norm() < 1e-12);
+    CHECK((posedAtFirst(scene, 1).positions[5] - Eigen::Vector3d(0.9, 1, 0)).norm() < 1e-12);
     // Weights that sum to a half are scaled to 1, as three.js does: the same poses.
     Scene halved = scene;
     for (double& w : halved.meshes[0].primitives[0].attributes[1].values) w /= 2;
-    CHECK((posedMesh(halved, 0, 0.5).positions[3] - posedMesh(scene, 0, 0.5).positions[3]).norm() < 1e-12);
+    CHECK((posedAtFirst(halved, 0.5).positions[3] - posedAtFirst(scene, 0.5).positions[3]).norm() < 1e-12);
 }
 
 TEST_CASE("posedMesh interpolates as the sampler says: step, linear, cubic spline, morph weights", "[verify]") {
@@ -108,20 +113,20 @@ TEST_CASE("posedMesh interpolates as the sampler says: step, linear, cubic splin
     step.times = {0, 1};
     step.values = {0, 0, 0, 5, 0, 0};
     const Scene stepped = movedTriangle(step);
-    CHECK(posedMesh(stepped, 0, 0.5).positions[1] == Eigen::Vector3d(1, 0, 0));
-    CHECK(posedMesh(stepped, 0, 2).positions[1] == Eigen::Vector3d(6, 0, 0));  // after the last key: the last
-    CHECK(posedMesh(stepped, 0, 0.5).positions.size() == 3);                   // the node not animated is left out
+    CHECK(posedAtFirst(stepped, 0.5).positions[1] == Eigen::Vector3d(1, 0, 0));
+    CHECK(posedAtFirst(stepped, 2).positions[1] == Eigen::Vector3d(6, 0, 0));  // after the last key: the last
+    CHECK(posedAtFirst(stepped, 0.5).positions.size() == 3);                   // the node not animated is left out
 
     // Hermite: halfway between keys 2 s apart, the values' mean plus (u^3 - 2u^2 + u) * 2 s * out-tangent.
     AnimationChannel spline = step;
     spline.interpolation = AnimationChannel::Interpolation::CubicSpline;
     spline.times = {0, 2};
     spline.values = {0, 0, 0, 0, 0, 0, 1, 0, 0, /**/ 0, 0, 0, 2, 0, 0, 0, 0, 0};
-    CHECK((posedMesh(movedTriangle(spline), 0, 1).positions[0] - Eigen::Vector3d(1.25, 0, 0)).norm() < 1e-12);
+    CHECK((posedAtFirst(movedTriangle(spline), 1).positions[0] - Eigen::Vector3d(1.25, 0, 0)).norm() < 1e-12);
 
     AnimationChannel linear = step;
     linear.interpolation = AnimationChannel::Interpolation::Linear;
-    CHECK((posedMesh(movedTriangle(linear), 0, 0.25).positions[2] - Eigen::Vector3d(1.25, 1, 0)).norm() < 1e-12);
+    CHECK((posedAtFirst(movedTriangle(linear), 0.25).positions[2] - Eigen::Vector3d(1.25, 1, 0)).norm() < 1e-12);
 
     // A morph target lifting every vertex by 1, weighted 0 to 1 over a second.
     Scene morphed = movedTriangle(linear);
@@ -130,7 +135,7 @@ TEST_CASE("posedMesh interpolates as the sampler says: step, linear, cubic splin
     morphed.animations[0].channels[0].values = {0, 1};
     morphed.meshes[0].primitives[0].targets = {{{"POSITION", 3, {0, 0, 1, 0, 0, 1, 0, 0, 1}}}};
     validateScene(morphed);
-    CHECK((posedMesh(morphed, 0, 0.25).positions[1] - Eigen::Vector3d(1, 0, 0.25)).norm() < 1e-12);
+    CHECK((posedAtFirst(morphed, 0.25).positions[1] - Eigen::Vector3d(1, 0, 0.25)).norm() < 1e-12);
 }
 
 TEST_CASE("symdecompress draws every animation: a changed key is not verified, the same one is", "[verify]") {
@@ -204,4 +209,109 @@ TEST_CASE("Draco rounds skin weights only as far as skinWeightError allows in ev
     // An error that no 24 bits keep: the weights as read.
     CHECK(weightsRead(1e-12) == 0);
     CHECK(weightsRead(0) == 0);
+}
+
+// The strip waving: its elbow swings +-60 degrees and its root joint sways along y, keyed 10 times a second.
+Scene wavingStrip() {
+    Scene scene = bendingStrip(0);
+    AnimationChannel& swing = scene.animations[0].channels[0];
+    AnimationChannel sway;
+    sway.node = 0;
+    sway.path = AnimationChannel::Path::Translation;
+    swing.times.clear();
+    swing.values.clear();
+    for (int k = 0; k < 40; ++k) {
+        const double time = k / 10.0, angle = M_PI / 3 * std::sin(time * M_PI / 2);
+        const Eigen::Quaterniond turned(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()));
+        swing.times.push_back(time);
+        swing.values.insert(swing.values.end(), {turned.x(), turned.y(), turned.z(), turned.w()});
+        sway.times.push_back(time);
+        sway.values.insert(sway.values.end(), {0, 0.3 * std::cos(time), 0});
+    }
+    scene.animations[0].channels.push_back(sway);
+    validateScene(scene);
+    return scene;
+}
+
+TEST_CASE("Animation keys rounded by meshopt's filters only as far as animationKeyError allows in every pose",
+          "[io][verify]") {
+    const Scene scene = wavingStrip();
+    TemporaryFolder folder;
+    // The file's filters and bits, and how far its poses lie from the original's at each key and halfway.
+    struct Written {
+        std::vector<std::string> filters;
+        double deviation = 0;
+        std::uintmax_t bytes = 0;
+    };
+    auto written = [&](double error) {
+        WriteOptions options;
+        options.animationKeyError = error;
+        options.maxPositionError = 1e-9;  // Draco's rounding of the positions out of the way
+        const auto file = folder / "waving.glb";
+        writeScene(scene, file, options);
+        Written out;
+        out.bytes = std::filesystem::file_size(file);
+        const nlohmann::json json = glbJson(file);
+        for (const auto& view : json["bufferViews"])
+            if (view.contains("extensions") && view["extensions"]["EXT_meshopt_compression"].contains("filter"))
+                out.filters.push_back(view["extensions"]["EXT_meshopt_compression"]["filter"]);
+        const Scene read = readScene(file);
+        REQUIRE(read.animations.size() == 1);
+        for (int k = 0; k < 79; ++k) {
+            const double time = k / 20.0;
+            const TriangleMesh back = posedMesh(read, read.animations[0], time),
+                               original = posedMesh(scene, scene.animations[0], time);
+            // Draco orders the vertices its way; each is the nearest (the strip's are at least 0.2 apart).
+            REQUIRE(back.positions.size() == original.positions.size());
+            for (const Eigen::Vector3d& p : back.positions) {
+                double nearest = std::numeric_limits<double>::infinity();
+                for (const Eigen::Vector3d& q : original.positions) nearest = std::min(nearest, (p - q).norm());
+                out.deviation = std::max(out.deviation, nearest);
+            }
+        }
+        return out;
+    };
+    // As read: float32 keys, the poses as the original's to float32's rounding.
+    const Written asRead = written(0);
+    CHECK(asRead.filters.empty());
+    CHECK(asRead.deviation < 1e-6);
+    // Rounded: filtered, within the allowance (the tip of the strip 2 from the root), and fewer bytes the more
+    // the allowance.
+    const Written fine = written(1e-5), coarse = written(1e-3);
+    CHECK(fine.filters.size() == 2);  // rotations, and the translations
+    CHECK(fine.deviation <= 1e-5);
+    CHECK(fine.deviation > 1e-7);
+    CHECK(coarse.deviation <= 1e-3);
+    CHECK(coarse.deviation > fine.deviation);
+    CHECK(coarse.bytes < fine.bytes);
+    CHECK(fine.bytes < asRead.bytes);
+    // Neither Draco nor meshopt (--no-gpu-instancing): the keys as read.
+    WriteOptions plain;
+    plain.animationKeyError = 1e-3;
+    plain.gpuInstancing = false;
+    writeScene(scene, folder / "plain.glb", plain);
+    const Scene read = readScene(folder / "plain.glb");
+    REQUIRE(read.animations.size() == 1);
+    for (std::size_t c = 0; c < 2; ++c)
+        for (std::size_t i = 0; i < scene.animations[0].channels[c].values.size(); ++i)
+            CHECK(read.animations[0].channels[c].values[i] == double(float(scene.animations[0].channels[c].values[i])));
+}
+
+TEST_CASE("Animation keys that move a camera are kept as read", "[io]") {
+    Scene scene = wavingStrip();
+    scene.cameras.push_back({});
+    scene.nodes.push_back({});
+    scene.nodes.back().camera = 0;
+    scene.nodes[1].children.push_back(int(scene.nodes.size()) - 1);  // the elbow carries a camera
+    validateScene(scene);
+    TemporaryFolder folder;
+    WriteOptions options;
+    options.animationKeyError = 1e-3;
+    writeScene(scene, folder / "camera.glb", options);
+    const Scene read = readScene(folder / "camera.glb");
+    REQUIRE(read.animations.size() == 1);
+    // The elbow's rotations as read; the root joint's translations (it carries the camera too) as well.
+    for (std::size_t c = 0; c < 2; ++c)
+        for (std::size_t i = 0; i < scene.animations[0].channels[c].values.size(); ++i)
+            CHECK(read.animations[0].channels[c].values[i] == double(float(scene.animations[0].channels[c].values[i])));
 }

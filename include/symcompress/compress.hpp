@@ -86,6 +86,8 @@ struct CompressionReport {
     std::string plan = "final";      // whose file is the output: final, instancing (no regions), draco_alone
     double tolerance = 0;  // the congruence and symmetry tolerance used, relative to the diagonal
     double maxError = 0;   // the error budget, relative; 0 with fixed position bits
+    // Of the budget, the shares for the rounding of animations' key values and of skin weights (relative).
+    double animationKeyShare = 0, skinWeightShare = 0;
     CompressionStats stats;                               // of the plan kept
     std::size_t animations = 0, cameras = 0, lights = 0;  // in the output
     // The bytes a node drawing a shared mesh costs in the output, on average over its instance nodes, by

@@ -54,6 +54,9 @@ struct WriteOptions {
     // sets each skinned primitive's weightBits from it. 0: weights kept as read (float32).
     double skinWeightError = 0;
     int weightBits = 0;  // Draco's quantization of WEIGHTS_n; 0: none (float32 as read)
+    // > 0: how far (a distance) the rounding of animations' key values may move a vertex in any pose (glTF with
+    // meshopt: its filters, gltf_animation_keys.hpp). 0: key values kept as read (float32).
+    double animationKeyError = 0;
     int compressionLevel =
         10;  // Draco speed 10 - compressionLevel; 10: the smallest of several (dracoSpeedsWorthTrying)
     // false: each primitive encoded once, at the speed compressionLevel asks first and the fewest position bits,

@@ -34,17 +34,29 @@ std::vector<double> sampleChannel(const AnimationChannel& channel, double time);
 // The times of an animation's keys, every channel's, in order, each once.
 std::vector<double> keyTimes(const Animation& animation);
 
-// Every node's world transform at `time` of animation `animation` (an index past the last: at rest), its keyed
-// translation, rotation and scale replacing its own (glTF allows no matrix on an animated node).
-std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, std::size_t animation, double time);
+// Every node's world transform at `time` of `animation` (null: at rest), its keyed translation, rotation and
+// scale replacing its own (glTF allows no matrix on an animated node). The animation names the scene's nodes.
+std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, const Animation* animation, double time);
+
+// The parts of the scene that `animation` moves (the nodes it targets and all under them, the meshes their joints
+// skin), drawn at `time` as a viewer draws them: keyed translations, rotations and scales interpolated as their
+// samplers say, morph targets at their weights, skinned vertices by their joints. The same scene and channel
+// targets give the same vertices in the same order, whatever the keys.
+TriangleMesh posedMesh(const Scene& scene, const Animation& animation, double time);
 
 // A skin's joint matrices in a pose: each joint's world transform times its inverse bind matrix.
 std::vector<Eigen::Matrix4d> jointMatrices(const Skin& skin, const std::vector<Eigen::Matrix4d>& world);
 
-// Vertex v of a skinned primitive at `position` (its morph targets applied) drawn by `joints`: the sum of its
-// joints' matrices weighted by WEIGHTS_n, the weights scaled to sum to 1 as viewers do (glTF asks that they do;
-// three.js scales those that do not); by `otherwise` where it has no joints or weights.
-Eigen::Vector3d skinnedPosition(const Primitive& primitive, std::size_t v, const Eigen::Vector3d& position,
+// A primitive's JOINTS_n and WEIGHTS_n, set by set, as long as both are there.
+struct SkinAttributes {
+    std::vector<const VertexAttribute*> joints, weights;
+};
+SkinAttributes skinAttributesOf(const Primitive& primitive);
+
+// Vertex v of a skinned primitive (its `skin` attributes) at `position` (its morph targets applied) drawn by
+// `joints`: the sum of its joints' matrices weighted by WEIGHTS_n, the weights scaled to sum to 1 as viewers do
+// (glTF asks that they do; three.js scales those that do not); by `otherwise` where it has no joints or weights.
+Eigen::Vector3d skinnedPosition(const SkinAttributes& skin, std::size_t v, const Eigen::Vector3d& position,
                                 const std::vector<Eigen::Matrix4d>& joints, const Eigen::Matrix4d& otherwise);
 
 // How far rounding the skinned primitive's weights can move its vertices, per unit of rounding: the largest, over

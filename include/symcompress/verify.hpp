@@ -42,11 +42,6 @@ struct SurfaceComparison {
 // The rebuilt surface against the reference: vertex-to-surface both ways (d_A), area, bounds, orientation.
 SurfaceComparison compareSurfaces(const TriangleMesh& rebuilt, const TriangleMesh& reference, double boundsTolerance);
 
-// The parts of the scene that animation `animation` moves (the nodes it targets and all under them, the meshes
-// their joints skin), drawn at `time` as a viewer draws them: keyed translations, rotations and scales
-// interpolated as their samplers say, morph targets at their weights, skinned vertices by their joints.
-TriangleMesh posedMesh(const Scene& scene, std::size_t animation, double time);
-
 // What symdecompress found: the rebuilt surface against the original (when given) or the digest stored in
 // the file (else nothing to verify against).
 struct RebuildReport {

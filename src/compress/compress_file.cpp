@@ -26,6 +26,18 @@ namespace {
 constexpr double kRotationShare = 1.0 / 64, kTranslationShare = 1.0 / 64;
 // The share for the rounding of skin weights, in a scene with skins.
 constexpr double kSkinWeightShare = 1.0 / 32;
+// The share for the rounding of animations' key values, in a scene with animations: of two roundings that share
+// an error, the bits are fewest in all where each takes a part in proportion to the values it rounds (n_k
+// log(1 / e_k) + n_p log(1 / e_p), least for e_k + e_p = E at e_k / E = n_k / (n_k + n_p)), key values against
+// the meshes' coordinates; no less than a 32nd, and no more than half, which the positions keep at rest.
+double animationKeyShare(const Scene& scene) {
+    double keys = 0, coordinates = 0;
+    for (const Animation& animation : scene.animations)
+        for (const AnimationChannel& channel : animation.channels) keys += double(channel.values.size());
+    for (const Mesh& mesh : scene.meshes)
+        for (const Primitive& primitive : mesh.primitives) coordinates += 3.0 * double(primitive.positions.size());
+    return keys > 0 ? std::clamp(keys / (keys + coordinates), 1.0 / 32, 1.0 / 2) : 0;
+}
 
 double since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -151,15 +163,21 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     write.encodings = encodings;
     PlanOptions planOptions = planOptionsOf(options);
     if (!options.fixedPositionBits) {
-        // Of the budget, a share for the rounding of GPU-instanced rotations and one for their translations and
-        // scales, kept by the meshes that several nodes draw; the rest for the placements and each mesh's
-        // quantization (the meshes the plan does not bound take all of that).
+        // Of the budget, shares for the rounding of skin weights and animations' keys, which move vertices in the
+        // poses; a share for the rounding of GPU-instanced rotations and one for their translations and scales, kept
+        // by the meshes that several nodes draw; the rest for the placements and each mesh's quantization (the
+        // meshes the plan does not bound take all of that).
+        const double skinShare = scene.skins.empty() ? 0 : options.maxError * kSkinWeightShare;
+        const double keyShare = options.maxError * animationKeyShare(scene);
+        write.skinWeightError = skinShare * analysis.diagonal;
+        write.animationKeyError = keyShare * analysis.diagonal;
+        report.skinWeightShare = skinShare;
+        report.animationKeyShare = keyShare;
+        planOptions.maxError = options.maxError - skinShare - keyShare;
         planOptions.instanceShare = options.maxError * (kRotationShare + kTranslationShare);
         write.instanceRotationDeviation = options.maxError * kRotationShare;
         write.instanceTranslationDeviation = options.maxError * kTranslationShare;
-        const double skinShare = scene.skins.empty() ? 0 : options.maxError * kSkinWeightShare;
-        write.skinWeightError = skinShare * analysis.diagonal;
-        write.maxPositionError = (options.maxError - planOptions.instanceShare - skinShare) * analysis.diagonal;
+        write.maxPositionError = (planOptions.maxError - planOptions.instanceShare) * analysis.diagonal;
         write.maxRelativePositionError = options.closeUpError * options.maxError;
     }
     planOptions.costs = costModelFor(formatFromExtension(output), write);

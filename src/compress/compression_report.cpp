@@ -29,6 +29,8 @@ std::string CompressionReport::json() const {
         {"max_deviation", stats.maxDeviation},
         {"tolerance", tolerance},
         {"max_error", maxError},
+        {"animation_key_share", animationKeyShare},
+        {"skin_weight_share", skinWeightShare},
         {"seconds",
          {{"read", secondsRead},
           {"tiles", stats.secondsTiles},

@@ -102,26 +102,26 @@ public:
             for (int c = 0; c < components; ++c) flat.push_back(static_cast<float>(value[c]));
         return addFloatAccessor(flat, components, type, withBounds, kArrayBuffer);
     }
-    // The same over values already flat; `target` 0 for data that is not a vertex attribute (animations, skins'
+    // The same over values already flat; `target` 0 for data that is no vertex attribute (animations, skins'
     // matrices): written once for every use of the same values (an animation's channels share their key times).
     int addFloatAccessor(const std::vector<float>& flat, int components, const char* type, bool withBounds,
                          int target) {
-        std::string key = std::to_string(target) + type + (withBounds ? "+" : "-");
-        const std::size_t groupKey = key.size();
-        if (target == 0) {
-            key.append(reinterpret_cast<const char*>(flat.data()), flat.size() * sizeof(float));
-            if (const auto found = dataAccessors_.find(key); found != dataAccessors_.end()) return found->second;
-        }
         Json accessor = {{"componentType", kFloat}, {"count", flat.size() / std::size_t(components)}, {"type", type}};
         if (withBounds) addBounds(accessor, flat, components);
-        const int index = addAccessor(std::move(accessor));
-        PendingData& pending = pendingData_[key.substr(0, groupKey)];
-        pending.target = target;
-        pending.components = components;
-        pending.accessors.emplace_back(index, pending.values.size() * sizeof(float));
-        pending.values.insert(pending.values.end(), flat.begin(), flat.end());
-        if (target == 0) dataAccessors_.emplace(std::move(key), index);
-        return index;
+        const auto* bytes = reinterpret_cast<const unsigned char*>(flat.data());
+        return addPendingAccessor(std::move(accessor), {bytes, bytes + flat.size() * sizeof(float)},
+                                  std::size_t(components) * sizeof(float), "", target,
+                                  std::to_string(target) + type + (withBounds ? "+" : "-"));
+    }
+
+    // Data that is no vertex attribute rounded by one of meshopt's filters (QUATERNION, EXPONENTIAL): `filtered`,
+    // the filter's elements of `elementBytes`, which only a meshopt view holds (dataEncoder must be set), one for
+    // each filter and layout. `accessor`: its JSON but its view.
+    int addFilteredAccessor(Json accessor, const std::vector<unsigned char>& filtered, std::size_t elementBytes,
+                            const std::string& filter) {
+        const std::string group = filter + std::to_string(elementBytes) + accessor["type"].get<std::string>() +
+                                  std::to_string(accessor["componentType"].get<int>());
+        return addPendingAccessor(std::move(accessor), filtered, elementBytes, filter, 0, group);
     }
 
     // Where set, float data is stored encoded by it (the writer's meshopt ATTRIBUTES, filter NONE: lossless) where
@@ -152,36 +152,57 @@ public:
     }
 
 private:
-    // A view of float data, encoded where dataEncoder makes it smaller by more than the extension's JSON (some 100
-    // bytes).
-    int addDataView(const std::vector<float>& flat, int components, int target) {
-        const std::size_t size = flat.size() * sizeof(float), element = std::size_t(components) * sizeof(float);
-        if (dataEncoder && element % 4 == 0 && element <= 256 && !flat.empty()) {
-            const auto* bytes = reinterpret_cast<const unsigned char*>(flat.data());
-            const std::vector<unsigned char> encoded =
-                dataEncoder(std::vector<unsigned char>(bytes, bytes + size), element);
-            constexpr std::size_t kExtensionJson = 100;
-            if (encoded.size() + kExtensionJson < size)
-                return addMeshoptBufferView(encoded, flat.size() / std::size_t(components), element, "NONE", target);
+    // An accessor whose data waits in its group's view (`group`: target or filter, and layout); data that is no
+    // vertex attribute (`target` 0) is written once for every accessor of the same group and bytes.
+    int addPendingAccessor(Json accessor, const std::vector<unsigned char>& bytes, std::size_t elementBytes,
+                           const std::string& filter, int target, const std::string& group) {
+        std::string key = group;
+        if (target == 0) {
+            key.append(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+            if (const auto found = dataAccessors_.find(key); found != dataAccessors_.end()) return found->second;
         }
-        return addBufferView(flat.data(), size, target);
+        const int index = addAccessor(std::move(accessor));
+        PendingData& pending = pendingData_[group];
+        pending.target = target;
+        pending.elementBytes = elementBytes;
+        pending.filter = filter;
+        pending.accessors.emplace_back(index, pending.bytes.size());
+        pending.bytes.insert(pending.bytes.end(), bytes.begin(), bytes.end());
+        if (target == 0) dataAccessors_.emplace(std::move(key), index);
+        return index;
     }
 
-    // Float data goes in one view for each target and type (an animation's key times, its rotations; the positions
-    // of plain primitives and their morph targets' displacements): a view's JSON is written once, and meshopt codes
-    // one long stream better than many short ones. Its accessors name their view once it is written.
+    // A view of a group's data: filtered data meshopt's, float data encoded where dataEncoder makes it smaller by
+    // more than the extension's JSON (some 100 bytes).
+    int addDataView(const std::vector<unsigned char>& bytes, std::size_t element, const std::string& filter,
+                    int target) {
+        const std::size_t count = bytes.size() / element;
+        if (!filter.empty()) return addMeshoptBufferView(dataEncoder(bytes, element), count, element, filter, target);
+        if (dataEncoder && element % 4 == 0 && element <= 256 && !bytes.empty()) {
+            const std::vector<unsigned char> encoded = dataEncoder(bytes, element);
+            constexpr std::size_t kExtensionJson = 100;
+            if (encoded.size() + kExtensionJson < bytes.size())
+                return addMeshoptBufferView(encoded, count, element, "NONE", target);
+        }
+        return addBufferView(bytes.data(), bytes.size(), target);
+    }
+
+    // Data goes in one view for each target or filter and type (an animation's key times, its rotations; the
+    // positions of plain primitives and their morph targets' displacements): a view's JSON is written once, and
+    // meshopt codes one long stream better than many short ones. Its accessors name their view once it is written.
     struct PendingData {
         int target = 0;
-        int components = 1;
-        std::vector<float> values;
+        std::size_t elementBytes = 4;
+        std::string filter;  // meshopt's, for data already filtered; empty: float data
+        std::vector<unsigned char> bytes;
         std::vector<std::pair<int, std::size_t>> accessors;  // each accessor and its offset in bytes
     };
     void writePendingData() {
-        for (auto& [type, pending] : pendingData_) {
-            const int view = addDataView(pending.values, pending.components, pending.target);
+        for (auto& [group, pending] : pendingData_) {
+            const int view = addDataView(pending.bytes, pending.elementBytes, pending.filter, pending.target);
             // Vertex attributes that share a view are read at its stride, which glTF then asks to be given.
             if (pending.target == kArrayBuffer && pending.accessors.size() > 1)
-                setByteStride(view, std::size_t(pending.components) * sizeof(float));
+                setByteStride(view, pending.elementBytes);
             for (const auto& [accessor, offset] : pending.accessors) {
                 Json& json = root_["accessors"][std::size_t(accessor)];
                 json["bufferView"] = view;
@@ -195,7 +216,7 @@ private:
     std::vector<unsigned char> binary_;
     std::size_t fallbackBytes_ = 0;
     std::map<std::string, int> dataAccessors_;  // the accessors of data that is no vertex attribute, by content
-    std::map<std::string, PendingData> pendingData_;  // by target, type and whether bounds are written
+    std::map<std::string, PendingData> pendingData_;  // by group: target or filter, and layout
 };
 
 // One Draco-compressed glTF primitive, encoded but not yet in the builder: its bytes, its accessors (name and

@@ -36,20 +36,6 @@ std::vector<T> valuesOf(const std::vector<unsigned char>& bytes) {
     return values;
 }
 
-// The fewest bits in [low, high] for which `holds`, more bits never holding less; 0 when even `high` fails.
-template <typename Holds>
-int fewestBits(int low, int high, Holds holds) {
-    if (!holds(high)) return 0;
-    while (low < high) {
-        const int middle = (low + high) / 2;
-        if (holds(middle))
-            high = middle;
-        else
-            low = middle + 1;
-    }
-    return high;
-}
-
 InstanceEncoding encoding(int componentType, std::size_t elementBytes, const std::string& filter,
                           std::vector<unsigned char> values) {
     InstanceEncoding out{componentType, elementBytes, filter, std::move(values), 0};

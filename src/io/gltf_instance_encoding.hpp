@@ -44,6 +44,20 @@ std::vector<InstanceEncoding> rotationEncodings(const std::vector<Eigen::Quatern
 // The largest rotation-matrix error (spectral norm, over the instances) of normalized SHORT rotations.
 double shortRotationError(const std::vector<Eigen::Quaterniond>& rotations);
 
+// The fewest bits in [low, high] for which `holds`, more bits never holding less; 0 when even `high` fails.
+template <typename Holds>
+int fewestBits(int low, int high, Holds holds) {
+    if (!holds(high)) return 0;
+    while (low < high) {
+        const int middle = (low + high) / 2;
+        if (holds(middle))
+            high = middle;
+        else
+            low = middle + 1;
+    }
+    return high;
+}
+
 // meshoptimizer's vertex codec (format version 0, which EXT_meshopt_compression specifies) over `values`,
 // elements of `elementBytes`.
 std::vector<unsigned char> meshoptEncoded(const std::vector<unsigned char>& values, std::size_t elementBytes);

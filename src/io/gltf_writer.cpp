@@ -7,6 +7,7 @@
 #include "common/image_size.hpp"
 #include "common/number_text.hpp"
 #include "common/with_threads.hpp"
+#include "gltf_animation_keys.hpp"
 #include "gltf_builder.hpp"
 #include "gltf_gpu_instancing.hpp"
 #include "gltf_instance_encoding.hpp"
@@ -410,18 +411,31 @@ std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& option
     return jsonText(root).size() + jsonText(mesh).size() + binary;
 }
 
-// Animation channels as glTF samplers (float keys and values, in the views of their types) and channels.
-Json writeAnimation(const Animation& animation, GltfBuilder& builder) {
+// Animation channels as glTF samplers (float keys, in the views of their types; values as `stored` says, float as
+// read where it has no filter) and channels.
+Json writeAnimation(const Animation& animation, const std::vector<KeyValues>& stored, GltfBuilder& builder) {
     Json channels = Json::array(), samplers = Json::array();
-    for (const AnimationChannel& channel : animation.channels) {
+    for (std::size_t c = 0; c < animation.channels.size(); ++c) {
+        const AnimationChannel& channel = animation.channels[c];
         const bool rotation = channel.path == AnimationChannel::Path::Rotation,
                    weights = channel.path == AnimationChannel::Path::Weights;
         const std::vector<float> times(channel.times.begin(), channel.times.end()),
             values(channel.values.begin(), channel.values.end());
         // Morph weights are scalars, as many a key as the targets.
-        Json sampler = {{"input", builder.addFloatAccessor(times, 1, "SCALAR", true, 0)},
-                        {"output", builder.addFloatAccessor(values, weights ? 1 : int(channel.components()),
-                                                            weights ? "SCALAR" : rotation ? "VEC4" : "VEC3", false, 0)}};
+        const char* type = weights ? "SCALAR" : rotation ? "VEC4" : "VEC3";
+        const int components = weights ? 1 : int(channel.components());
+        int output = -1;
+        if (c < stored.size() && !stored[c].filter.empty()) {
+            Json accessor = {{"componentType", stored[c].componentType},
+                             {"count", values.size() / std::size_t(components)},
+                             {"type", type}};
+            if (stored[c].componentType != kFloat) accessor["normalized"] = true;
+            output = builder.addFilteredAccessor(std::move(accessor), stored[c].filtered, stored[c].elementBytes,
+                                                 stored[c].filter);
+        } else {
+            output = builder.addFloatAccessor(values, components, type, false, 0);
+        }
+        Json sampler = {{"input", builder.addFloatAccessor(times, 1, "SCALAR", true, 0)}, {"output", output}};
         if (channel.interpolation == AnimationChannel::Interpolation::Step) sampler["interpolation"] = "STEP";
         if (channel.interpolation == AnimationChannel::Interpolation::CubicSpline)
             sampler["interpolation"] = "CUBICSPLINE";
@@ -605,9 +619,12 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     root["scenes"] = {{{"nodes", numbering.list(scene.roots)}}};
     root["scene"] = 0;
     // Animations and skins name nodes that are never batched, renumbered as the nodes are.
+    // Their key values rounded within the budget where meshopt's filters can hold them.
     for (Animation animation : scene.animations) {
+        const std::vector<KeyValues> stored =
+            codeData ? roundedKeyValues(scene, animation, options.animationKeyError) : std::vector<KeyValues>();
         for (AnimationChannel& channel : animation.channels) channel.node = numbering.index[std::size_t(channel.node)];
-        root["animations"].push_back(writeAnimation(animation, builder));
+        root["animations"].push_back(writeAnimation(animation, stored, builder));
     }
     for (Skin skin : scene.skins) {
         for (int& joint : skin.joints) joint = numbering.index[std::size_t(joint)];

@@ -100,11 +100,11 @@ std::vector<double> keyTimes(const Animation& animation) {
     return times;
 }
 
-std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, std::size_t animation, double time) {
+std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, const Animation* animation, double time) {
     const std::size_t count = scene.nodes.size();
     std::vector<std::vector<const AnimationChannel*>> channelsOf(count);
-    if (animation < scene.animations.size())
-        for (const AnimationChannel& channel : scene.animations[animation].channels)
+    if (animation)
+        for (const AnimationChannel& channel : animation->channels)
             channelsOf[std::size_t(channel.node)].push_back(&channel);
     std::vector<int> parent(count, -1);
     for (std::size_t n = 0; n < count; ++n)
@@ -133,22 +133,33 @@ std::vector<Eigen::Matrix4d> jointMatrices(const Skin& skin, const std::vector<E
     return out;
 }
 
-Eigen::Vector3d skinnedPosition(const Primitive& primitive, std::size_t v, const Eigen::Vector3d& position,
+SkinAttributes skinAttributesOf(const Primitive& primitive) {
+    SkinAttributes out;
+    for (int set = 0; set < 4; ++set) {
+        const VertexAttribute* ids = attributeNamed(primitive, "JOINTS_" + std::to_string(set));
+        const VertexAttribute* amounts = attributeNamed(primitive, "WEIGHTS_" + std::to_string(set));
+        if (!ids || !amounts) break;
+        out.joints.push_back(ids);
+        out.weights.push_back(amounts);
+    }
+    return out;
+}
+
+Eigen::Vector3d skinnedPosition(const SkinAttributes& skin, std::size_t v, const Eigen::Vector3d& position,
                                 const std::vector<Eigen::Matrix4d>& joints, const Eigen::Matrix4d& otherwise) {
     const Eigen::Vector4d h(position.x(), position.y(), position.z(), 1);
     Eigen::Vector4d placed = Eigen::Vector4d::Zero();
     double total = 0;
     std::size_t firstJoint = joints.size();
-    for (int set = 0; !joints.empty() && set < 4; ++set) {
-        const VertexAttribute* ids = attributeNamed(primitive, "JOINTS_" + std::to_string(set));
-        const VertexAttribute* amounts = attributeNamed(primitive, "WEIGHTS_" + std::to_string(set));
-        if (!ids || !amounts) break;
-        for (int c = 0; c < std::min(ids->components, amounts->components); ++c) {
-            const auto joint = std::size_t(ids->vertex(v)[c]);
+    for (std::size_t set = 0; !joints.empty() && set < skin.joints.size(); ++set) {
+        const VertexAttribute& ids = *skin.joints[set];
+        const VertexAttribute& amounts = *skin.weights[set];
+        for (int c = 0; c < std::min(ids.components, amounts.components); ++c) {
+            const auto joint = std::size_t(ids.vertex(v)[c]);
             if (joint >= joints.size()) continue;
             if (firstJoint == joints.size()) firstJoint = joint;
-            placed += amounts->vertex(v)[c] * (joints[joint] * h);
-            total += amounts->vertex(v)[c];
+            placed += amounts.vertex(v)[c] * (joints[joint] * h);
+            total += amounts.vertex(v)[c];
         }
     }
     if (firstJoint == joints.size()) return (otherwise * h).head<3>();
@@ -158,16 +169,8 @@ Eigen::Vector3d skinnedPosition(const Primitive& primitive, std::size_t v, const
 }
 
 double skinWeightSensitivity(const Scene& scene, const Primitive& primitive, const Skin& skin) {
-    std::vector<const VertexAttribute*> ids, amounts;
-    for (int set = 0; set < 4; ++set) {
-        ids.push_back(attributeNamed(primitive, "JOINTS_" + std::to_string(set)));
-        amounts.push_back(attributeNamed(primitive, "WEIGHTS_" + std::to_string(set)));
-        if (!ids.back() || !amounts.back()) {
-            ids.pop_back();
-            amounts.pop_back();
-            break;
-        }
-    }
+    const SkinAttributes attributes = skinAttributesOf(primitive);
+    const std::vector<const VertexAttribute*>&ids = attributes.joints, &amounts = attributes.weights;
     double sensitivity = 0;
     auto measure = [&](const std::vector<Eigen::Matrix4d>& world) {
         const std::vector<Eigen::Matrix4d> joints = jointMatrices(skin, world);
@@ -176,7 +179,7 @@ double skinWeightSensitivity(const Scene& scene, const Primitive& primitive, con
             for (const VertexAttribute* a : amounts)
                 for (int c = 0; c < a->components; ++c) sum += a->vertex(v)[c];
             if (!(sum > 0)) continue;
-            const Eigen::Vector3d posed = skinnedPosition(primitive, v, primitive.positions[v], joints, world[0]);
+            const Eigen::Vector3d posed = skinnedPosition(attributes, v, primitive.positions[v], joints, world[0]);
             const Eigen::Vector4d h(primitive.positions[v].x(), primitive.positions[v].y(), primitive.positions[v].z(),
                                     1);
             for (std::size_t set = 0; set < ids.size(); ++set)
@@ -185,9 +188,9 @@ double skinWeightSensitivity(const Scene& scene, const Primitive& primitive, con
                         sensitivity = std::max(sensitivity, ((joints[joint] * h).head<3>() - posed).norm() / sum);
         }
     };
-    measure(posedWorldTransforms(scene, scene.animations.size(), 0));  // at rest
-    for (std::size_t a = 0; a < scene.animations.size(); ++a)
-        for (double time : keyTimes(scene.animations[a])) measure(posedWorldTransforms(scene, a, time));
+    measure(posedWorldTransforms(scene, nullptr, 0));  // at rest
+    for (const Animation& animation : scene.animations)
+        for (double time : keyTimes(animation)) measure(posedWorldTransforms(scene, &animation, time));
     return sensitivity;
 }
 

@@ -56,7 +56,8 @@ void comparePoses(const Scene& rebuilt, const Scene& original, double diagonal, 
         const std::size_t poses = std::min(times.size(), kPosesPerAnimation);
         for (std::size_t i = 0; i < poses; ++i) {
             const double time = times[poses > 1 ? i * (times.size() - 1) / (poses - 1) : 0];
-            const TriangleMesh moved = posedMesh(rebuilt, a, time), reference = posedMesh(original, a, time);
+            const TriangleMesh moved = posedMesh(rebuilt, rebuilt.animations[a], time),
+                               reference = posedMesh(original, original.animations[a], time);
             ++report.posesCompared;
             if (moved.triangles.empty() && reference.triangles.empty()) continue;
             const Eigen::AlignedBox3d posed = digestOf(reference, 0).bounds;

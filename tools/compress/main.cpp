@@ -297,10 +297,18 @@ void printReport(const CompressionReport& report) {
     if (stats.notWorthInstancing)
         std::printf("  stored apart    %zu tiles of classes too small for a node per copy to pay\n",
                     stats.notWorthInstancing);
-    if (report.maxError > 0)
-        std::printf("  max deviation   %.2e of the diagonal (budget %g: tolerance %g, the rest to quantization)\n",
-                    stats.maxDeviation, report.maxError, report.tolerance);
-    else
+    if (report.maxError > 0) {
+        std::string motion;  // the shares of what moves vertices in the poses
+        auto share = [&](const char* what, double value) {
+            char text[64];
+            std::snprintf(text, sizeof text, ", %s %g", what, value);
+            if (value > 0) motion += text;
+        };
+        share("animation keys", report.animationKeyShare);
+        share("skin weights", report.skinWeightShare);
+        std::printf("  max deviation   %.2e of the diagonal (budget %g: tolerance %g%s, the rest to quantization)\n",
+                    stats.maxDeviation, report.maxError, report.tolerance, motion.c_str());
+    } else
         std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, report.tolerance);
     const auto& ablation = report.ablation;
     if (ablation.instancingAndRegions)

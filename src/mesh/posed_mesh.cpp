@@ -1,8 +1,7 @@
-// The parts of a scene that an animation moves, as a viewer draws them at one of its times: the decoder's check
-// that animations, skins and morph targets come out as they went in (glTF 2.0, sections 3.7.2 "Skins", 3.7.2.2
-// "Morph Targets", 3.11 "Animations" and Appendix C "Interpolation").
+// The parts of a scene that an animation moves, as a viewer draws them at one of its times (glTF 2.0, sections
+// 3.7.2 "Skins", 3.7.2.2 "Morph Targets", 3.11 "Animations" and Appendix C "Interpolation"): the decoder's check
+// that animations, skins and morph targets come out as they went in, and the writer's measure of rounded keys.
 #include "symcompress/scene_ops.hpp"
-#include "symcompress/verify.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,11 +9,11 @@
 
 namespace symcompress {
 
-TriangleMesh posedMesh(const Scene& scene, std::size_t animation, double time) {
+TriangleMesh posedMesh(const Scene& scene, const Animation& animation, double time) {
     const std::size_t count = scene.nodes.size();
-    const std::vector<Eigen::Matrix4d> world = posedWorldTransforms(scene, animation, time);
+    const std::vector<Eigen::Matrix4d> world = posedWorldTransforms(scene, &animation, time);
     std::vector<std::vector<const AnimationChannel*>> channelsOf(count);
-    for (const AnimationChannel& channel : scene.animations.at(animation).channels)
+    for (const AnimationChannel& channel : animation.channels)
         channelsOf[std::size_t(channel.node)].push_back(&channel);
     // The nodes under `seeds`, themselves included.
     auto under = [&](std::vector<int> stack) {
@@ -51,14 +50,17 @@ TriangleMesh posedMesh(const Scene& scene, std::size_t animation, double time) {
         const std::vector<Eigen::Matrix4d> joints = skin ? jointMatrices(*skin, world) : std::vector<Eigen::Matrix4d>();
         for (const Primitive& primitive : mesh.primitives) {
             const auto first = std::uint32_t(out.positions.size());
+            const SkinAttributes attributes = skinAttributesOf(primitive);
+            std::vector<std::pair<double, const VertexAttribute*>> displacements;  // each target's, weighted
+            for (std::size_t t = 0; t < primitive.targets.size() && t < weights.size(); ++t)
+                for (const VertexAttribute& displaced : primitive.targets[t])
+                    if (displaced.name == "POSITION") displacements.emplace_back(weights[t], &displaced);
             for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
                 Eigen::Vector3d p = primitive.positions[v];
-                for (std::size_t t = 0; t < primitive.targets.size() && t < weights.size(); ++t)
-                    for (const VertexAttribute& displaced : primitive.targets[t])
-                        if (displaced.name == "POSITION")
-                            p += weights[t] * Eigen::Vector3d(displaced.vertex(v)[0], displaced.vertex(v)[1],
-                                                              displaced.vertex(v)[2]);
-                out.positions.push_back(skinnedPosition(primitive, v, p, joints, world[n]));
+                for (const auto& [weight, displaced] : displacements)
+                    p += weight *
+                         Eigen::Vector3d(displaced->vertex(v)[0], displaced->vertex(v)[1], displaced->vertex(v)[2]);
+                out.positions.push_back(skinnedPosition(attributes, v, p, joints, world[n]));
             }
             for (const Triangle& t : primitive.triangles)
                 out.triangles.push_back({first + t[0], first + t[1], first + t[2]});
