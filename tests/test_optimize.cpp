@@ -314,3 +314,65 @@ TEST_CASE("A small flat part is drawn by its material's smooth part, each corner
         CHECK(decompressFile(folder / "small.glb", folder / "flat.glb", folder / "parts.glb").verified);
     }
 }
+
+TEST_CASE(
+    "Animation channels that hold their node where it rests are removed; one that moves it, or that another "
+    "animation keys too, or that gives the animation its length, stays",
+    "[optimize]") {
+    // A triangle on node 0, rotated 30 degrees about z and 2 along x at rest, scaled by 1.5.
+    Scene scene = sceneOfMaterials({}, {-1});
+    const Eigen::Quaterniond rest(Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitZ()));
+    scene.nodes[0].transform.topLeftCorner<3, 3>() = rest.toRotationMatrix() * 1.5;
+    scene.nodes[0].transform.topRightCorner<3, 1>() = Eigen::Vector3d(2, 0, 0);
+    auto channel = [](AnimationChannel::Path path, std::vector<double> times, std::vector<double> values) {
+        AnimationChannel out;
+        out.node = 0;
+        out.path = path;
+        out.times = std::move(times);
+        out.values = std::move(values);
+        return out;
+    };
+    const double x = rest.x(), y = rest.y(), z = rest.z(), w = rest.w();
+    using Path = AnimationChannel::Path;
+    // Still: the rest translation (float32's rounding of it), the rest rotation as its opposite quaternion too.
+    const AnimationChannel stillTranslation = channel(Path::Translation, {0, 1}, {2, 0, 0, double(float(2)), 0, 0}),
+                           stillRotation = channel(Path::Rotation, {0, 1}, {x, y, z, w, -x, -y, -z, -w}),
+                           // Moving: the scale goes from 1.5 to 2.
+        movingScale = channel(Path::Scale, {0, 1}, {1.5, 1.5, 1.5, 2, 2, 2});
+    scene.animations.push_back({"still and moving", {stillTranslation, stillRotation, movingScale}});
+    validateScene(scene);
+
+    SECTION("the still ones removed, the moving one kept") {
+        CHECK(removeStillChannels(scene) == 2);
+        REQUIRE(scene.animations[0].channels.size() == 1);
+        CHECK(scene.animations[0].channels[0].path == Path::Scale);
+    }
+    SECTION("a rotation a little off its rest stays") {
+        scene.animations[0].channels[1].values[2] += 1e-4;
+        CHECK(removeStillChannels(scene) == 1);
+        CHECK(scene.animations[0].channels.size() == 2);
+    }
+    SECTION("a still channel that another animation keys too stays: played together, the two blend") {
+        scene.animations.push_back({"turning", {channel(Path::Rotation, {0, 1}, {x, y, z, w, 0, 0, 0, 1})}});
+        CHECK(removeStillChannels(scene) == 1);
+        CHECK(scene.animations[0].channels.size() == 2);
+        CHECK(scene.animations[0].channels[0].path == Path::Rotation);
+    }
+    SECTION("a still channel whose last key is the animation's last stays: it gives the animation its length") {
+        scene.animations[0].channels[0].times = {0, 3};
+        CHECK(removeStillChannels(scene) == 1);
+        CHECK(scene.animations[0].channels[0].path == Path::Translation);
+    }
+    SECTION("an animation of still channels only keeps one") {
+        scene.animations[0].channels.pop_back();
+        CHECK(removeStillChannels(scene) == 1);
+        CHECK(scene.animations[0].channels.size() == 1);
+    }
+    SECTION("--no-prune keeps them all") {
+        OptimizeOptions keep;
+        keep.prune = false;
+        CHECK(optimizeScene(scene, keep).stillChannelsRemoved == 0);
+        CHECK(scene.animations[0].channels.size() == 3);
+        CHECK(optimizeScene(scene).stillChannelsRemoved == 2);
+    }
+}

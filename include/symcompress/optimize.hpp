@@ -12,7 +12,8 @@ namespace symcompress {
 
 struct OptimizeOptions {
     bool pruneAttributes = true;  // texture coordinates that no texture reads, tangents no normal map reads
-    bool prune = true;            // materials no primitive uses, textures no material uses
+    bool prune =
+        true;  // materials no primitive uses, textures no material uses, animation channels that change nothing
     bool dedup = true;            // materials equal but for their names, textures equal by content
     bool dropFlatNormals = true;  // normals equal to their triangles' own (the viewer's flat shading)
 };
@@ -23,6 +24,7 @@ struct OptimizeReport {
     std::size_t flatNormalsDropped = 0;       // primitives whose normals were their triangles' own
     std::size_t materialsMerged = 0, texturesMerged = 0;
     std::size_t materialsRemoved = 0, texturesRemoved = 0;
+    std::size_t stillChannelsRemoved = 0;  // animation channels that hold their node where it rests
     // One line for each optimization that did something, for the warnings a user reads.
     std::vector<std::string> lines() const;
 };
@@ -53,5 +55,11 @@ std::pair<std::size_t, std::size_t> mergeDuplicateMaterialsAndTextures(Scene& sc
 // Materials that no primitive uses and textures that no material uses, removed. Returns {materials,
 // textures} removed.
 std::pair<std::size_t, std::size_t> pruneUnused(Scene& scene);
+
+// Animation channels that hold their node where it rests removed: every key its own translation, rotation
+// (either quaternion), scale or morph weights to float32's precision (a cubic spline's tangents 0), where no other
+// animation keys the same node and path (a viewer playing both would blend them), the animation keeps a channel
+// and the same first and last key times (its length, over which a viewer loops). Returns how many.
+std::size_t removeStillChannels(Scene& scene);
 
 }  // namespace symcompress

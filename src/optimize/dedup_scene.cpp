@@ -62,7 +62,10 @@ OptimizeReport optimizeScene(Scene& scene, const OptimizeOptions& options) {
     if (options.pruneAttributes) report.unreadAttributesDropped = dropUnreadAttributes(scene);
     if (options.dropFlatNormals) report.flatNormalsDropped = dropFlatNormals(scene);
     // Merged materials and textures are left unused, for pruning to remove (with --no-prune they stay).
-    if (options.prune) std::tie(report.materialsRemoved, report.texturesRemoved) = pruneUnused(scene);
+    if (options.prune) {
+        std::tie(report.materialsRemoved, report.texturesRemoved) = pruneUnused(scene);
+        report.stillChannelsRemoved = removeStillChannels(scene);
+    }
     return report;
 }
 
@@ -81,6 +84,7 @@ std::vector<std::string> OptimizeReport::lines() const {
         "(--keep-flat-normals keeps them)");
     say(materialsRemoved, "materials that no primitive uses (merged ones included) removed (--no-prune keeps them)");
     say(texturesRemoved, "textures that no material uses (merged ones included) removed (--no-prune keeps them)");
+    say(stillChannelsRemoved, "animation channels that hold their node where it rests removed (--no-prune keeps them)");
     return out;
 }
 

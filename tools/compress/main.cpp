@@ -425,8 +425,10 @@ int main(int argc, char** argv) {
                        "keep texture coordinates that no texture reads (dropped by default)");
     compress->add_flag("--keep-flat-normals", [&](std::int64_t) { compressRequest.options.optimize.dropFlatNormals = false; },
                        "keep normals equal to their triangles' own (dropped by default: viewers shade flat without them)");
-    compress->add_flag("--no-prune", [&](std::int64_t) { compressRequest.options.optimize.prune = false; },
-                       "keep materials no primitive uses and textures no material uses");
+    compress->add_flag(
+        "--no-prune", [&](std::int64_t) { compressRequest.options.optimize.prune = false; },
+        "keep materials no primitive uses, textures no material uses and animation channels that "
+        "hold their node where it rests");
     compress->add_flag("--no-dedup", [&](std::int64_t) { compressRequest.options.optimize.dedup = false; },
                        "keep materials equal but for their names, and textures of the same image, apart");
     compress->add_flag("--drop-unused-texcoords", compressRequest.options.optimize.pruneAttributes,
