@@ -316,7 +316,7 @@ TEST_CASE("A small flat part is drawn by its material's smooth part, each corner
 }
 
 TEST_CASE(
-    "Animation channels that hold their node where it rests are removed; one that moves it, or that another "
+    "Animation channels that hold their node where it rests are removed, and one that moves it, or that another "
     "animation keys too, or that gives the animation its length, stays",
     "[optimize]") {
     // A triangle on node 0, rotated 30 degrees about z and 2 along x at rest, scaled by 1.5.

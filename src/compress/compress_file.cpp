@@ -167,8 +167,11 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         // poses; a share for the rounding of GPU-instanced rotations and one for their translations and scales, kept
         // by the meshes that several nodes draw; the rest for the placements and each mesh's quantization (the
         // meshes the plan does not bound take all of that).
-        const double skinShare = scene.skins.empty() ? 0 : options.maxError * kSkinWeightShare;
-        const double keyShare = options.maxError * animationKeyShare(scene);
+        // Only the glTF writer rounds them, and only with meshopt (X3D holds no skins and writes keys as text).
+        const FileFormat format = formatFromExtension(output);
+        const bool rounds = (format == FileFormat::Gltf || format == FileFormat::Glb) && write.draco;
+        const double skinShare = !rounds || scene.skins.empty() ? 0 : options.maxError * kSkinWeightShare;
+        const double keyShare = rounds && write.gpuInstancing ? options.maxError * animationKeyShare(scene) : 0;
         write.skinWeightError = skinShare * analysis.diagonal;
         write.animationKeyError = keyShare * analysis.diagonal;
         report.skinWeightShare = skinShare;
