@@ -326,3 +326,45 @@ TEST_CASE("Animation keys that move a camera are kept as read", "[io]") {
     // The elbow's rotations as read; the root joint's translations (it carries the camera too) as well.
     CHECK(keysAsRead(scene, folder / "camera.glb"));
 }
+
+TEST_CASE("Morph weights rounded with a key's weights in one element of the filter, and read back as scalars",
+          "[io][verify]") {
+    // A triangle with two targets (one lifting it by 1, one sliding it by 1), their weights keyed 400 times.
+    AnimationChannel weights;
+    weights.path = AnimationChannel::Path::Weights;
+    weights.weights = 2;
+    for (int k = 0; k < 400; ++k) {
+        weights.times.push_back(k / 100.0);
+        weights.values.insert(weights.values.end(), {0.5 + 0.5 * std::sin(k / 30.0), 0.0001 * k});
+    }
+    AnimationChannel still;
+    still.times = {0};
+    still.values = {0, 0, 0};
+    Scene scene = movedTriangle(still);
+    weights.node = 0;
+    scene.animations[0].channels = {weights};
+    scene.meshes[0].primitives[0].targets = {{{"POSITION", 3, {0, 0, 1, 0, 0, 1, 0, 0, 1}}},
+                                             {{"POSITION", 3, {1, 0, 0, 1, 0, 0, 1, 0, 0}}}};
+    scene.meshes[0].weights = {0, 0};
+    validateScene(scene);
+    TemporaryFolder folder;
+    WriteOptions options;
+    options.animationKeyError = 1e-4;
+    writeScene(scene, folder / "morphed.glb", options);
+    // One filtered view, an element to a key (two weights, 8 bytes).
+    const nlohmann::json json = glbJson(folder / "morphed.glb");
+    std::vector<int> strides;
+    for (const auto& view : json["bufferViews"])
+        if (view.contains("extensions") && view["extensions"]["EXT_meshopt_compression"].contains("filter"))
+            strides.push_back(view["extensions"]["EXT_meshopt_compression"]["byteStride"]);
+    CHECK(strides == std::vector<int>{8});
+    // Read back as 800 scalars, each within the allowance (a weight moves a vertex by itself times 1).
+    const Scene read = readScene(folder / "morphed.glb");
+    REQUIRE(read.animations.size() == 1);
+    const std::vector<double>& back = read.animations[0].channels.at(0).values;
+    REQUIRE(back.size() == weights.values.size());
+    double farthest = 0;
+    for (std::size_t i = 0; i < back.size(); ++i) farthest = std::max(farthest, std::abs(back[i] - weights.values[i]));
+    CHECK(farthest > 0);
+    CHECK(farthest <= 1e-4);
+}

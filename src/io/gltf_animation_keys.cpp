@@ -52,11 +52,13 @@ Rounded quaternionRounded(const AnimationChannel& channel, int bits) {
     return out;
 }
 
-// Any values through meshopt's exponential filter, `components` to an element (sharing its exponent): float32
-// once decoded. Morph weights go one to an element, however many targets a key has.
+// Any values through meshopt's exponential filter, a key's value to an element (its components sharing one
+// exponent: a weight near 0 then costs no more bits than its key's largest): float32 once decoded. Morph weights
+// of more than 64 targets go one to an element (meshopt's elements are 256 bytes at most).
 Rounded exponentialRounded(const AnimationChannel& channel, int bits) {
     const std::vector<float> floats = floatsOf(channel.values);
-    const std::size_t components = channel.path == AnimationChannel::Path::Weights ? 1 : channel.components(),
+    constexpr std::size_t kMostComponents = 64;
+    const std::size_t components = channel.components() > kMostComponents ? 1 : channel.components(),
                       count = floats.size() / components;
     std::vector<std::uint32_t> encoded(floats.size());
     meshopt_encodeFilterExp(encoded.data(), count, components * 4, bits, floats.data());

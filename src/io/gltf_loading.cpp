@@ -128,8 +128,9 @@ void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
         model.buffers.push_back(std::move(decoded));
         view.buffer = int(model.buffers.size()) - 1;
         view.byteOffset = 0;
+        // The view keeps its own byteStride, or none (elements packed tight): the extension's is its stream's, and
+        // a view of scalars may be coded as vectors (morph weights, a key's weights sharing an exponent).
         view.byteLength = std::size_t(stride) * std::size_t(count);
-        if (mode == "ATTRIBUTES") view.byteStride = std::size_t(stride);
     }
 }
 
