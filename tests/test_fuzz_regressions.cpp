@@ -377,6 +377,31 @@ TEST_CASE("Writers: values near float32's limit are refused by the Draco writer,
                           Catch::Contains("huge.glb: POSITION holds values beyond float32's range (3.4e38)"));
 }
 
+TEST_CASE(
+    "Writers: a further attribute near float32's limit goes through Draco unquantized, where quantizing it crashed",
+    "[io][fuzz]") {
+    // Found by fuzz_glb: a TEXCOORD_1 spanning -3e38 to 3e38 overflowed Draco's quantization, whose entropy
+    // coder then read far out of bounds (SEGV). Such an attribute is now stored as read, exactly.
+    Primitive triangle;
+    triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    triangle.triangles = {{0, 1, 2}};
+    triangle.attributes = {{"TEXCOORD_1", 2, {3e38, 0, -3e38, 1, 0.25, 0.5}}};
+    TemporaryFolder folder;
+    writeScene(sceneOfOneMesh("far", triangle), folder / "far.glb");
+    const Scene back = readScene(folder / "far.glb");
+    REQUIRE(back.meshes.size() == 1);
+    const Primitive& out = back.meshes[0].primitives.at(0);
+    REQUIRE(out.attributes.size() == 1);
+    for (std::size_t v = 0; v < out.positions.size(); ++v) {
+        const auto source =
+            std::size_t(std::find(triangle.positions.begin(), triangle.positions.end(), out.positions[v]) -
+                        triangle.positions.begin());
+        REQUIRE(source < 3);
+        for (int c = 0; c < 2; ++c)
+            CHECK(out.attributes[0].values[2 * v + c] == double(float(triangle.attributes[0].values[2 * source + c])));
+    }
+}
+
 TEST_CASE("glTF: an image or buffer URI naming a folder is not a file, where tinygltf asked for 2^63 bytes", "[io][fuzz]") {
     // Found by fuzz_obj: an OBJ texture name cut short by a NUL, its reference kept in the GLB written.
     TemporaryFolder folder;

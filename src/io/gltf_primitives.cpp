@@ -154,6 +154,14 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     std::unique_ptr<draco::Mesh> mesh = soup.Finalize();
     if (!mesh) throw FileError(file, "Draco could not build a mesh from a primitive");
 
+    // Primitive::attributes near float32's limit stay unquantized (Draco stores them as read), where quantizing
+    // overflowed as above; the core attributes were refused instead, since glTF's viewers expect them quantized.
+    std::vector<int> otherBits;
+    for (const VertexAttribute& attribute : primitive.attributes) {
+        const bool withinRange = std::all_of(attribute.values.begin(), attribute.values.end(),
+                                             [](double value) { return std::abs(value) <= kMaxDracoMagnitude; });
+        otherBits.push_back(withinRange ? quantizationBits(attribute.name, options) : 0);
+    }
     const int positionBits =
         primitive.positionGrid ? primitive.positionGrid->bits : positionBitsFor(primitive, options);
     const std::vector<int> speeds = dracoSpeedsWorthTrying(primitive, options);
@@ -174,8 +182,7 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
         for (const auto& [id, attributeBits] : quantized)
             if (id >= 0) encoder.SetAttributeQuantization(id, attributeBits);
         for (std::size_t a = 0; a < primitive.attributes.size(); ++a)
-            if (const int attributeBits = quantizationBits(primitive.attributes[a].name, options); attributeBits > 0)
-                encoder.SetAttributeQuantization(ids.others[a], attributeBits);
+            if (otherBits[a] > 0) encoder.SetAttributeQuantization(ids.others[a], otherBits[a]);
         const draco::Status status = encoder.EncodeToBuffer(&encoded);
         if (!status.ok() && encoding != draco::MESH_EDGEBREAKER_ENCODING)
             throw FileError(file, "Draco encoding failed: " + status.error_msg_string());
