@@ -358,6 +358,8 @@ TEST_CASE("Morph weights rounded with a key's weights in one element of the filt
         if (view.contains("extensions") && view["extensions"]["EXT_meshopt_compression"].contains("filter"))
             strides.push_back(view["extensions"]["EXT_meshopt_compression"]["byteStride"]);
     CHECK(strides == std::vector<int>{8});
+    // Its one primitive is morphed, which Draco never codes: no Draco extension is named.
+    CHECK(json["extensionsUsed"] == nlohmann::json{"EXT_meshopt_compression"});
     // Read back as 800 scalars, each within the allowance (a weight moves a vertex by itself times 1).
     const Scene read = readScene(folder / "morphed.glb");
     REQUIRE(read.animations.size() == 1);

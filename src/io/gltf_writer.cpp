@@ -590,9 +590,12 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             }
             for (Json part : written[e]) {
                 if (primitive.material >= 0) part["material"] = primitive.material;
+                // Only where a primitive is Draco's (a morphed one never is): a required extension names what a
+                // viewer must decode.
+                usedDraco = usedDraco ||
+                            (part.contains("extensions") && part["extensions"].contains("KHR_draco_mesh_compression"));
                 primitives.push_back(std::move(part));
             }
-            usedDraco = options.draco;
         }
         if (primitives.empty()) continue;
         Json mesh = {{"primitives", primitives}};
