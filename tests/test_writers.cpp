@@ -2,6 +2,7 @@
 // translations, 1e-7 for rotations), and defaults left out; the file reads back to the same scene. And its
 // measure of a mesh, which the compression plan weighs its choices with.
 #include "common/number_text.hpp"
+#include "io/gltf_instance_encoding.hpp"
 #include "io/primitive_encodings.hpp"
 #include "sample_scenes.hpp"
 #include "symcompress/detail/atomic_file.hpp"
@@ -32,6 +33,20 @@ TEST_CASE("Rounding helpers: float32 text reads back to the same float, rotation
     CHECK(roundedDecimals(-3.047421e-10, 7) == 0.0);
     CHECK(nlohmann::json(roundedDecimals(-3.047421e-10, 7)).dump() == "0.0");  // not "-0.0"
     CHECK(roundedDecimals(0.70710678118, 7) == 0.7071068);
+}
+
+TEST_CASE("meshopt's exponential filter: zeros lifted leave a vector its own exponent and still decode as 0", "[io]") {
+    const std::vector<float> values = {0, 0.0189325f, 0, /**/ 0, 0, 0, /**/ -0.5f, 0.25f, 0.125f};
+    for (const int bits : {8, 12, 16, 23}) {
+        INFO(bits << " bits");
+        const std::vector<float> plain = exponentialDecoded(exponentialFiltered(values, 3, bits, false), 3);
+        const std::vector<float> lifted = exponentialDecoded(exponentialFiltered(values, 3, bits, true), 3);
+        for (const std::size_t zero : {0, 2, 3, 4, 5}) CHECK(lifted[zero] == 0.0f);
+        // 0.0189 steps by 2^-5 of a unit of its own at most (its exponent -5): alone, not where its zeros set 0.
+        CHECK(std::abs(lifted[1] - values[1]) <= std::ldexp(1.0, -5 - bits + 1));
+        if (bits < 23) CHECK(std::abs(plain[1] - values[1]) > std::ldexp(1.0, -5 - bits + 1));
+        for (std::size_t c = 6; c < 9; ++c) CHECK(lifted[c] == plain[c]);  // no zeros: the same
+    }
 }
 
 TEST_CASE("Written glTF nodes and materials carry no needless digits and no defaults", "[io]") {

@@ -55,17 +55,14 @@ Rounded quaternionRounded(const AnimationChannel& channel, int bits) {
 // Any values through meshopt's exponential filter, a key's value to an element (its components sharing one
 // exponent: a weight near 0 then costs no more bits than its key's largest): float32 once decoded. Morph weights
 // of more than 64 targets go one to an element (meshopt's elements are 256 bytes at most).
+// `liftZeros`: as exponentialFiltered says.
+template <bool liftZeros>
 Rounded exponentialRounded(const AnimationChannel& channel, int bits) {
     const std::vector<float> floats = floatsOf(channel.values);
     constexpr std::size_t kMostComponents = 64;
-    const std::size_t components = channel.components() > kMostComponents ? 1 : channel.components(),
-                      count = floats.size() / components;
-    std::vector<std::uint32_t> encoded(floats.size());
-    meshopt_encodeFilterExp(encoded.data(), count, components * 4, bits, floats.data());
-    std::vector<std::uint32_t> decoded = encoded;
-    meshopt_decodeFilterExp(decoded.data(), count, components * 4);
-    std::vector<float> back(decoded.size());
-    std::memcpy(back.data(), decoded.data(), back.size() * sizeof(float));
+    const std::size_t components = channel.components() > kMostComponents ? 1 : channel.components();
+    const std::vector<std::uint32_t> encoded = exponentialFiltered(floats, components, bits, liftZeros);
+    const std::vector<float> back = exponentialDecoded(encoded, components);
     return {{"EXPONENTIAL", kFloat, components * 4, bytesOf(encoded), bits}, {back.begin(), back.end()}};
 }
 
@@ -189,22 +186,35 @@ std::vector<KeyValues> roundedKeyValues(const Scene& scene, const Animation& ani
         return bits ? roundIn(which, round, bits) : std::vector<Rounded>();
     };
 
+    // Of the roundings of the channels `which` by each filter, the one meshopt codes smallest (none where none
+    // holds), left in `trial` and `out`.
+    auto keepSmallest = [&](const std::vector<std::size_t>& which, std::vector<std::vector<Rounded>> candidates) {
+        const std::vector<Rounded>* kept = nullptr;
+        for (const std::vector<Rounded>& candidate : candidates)
+            if (!candidate.empty() && (!kept || codedBytes(candidate) < codedBytes(*kept))) kept = &candidate;
+        for (std::size_t i = 0; kept && i < kept->size(); ++i) {
+            out[which[i]] = (*kept)[i].stored;
+            trial.channels[which[i]].values = (*kept)[i].values;
+        }
+    };
     // Rotations with three quarters of the allowance (they are most of the data), by the filter that codes them
     // smaller: at the default budget the quaternion filter's 16 bits move the fox's paws 1.2 to 2.3 times too far.
-    std::vector<Rounded> byQuaternion = fewest(rotations, quaternionRounded, 4, 16, allowed * 3 / 4);
+    std::vector<std::vector<Rounded>> rotationCandidates;
+    rotationCandidates.push_back(fewest(rotations, quaternionRounded, 4, 16, allowed * 3 / 4));
     restore(rotations);
-    std::vector<Rounded> byExponent = fewest(rotations, exponentialRounded, 1, 23, allowed * 3 / 4);
+    rotationCandidates.push_back(
+        fewest(rotations, exponentialRounded<false>, 1, kMostExponentialBits, allowed * 3 / 4));
     restore(rotations);
-    const bool quaternions =
-        !byQuaternion.empty() && (byExponent.empty() || codedBytes(byQuaternion) <= codedBytes(byExponent));
-    const std::vector<Rounded>& rotationsRounded = quaternions ? byQuaternion : byExponent;
-    for (std::size_t i = 0; i < rotationsRounded.size(); ++i) {
-        out[rotations[i]] = rotationsRounded[i].stored;
-        trial.channels[rotations[i]].values = rotationsRounded[i].values;
-    }
+    rotationCandidates.push_back(fewest(rotations, exponentialRounded<true>, 1, kMostExponentialBits, allowed * 3 / 4));
+    restore(rotations);
+    keepSmallest(rotations, std::move(rotationCandidates));
     // The others with what the rotations left.
-    const std::vector<Rounded> othersRounded = fewest(others, exponentialRounded, 1, 23, allowed);
-    for (std::size_t i = 0; i < othersRounded.size(); ++i) out[others[i]] = othersRounded[i].stored;
+    std::vector<std::vector<Rounded>> otherCandidates;
+    otherCandidates.push_back(fewest(others, exponentialRounded<false>, 1, kMostExponentialBits, allowed));
+    restore(others);
+    otherCandidates.push_back(fewest(others, exponentialRounded<true>, 1, kMostExponentialBits, allowed));
+    restore(others);
+    keepSmallest(others, std::move(otherCandidates));
     return out;
 }
 

@@ -97,6 +97,26 @@ std::vector<Eigen::Vector4d> coefficientsOf(const std::vector<Eigen::Quaterniond
 
 }  // namespace
 
+std::vector<std::uint32_t> exponentialFiltered(const std::vector<float>& values, std::size_t components, int bits,
+                                               bool liftZeros) {
+    std::vector<float> lifted = values;
+    for (std::size_t v = 0; liftZeros && v + components <= lifted.size(); v += components) {
+        const auto begin = lifted.begin() + std::ptrdiff_t(v), end = begin + std::ptrdiff_t(components);
+        if (std::any_of(begin, end, [](float c) { return c != 0; }))
+            std::replace(begin, end, 0.0f, std::numeric_limits<float>::min());
+    }
+    std::vector<std::uint32_t> filtered(lifted.size());
+    meshopt_encodeFilterExp(filtered.data(), lifted.size() / components, components * 4, bits, lifted.data());
+    return filtered;
+}
+
+std::vector<float> exponentialDecoded(std::vector<std::uint32_t> filtered, std::size_t components) {
+    meshopt_decodeFilterExp(filtered.data(), filtered.size() / components, components * 4);
+    std::vector<float> out(filtered.size());
+    std::memcpy(out.data(), filtered.data(), out.size() * sizeof(float));
+    return out;
+}
+
 std::vector<unsigned char> meshoptEncoded(const std::vector<unsigned char>& values, std::size_t elementBytes) {
     const std::size_t count = values.size() / elementBytes;
     std::vector<unsigned char> out(meshopt_encodeVertexBufferBound(count, elementBytes));
@@ -112,22 +132,19 @@ std::vector<InstanceEncoding> vectorEncodings(const std::vector<Eigen::Vector3d>
     std::vector<InstanceEncoding> out{encoding(kFloat, 12, "", bytesOf(floats))};
     if (!compress) return out;
     out.push_back(encoding(kFloat, 12, "NONE", bytesOf(floats)));
-    auto filtered = [&](int bits) {
-        std::vector<std::uint32_t> encoded(floats.size());
-        meshopt_encodeFilterExp(encoded.data(), vectors.size(), 12, bits, floats.data());
-        return encoded;
-    };
-    auto holds = [&](int bits) {
-        std::vector<std::uint32_t> decoded = filtered(bits);
-        meshopt_decodeFilterExp(decoded.data(), vectors.size(), 12);
-        const std::vector<float> back = valuesOf<float>(bytesOf(decoded));
-        for (std::size_t i = 0; i < vectors.size(); ++i)
-            if (lever * (Eigen::Vector3d(back[3 * i], back[3 * i + 1], back[3 * i + 2]) - vectors[i]).norm() > allowed)
-                return false;
-        return true;
-    };
-    if (const int bits = fewestBits(1, 24, holds))
-        out.push_back(encoding(kFloat, 12, "EXPONENTIAL", bytesOf(filtered(bits))));
+    for (const bool liftZeros : {false, true}) {
+        auto filtered = [&](int bits) { return exponentialFiltered(floats, 3, bits, liftZeros); };
+        auto holds = [&](int bits) {
+            const std::vector<float> back = exponentialDecoded(filtered(bits), 3);
+            for (std::size_t i = 0; i < vectors.size(); ++i)
+                if (lever * (Eigen::Vector3d(back[3 * i], back[3 * i + 1], back[3 * i + 2]) - vectors[i]).norm() >
+                    allowed)
+                    return false;
+            return true;
+        };
+        if (const int bits = fewestBits(1, kMostExponentialBits, holds))
+            out.push_back(encoding(kFloat, 12, "EXPONENTIAL", bytesOf(filtered(bits))));
+    }
     return out;
 }
 
@@ -180,22 +197,18 @@ std::vector<InstanceEncoding> rotationEncodings(const std::vector<Eigen::Quatern
     if (const int bits = fewestBits(4, 16, quaternionHolds))
         out.push_back(encoding(kShort, 8, "QUATERNION", bytesOf(quaternionFiltered(bits))));
 
-    auto exponentialFiltered = [&](int bits) {
-        std::vector<std::uint32_t> encoded(floats.size());
-        meshopt_encodeFilterExp(encoded.data(), rotations.size(), 16, bits, floats.data());
-        return encoded;
-    };
-    auto exponentialHolds = [&](int bits) {
-        std::vector<std::uint32_t> decoded = exponentialFiltered(bits);
-        meshopt_decodeFilterExp(decoded.data(), rotations.size(), 16);
-        const std::vector<float> back = valuesOf<float>(bytesOf(decoded));
-        std::vector<Eigen::Vector4d> readBack;
-        for (std::size_t i = 0; i < rotations.size(); ++i)
-            readBack.push_back(Eigen::Vector4d(back[4 * i], back[4 * i + 1], back[4 * i + 2], back[4 * i + 3]));
-        return holds(readBack);
-    };
-    if (const int bits = fewestBits(1, 24, exponentialHolds))
-        out.push_back(encoding(kFloat, 16, "EXPONENTIAL", bytesOf(exponentialFiltered(bits))));
+    for (const bool liftZeros : {false, true}) {
+        auto exponentialHolds = [&](int bits) {
+            const std::vector<float> back = exponentialDecoded(exponentialFiltered(floats, 4, bits, liftZeros), 4);
+            std::vector<Eigen::Vector4d> readBack;
+            for (std::size_t i = 0; i < rotations.size(); ++i)
+                readBack.push_back(Eigen::Vector4d(back[4 * i], back[4 * i + 1], back[4 * i + 2], back[4 * i + 3]));
+            return holds(readBack);
+        };
+        if (const int bits = fewestBits(1, kMostExponentialBits, exponentialHolds))
+            out.push_back(
+                encoding(kFloat, 16, "EXPONENTIAL", bytesOf(exponentialFiltered(floats, 4, bits, liftZeros))));
+    }
     return out;
 }
 

@@ -8,6 +8,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
+
 #include <string>
 #include <vector>
 
@@ -57,6 +59,21 @@ int fewestBits(int low, int high, Holds holds) {
     }
     return high;
 }
+
+// The most mantissa bits worth giving meshoptimizer's exponential filter: at 24 (its documented most) a mantissa
+// rounded up to 2^23 overflows its 24-bit field.
+constexpr int kMostExponentialBits = 23;
+
+// meshoptimizer's exponential filter over `values`, vectors of `components` sharing one exponent, at `bits` (1 to
+// 24): the filter's words. meshoptimizer 0.18 takes the exponent of a zero for 0 (frexp's), which makes a vector
+// (0, 0.02, 0) step by 2^(1-bits) where 0.02 alone steps 32 times finer. With `liftZeros`, exact zeros beside a
+// nonzero component are given float32's least normal magnitude first, whose mantissa rounds to 0 (it still
+// decodes as 0): finer steps at the same bits, but exponents that vary from vector to vector, which meshopt
+// codes in more bytes; which is smaller depends on the data.
+std::vector<std::uint32_t> exponentialFiltered(const std::vector<float>& values, std::size_t components, int bits,
+                                               bool liftZeros);
+// The values a viewer decodes from the filter's words.
+std::vector<float> exponentialDecoded(std::vector<std::uint32_t> filtered, std::size_t components);
 
 // meshoptimizer's vertex codec (format version 0, which EXT_meshopt_compression specifies) over `values`,
 // elements of `elementBytes`.
