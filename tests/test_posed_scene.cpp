@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 using namespace symcompress;
 using symcompress::testing::glbJson;
@@ -369,4 +370,87 @@ TEST_CASE("Morph weights rounded with a key's weights in one element of the filt
     for (std::size_t i = 0; i < back.size(); ++i) farthest = std::max(farthest, std::abs(back[i] - weights.values[i]));
     CHECK(farthest > 0);
     CHECK(farthest <= 1e-4);
+}
+
+TEST_CASE(
+    "A morphed primitive's vertices rounded by meshopt's exponential filter within the position bound in every "
+    "pose",
+    "[io][verify]") {
+    // A 9 by 9 sheet of vertices off any grid, with normals, and two targets that lift and slide part of it (their
+    // displacements mostly zero beside a nonzero component: the filter's exponent must not be taken from the zeros).
+    Primitive sheet;
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+    for (int i = 0; i < 9; ++i)
+        for (int j = 0; j < 9; ++j) {
+            sheet.positions.push_back({i / 8.0 + jitter(random), j / 8.0 + jitter(random), jitter(random)});
+            sheet.normals.push_back(Eigen::Vector3d(jitter(random), jitter(random), 1).normalized());
+        }
+    for (std::uint32_t i = 0; i < 8; ++i)
+        for (std::uint32_t j = 0; j < 8; ++j) {
+            const std::uint32_t v = i * 9 + j;
+            sheet.triangles.push_back({v, v + 9, v + 1});
+            sheet.triangles.push_back({v + 1, v + 9, v + 10});
+        }
+    VertexAttribute lift{"POSITION", 3, {}}, slide{"POSITION", 3, {}}, tilt{"NORMAL", 3, {}};
+    for (std::size_t v = 0; v < sheet.positions.size(); ++v) {
+        const double x = sheet.positions[v].x();
+        lift.values.insert(lift.values.end(), {0, 0, x > 0.5 ? 0.3 * x + jitter(random) : 0.0});
+        slide.values.insert(slide.values.end(), {0.01 * x, 0, 0});
+        tilt.values.insert(tilt.values.end(), {x > 0.5 ? -0.2 : 0.0, 0, 0});
+    }
+    sheet.targets = {{lift, tilt}, {slide}};
+    AnimationChannel weights;
+    weights.path = AnimationChannel::Path::Weights;
+    weights.weights = 2;
+    for (int k = 0; k < 20; ++k) {
+        weights.times.push_back(k / 10.0);
+        weights.values.insert(weights.values.end(), {0.5 + 0.5 * std::sin(k / 3.0), k / 19.0});
+    }
+    Scene scene = sceneOfOneMesh("sheet", sheet);
+    scene.meshes[0].weights = {0, 0};
+    weights.node = 0;
+    scene.animations.push_back({"wave", {weights}});
+    validateScene(scene);
+
+    TemporaryFolder folder;
+    WriteOptions options;
+    options.maxPositionError = 1e-4;
+    writeScene(scene, folder / "rounded.glb", options);
+    const nlohmann::json json = glbJson(folder / "rounded.glb");
+    bool filteredVertices = false;
+    for (const auto& view : json["bufferViews"])
+        filteredVertices |= view.value("target", 0) == 34962 &&
+                            view["extensions"]["EXT_meshopt_compression"].value("filter", "") == "EXPONENTIAL";
+    CHECK(filteredVertices);
+    // The vertices keep their order (no Draco): each one, at rest and at every key, within the bound.
+    const Scene read = readScene(folder / "rounded.glb");
+    REQUIRE(read.animations.size() == 1);
+    double farthest = 0;
+    for (const double time : weights.times) {
+        const TriangleMesh asRead = posedMesh(scene, scene.animations[0], time);
+        const TriangleMesh back = posedMesh(read, read.animations[0], time);
+        REQUIRE(back.positions.size() == asRead.positions.size());
+        for (std::size_t v = 0; v < back.positions.size(); ++v)
+            farthest = std::max(farthest, (back.positions[v] - asRead.positions[v]).norm());
+    }
+    CHECK(farthest > 1e-6);  // rounded, not as read
+    CHECK(farthest <= 1e-4);
+    // Without a bound, or without Draco (the plain writer stores every value as read), nothing is rounded.
+    for (const bool draco : {true, false}) {
+        WriteOptions exact;
+        exact.draco = draco;
+        writeScene(scene, folder / "exact.glb", exact);
+        const Scene exactRead = readScene(folder / "exact.glb");
+        const Primitive& out = exactRead.meshes.at(0).primitives.at(0);
+        REQUIRE(out.positions.size() == sheet.positions.size());
+        for (std::size_t v = 0; v < out.positions.size(); ++v)
+            CHECK(out.positions[v] == sheet.positions[v].cast<float>().cast<double>());
+        REQUIRE(out.targets.size() == 2);
+        const std::vector<float> lifted(lift.values.begin(), lift.values.end());
+        const auto displaced = std::find_if(out.targets[0].begin(), out.targets[0].end(),
+                                            [](const VertexAttribute& a) { return a.name == "POSITION"; });
+        REQUIRE(displaced != out.targets[0].end());
+        CHECK(displaced->values == std::vector<double>(lifted.begin(), lifted.end()));
+    }
 }

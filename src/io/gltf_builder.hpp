@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/number_text.hpp"
+#include "gltf_vertex_rounding.hpp"
 #include "symcompress/io.hpp"
 
 #include <nlohmann/json.hpp>
@@ -114,14 +115,15 @@ public:
                                   std::to_string(target) + type + (withBounds ? "+" : "-"));
     }
 
-    // Data that is no vertex attribute rounded by one of meshopt's filters (QUATERNION, EXPONENTIAL): `filtered`,
-    // the filter's elements of `elementBytes`, which only a meshopt view holds (dataEncoder must be set), one for
-    // each filter and layout. `accessor`: its JSON but its view.
+    // Data rounded by one of meshopt's filters (QUATERNION, EXPONENTIAL): `filtered`, the filter's elements of
+    // `elementBytes`, which only a meshopt view holds (dataEncoder must be set), one for each target, filter and
+    // layout. `accessor`: its JSON but its view; `target`: kArrayBuffer for vertex attributes, 0 for other data.
     int addFilteredAccessor(Json accessor, const std::vector<unsigned char>& filtered, std::size_t elementBytes,
-                            const std::string& filter) {
-        const std::string group = filter + std::to_string(elementBytes) + accessor["type"].get<std::string>() +
+                            const std::string& filter, int target = 0) {
+        const std::string group = std::to_string(target) + filter + std::to_string(elementBytes) +
+                                  accessor["type"].get<std::string>() +
                                   std::to_string(accessor["componentType"].get<int>());
-        return addPendingAccessor(std::move(accessor), filtered, elementBytes, filter, 0, group);
+        return addPendingAccessor(std::move(accessor), filtered, elementBytes, filter, target, group);
     }
 
     // Where set, float data is stored encoded by it (the writer's meshopt ATTRIBUTES, filter NONE: lossless) where
@@ -235,6 +237,8 @@ struct DracoPart {
 struct EncodedPrimitive {
     bool plain = false;
     std::vector<DracoPart> parts;
+    // A plain primitive's vertices rounded (roundedMorphedVertices), used where the builder codes data by meshopt.
+    RoundedVertices rounded;
 };
 EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions& options, const std::filesystem::path& file);
 // Appends the glTF primitives of `encoded` (made from `primitive`) to `primitives`, and their data to the builder.

@@ -337,15 +337,41 @@ void refuseBeyondFloat(const VertexAttribute& attribute, const fs::path& file) {
                 throw FileError(file, attribute.name + " holds a joint index that is no whole number from 0 to 65535");
 }
 
-Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
+// Attribute `name` of target `target` (-1: the primitive's own) as `rounded` holds it, where it does and the builder
+// codes data by meshopt; else -1.
+int addRoundedAttribute(GltfBuilder& builder, const RoundedVertices& rounded, int target, const std::string& name) {
+    const auto found = rounded.find({target, name});
+    if (!builder.dataEncoder || found == rounded.end()) return -1;
+    const RoundedAttribute& values = found->second;
+    const int components = int(values.elementBytes / 4);
+    Json accessor = {{"componentType", kFloat},
+                     {"count", values.decoded.size() / std::size_t(components)},
+                     {"type", accessorType(components)}};
+    if (name == "POSITION") GltfBuilder::addBounds(accessor, values.decoded, components);  // of what a viewer reads
+    return builder.addFilteredAccessor(std::move(accessor), values.filtered, values.elementBytes, "EXPONENTIAL",
+                                       kArrayBuffer);
+}
+
+Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const RoundedVertices& rounded) {
     Json attributes = Json::object();
-    attributes["POSITION"] = builder.addFloatAccessor(primitive.positions, 3, "VEC3", true);
+    // Each attribute rounded where `rounded` has it, else as read.
+    auto add = [&](const std::string& name, int target, auto asRead) {
+        const int accessor = addRoundedAttribute(builder, rounded, target, name);
+        return accessor >= 0 ? accessor : asRead();
+    };
+    attributes["POSITION"] =
+        add("POSITION", -1, [&] { return builder.addFloatAccessor(primitive.positions, 3, "VEC3", true); });
     if (!primitive.normals.empty())
-        attributes["NORMAL"] = builder.addFloatAccessor(primitive.normals, 3, "VEC3", false);
+        attributes["NORMAL"] =
+            add("NORMAL", -1, [&] { return builder.addFloatAccessor(primitive.normals, 3, "VEC3", false); });
     if (!primitive.texcoords.empty())
-        attributes["TEXCOORD_0"] = builder.addFloatAccessor(primitive.texcoords, 2, "VEC2", false);
-    if (!primitive.colors.empty()) attributes["COLOR_0"] = builder.addFloatAccessor(primitive.colors, 4, "VEC4", false);
-    for (const VertexAttribute& attribute : primitive.attributes) attributes[attribute.name] = addAttribute(builder, attribute);
+        attributes["TEXCOORD_0"] =
+            add("TEXCOORD_0", -1, [&] { return builder.addFloatAccessor(primitive.texcoords, 2, "VEC2", false); });
+    if (!primitive.colors.empty())
+        attributes["COLOR_0"] =
+            add("COLOR_0", -1, [&] { return builder.addFloatAccessor(primitive.colors, 4, "VEC4", false); });
+    for (const VertexAttribute& attribute : primitive.attributes)
+        attributes[attribute.name] = add(attribute.name, -1, [&] { return addAttribute(builder, attribute); });
     Json indices;
     if (primitive.positions.size() <= 65535) {
         std::vector<std::uint16_t> flat;
@@ -362,9 +388,10 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive) {
     indices["count"] = primitive.triangles.size() * 3;
     indices["type"] = "SCALAR";
     Json out = {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
-    for (const MorphTarget& target : primitive.targets) {
+    for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
         Json displaced = Json::object();
-        for (const VertexAttribute& attribute : target) displaced[attribute.name] = addAttribute(builder, attribute);
+        for (const VertexAttribute& attribute : primitive.targets[t])
+            displaced[attribute.name] = add(attribute.name, int(t), [&] { return addAttribute(builder, attribute); });
         out["targets"].push_back(std::move(displaced));
     }
     return out;
@@ -410,7 +437,7 @@ void addPrimitive(GltfBuilder& builder, const Primitive& primitive, const Encode
         primitives.push_back(std::move(out));
     };
     if (encoded.plain) {
-        add(writePlainPrimitive(builder, primitive), primitive.material);
+        add(writePlainPrimitive(builder, primitive, encoded.rounded), primitive.material);
         return;
     }
     for (const DracoPart& part : encoded.parts) add(addDracoPart(builder, part), part.material);

@@ -529,6 +529,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
         WriteOptions options;
         EncodedPrimitive encoded;
         std::exception_ptr error;
+        std::vector<double> morphWeights;  // a morphed primitive's largest weights (largestMorphWeights)
     };
     std::vector<Encoding> encodings;
     // Primitives equal but for their material (one part drawn in several: a family of classes, or an input's meshes
@@ -561,13 +562,18 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             WriteOptions forPrimitive = options;
             forPrimitive.texcoordBits = texcoordBits;
             forPrimitive.weightBits = weightBits;
-            encodings.push_back({&primitive, std::move(forPrimitive), {}, nullptr});
+            encodings.push_back({&primitive, std::move(forPrimitive), {}, nullptr, {}});
+            if (!primitive.targets.empty()) encodings.back().morphWeights = largestMorphWeights(scene, m);
         }
     withThreads(options.threads, [&] {
         tbb::parallel_for(std::size_t(0), encodings.size(), [&](std::size_t e) {
             Encoding& encoding = encodings[e];
             try {
                 encoding.encoded = encodePrimitive(*encoding.primitive, encoding.options, file);
+                // Vertices Draco does not hold rounded by meshopt's filter, where meshopt codes the data.
+                if (codeData && encoding.encoded.plain && options.draco)
+                    encoding.encoded.rounded =
+                        roundedMorphedVertices(*encoding.primitive, encoding.options, encoding.morphWeights);
             } catch (...) {
                 encoding.error = std::current_exception();
             }

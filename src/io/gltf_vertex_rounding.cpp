@@ -1,0 +1,179 @@
+#include "gltf_vertex_rounding.hpp"
+
+#include "gltf_instance_encoding.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+
+namespace symcompress {
+namespace {
+
+// `values` (of `components` each) through the exponential filter at `bits`, a vertex's components sharing one
+// exponent.
+RoundedAttribute exponentialRounded(const std::vector<float>& values, int components, int bits, bool liftZeros) {
+    const std::vector<std::uint32_t> encoded = exponentialFiltered(values, std::size_t(components), bits, liftZeros);
+    RoundedAttribute out;
+    out.filtered.resize(encoded.size() * 4);
+    std::memcpy(out.filtered.data(), encoded.data(), out.filtered.size());
+    out.elementBytes = std::size_t(components) * 4;
+    out.decoded = exponentialDecoded(encoded, std::size_t(components));
+    out.bits = bits;
+    return out;
+}
+
+// The largest distance between a vertex as read and as decoded: Euclidean over a position's or a direction's
+// components (`euclidean`), else the largest of any component.
+double largestError(const std::vector<float>& values, const RoundedAttribute& rounded, int components, bool euclidean) {
+    double largest = 0;
+    for (std::size_t v = 0; v < values.size(); v += std::size_t(components)) {
+        double squared = 0, most = 0;
+        for (int c = 0; c < components; ++c) {
+            const double error = std::abs(double(rounded.decoded[v + c]) - double(values[v + c]));
+            squared += error * error;
+            most = std::max(most, error);
+        }
+        largest = std::max(largest, euclidean ? std::sqrt(squared) : most);
+    }
+    return largest;
+}
+
+// The fewest bits that keep `values` within `allowed`, with zeros lifted or not (exponentialFiltered), whichever
+// meshopt codes smaller; none (stays as read) where even the filter's most bits do not.
+std::optional<RoundedAttribute> roundedWithin(const std::vector<float>& values, int components, double allowed,
+                                              bool euclidean) {
+    if (!(allowed > 0) || values.empty() || components * 4 > 256) return std::nullopt;
+    std::optional<RoundedAttribute> kept;
+    std::size_t keptBytes = 0;
+    for (const bool liftZeros : {false, true}) {
+        const int bits = fewestBits(1, kMostExponentialBits, [&](int b) {
+            return largestError(values, exponentialRounded(values, components, b, liftZeros), components, euclidean) <=
+                   allowed;
+        });
+        if (bits == 0) continue;
+        RoundedAttribute rounded = exponentialRounded(values, components, bits, liftZeros);
+        const std::size_t bytes = meshoptEncoded(rounded.filtered, rounded.elementBytes).size();
+        if (!kept || bytes < keptBytes) kept = std::move(rounded), keptBytes = bytes;
+    }
+    return kept;
+}
+
+template <typename Vector>
+std::vector<float> floatsOf(const std::vector<Vector>& vectors, int components) {
+    std::vector<float> flat;
+    flat.reserve(vectors.size() * std::size_t(components));
+    for (const Vector& vector : vectors)
+        for (int c = 0; c < components; ++c) flat.push_back(float(vector[c]));
+    return flat;
+}
+
+// Half a step of Draco's quantization of values spanning `span` at `bits`.
+double halfStep(double span, int bits) { return bits > 0 ? span / (2.0 * ((1 << bits) - 1)) : 0; }
+
+double span(const std::vector<float>& values) {
+    if (values.empty()) return 0;
+    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+    return double(*hi) - double(*lo);
+}
+
+// What Draco's quantization allows attribute `name` (values `ownValues`, the primitive's own: a displacement's
+// allowance comes from the values it displaces), and whether it is measured as a vector (Euclidean); 0: none.
+std::pair<double, bool> allowance(const std::string& name, const std::vector<float>& ownValues,
+                                  const WriteOptions& options) {
+    auto startsWith = [&](const char* prefix) { return name.rfind(prefix, 0) == 0; };
+    // Draco's octahedral normals at normalBits are within about 2^-normalBits of a unit vector as read.
+    if (name == "NORMAL" || name == "TANGENT") return {std::ldexp(1.0, -options.normalBits), true};
+    if (startsWith("TEXCOORD_")) return {halfStep(span(ownValues), options.texcoordBits), false};
+    if (startsWith("COLOR_")) return {halfStep(span(ownValues), options.colorBits), false};
+    if (startsWith("WEIGHTS_")) return {halfStep(span(ownValues), options.weightBits), false};
+    return {0, false};
+}
+
+}  // namespace
+
+RoundedVertices roundedMorphedVertices(const Primitive& primitive, const WriteOptions& options,
+                                       const std::vector<double>& largestWeights) {
+    RoundedVertices out;
+    const double positionBound = positionErrorBound(primitive, options);
+    if (!(positionBound > 0)) return out;
+    double weightSum = 0;
+    for (double weight : largestWeights) weightSum += std::abs(weight);
+    // Half to the vertices as read, half to the displacements, which add up over the targets.
+    const double displacementShare = 0.5 / std::max(weightSum, 1.0);
+
+    std::map<std::string, std::pair<std::vector<float>, int>> own;  // each attribute's values and components
+    own["POSITION"] = {floatsOf(primitive.positions, 3), 3};
+    if (!primitive.normals.empty()) own["NORMAL"] = {floatsOf(primitive.normals, 3), 3};
+    if (!primitive.texcoords.empty()) own["TEXCOORD_0"] = {floatsOf(primitive.texcoords, 2), 2};
+    if (!primitive.colors.empty()) own["COLOR_0"] = {floatsOf(primitive.colors, 4), 4};
+    for (const VertexAttribute& attribute : primitive.attributes)
+        if (!attribute.isJoints())
+            own[attribute.name] = {std::vector<float>(attribute.values.begin(), attribute.values.end()),
+                                   attribute.components};
+
+    for (const auto& [name, values] : own) {
+        auto [allowed, euclidean] = allowance(name, values.first, options);
+        if (name == "POSITION") allowed = positionBound, euclidean = true;
+        // A TANGENT's w (its handedness, +-1) is kept exactly at any bits: the largest component sets the exponent.
+        if (auto rounded = roundedWithin(values.first, values.second, allowed / 2, euclidean))
+            out[{-1, name}] = std::move(*rounded);
+    }
+    for (std::size_t t = 0; t < primitive.targets.size(); ++t)
+        for (const VertexAttribute& displacement : primitive.targets[t]) {
+            const auto found = own.find(displacement.name);
+            if (found == own.end()) continue;  // a TANGENT's displacements have no w: its allowance holds all the same
+            auto [allowed, euclidean] = allowance(displacement.name, found->second.first, options);
+            if (displacement.name == "POSITION") allowed = positionBound, euclidean = true;
+            const std::vector<float> values(displacement.values.begin(), displacement.values.end());
+            if (auto rounded = roundedWithin(values, displacement.components, allowed * displacementShare, euclidean))
+                out[{int(t), displacement.name}] = std::move(*rounded);
+        }
+    return out;
+}
+
+std::vector<double> largestMorphWeights(const Scene& scene, std::size_t mesh) {
+    std::size_t targets = 0;
+    for (const Primitive& primitive : scene.meshes[mesh].primitives)
+        targets = std::max(targets, primitive.targets.size());
+    std::vector<double> largest(targets, 0.0);
+    auto take = [&](std::size_t k, double weight) {
+        if (k < targets) largest[k] = std::max(largest[k], std::abs(weight));
+    };
+    for (std::size_t k = 0; k < scene.meshes[mesh].weights.size(); ++k) take(k, scene.meshes[mesh].weights[k]);
+    std::vector<char> draws(scene.nodes.size(), 0);
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        const Node& node = scene.nodes[n];
+        if (node.mesh != int(mesh)) continue;
+        draws[n] = 1;
+        for (std::size_t k = 0; k < node.weights.size(); ++k) take(k, node.weights[k]);
+    }
+    for (const Animation& animation : scene.animations)
+        for (const AnimationChannel& channel : animation.channels) {
+            if (channel.path != AnimationChannel::Path::Weights || channel.node < 0 ||
+                std::size_t(channel.node) >= draws.size() || !draws[std::size_t(channel.node)])
+                continue;
+            const std::size_t components = channel.components();
+            if (components == 0) continue;
+            if (channel.interpolation != AnimationChannel::Interpolation::CubicSpline) {
+                for (std::size_t i = 0; i < channel.values.size(); ++i) take(i % components, channel.values[i]);
+                continue;
+            }
+            // Between two keys a Hermite spline is its values' blend (basis weights summing to 1 in magnitude at
+            // most) plus its tangents times the interval, each weighted 4/27 at most.
+            double longest = 0;
+            for (std::size_t k = 1; k < channel.times.size(); ++k)
+                longest = std::max(longest, channel.times[k] - channel.times[k - 1]);
+            std::vector<double> value(components, 0.0), tangent(components, 0.0);
+            for (std::size_t i = 0; i < channel.values.size(); ++i) {
+                const std::size_t c = i % components, part = (i / components) % 3;  // in-tangent, value, out-tangent
+                double& most = part == 1 ? value[c] : tangent[c];
+                most = std::max(most, std::abs(channel.values[i]));
+            }
+            for (std::size_t c = 0; c < components; ++c) take(c, value[c] + 2 * 4.0 / 27 * longest * tangent[c]);
+        }
+    return largest;
+}
+
+}  // namespace symcompress
