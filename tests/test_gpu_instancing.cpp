@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -392,6 +393,55 @@ TEST_CASE("Many instances: their values through EXT_meshopt_compression, smaller
     const double estimated = gltfNodesBytes(scene.nodes, apart) - gltfNodesBytes(scene.nodes, WriteOptions());
     INFO("saved " << saved << ", estimated " << estimated);
     CHECK(estimated == Approx(saved).epsilon(0.1));
+}
+
+TEST_CASE("A batch far from its parent's origin takes its centre as the batch node's translation, within the allowance",
+          "[io][gpu]") {
+    // Found by a sweep of variants: the bolts placed 4e5 units away had float32 instance translations rounded by
+    // 0.03, five times the budget (verification and the render check failed).
+    Scene scene = scatteredBlobs(40);
+    const Eigen::Vector3d far(235933.155897762, -188746.524718209, 251662.032957612);
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        scene.nodes[n].transform.topRightCorner<3, 1>() += far;
+        // Mirrored in its own frame: a batch of its own, under a mirroring node.
+        if (n % 2) scene.nodes[n].transform.col(0).head<3>() *= -1;
+    }
+    TemporaryFolder folder;
+    for (const bool draco : {true, false}) {
+        INFO((draco ? "Draco" : "plain"));
+        WriteOptions options;
+        options.draco = draco;
+        writeScene(scene, folder / "far.glb", options);
+        const nlohmann::json root = glbJson(folder / "far.glb");
+        const auto batches = batchNodes(root);
+        REQUIRE(batches.size() == 2);
+        for (const auto* batch : batches) {
+            REQUIRE(batch->contains("translation"));
+            CHECK((Eigen::Vector3d((*batch)["translation"][0], (*batch)["translation"][1], (*batch)["translation"][2]) -
+                   far)
+                      .norm() < 10);
+        }
+        const std::vector<Eigen::Matrix4d> expected = drawingTransforms(scene),
+                                           got = drawingTransforms(readScene(folder / "far.glb"));
+        REQUIRE(got.size() == expected.size());
+        Eigen::AlignedBox3d box;
+        for (const Eigen::Matrix4d& world : expected) box.extend(world.topRightCorner<3, 1>());
+        const WriteOptions defaults;
+        // The allowances over the instances' box (the writer's is the drawn box's, a little larger), and float32's
+        // own rounding of a translation of a few units from the batch's centre.
+        const double allowed =
+            (defaults.instanceRotationDeviation + defaults.instanceTranslationDeviation) * (box.diagonal().norm() + 1) +
+            1e-6;
+        // The batches list the plain instances, then the mirrored: each expected placement against its nearest.
+        double farthest = 0;
+        for (const Eigen::Matrix4d& placement : expected) {
+            double nearest = std::numeric_limits<double>::infinity();
+            for (const Eigen::Matrix4d& other : got)
+                nearest = std::min(nearest, largestVertexMove(blob(), {placement}, {other}));
+            farthest = std::max(farthest, nearest);
+        }
+        CHECK(farthest <= allowed);
+    }
 }
 
 TEST_CASE("GPU instancing without Draco stays float and needs no meshopt, as a small batch does not", "[io][gpu]") {

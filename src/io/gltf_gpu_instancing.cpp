@@ -70,8 +70,33 @@ Json instanceAccessor(int view, std::size_t offset, int componentType, std::size
     return accessor;
 }
 
-Json batchNode(int mesh, const Json& attributes, bool mirrored, const std::vector<std::string>& names) {
+// The origin of a batch of `instances` (InstanceBatch::origin, in the instances' own frame, mirrored where the
+// batch is), in decimals to a 16th of `allowed`; zero where float32 holds the translations within a quarter of
+// `allowed` as they are (it rounds a coordinate by at most 2^-24 of it).
+Eigen::Vector3d batchOrigin(const std::vector<InstanceTrs>& instances, double allowed) {
+    Eigen::AlignedBox3d box;
+    for (const InstanceTrs& trs : instances) box.extend(trs.translation);
+    const double farthest = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());
+    if (box.isEmpty() || !(farthest * std::ldexp(std::sqrt(3.0), -24) > allowed / 4)) return Eigen::Vector3d::Zero();
+    Eigen::Vector3d centre = box.center();
+    if (allowed > 0) {
+        const int decimals = std::clamp(int(-std::floor(std::log10(allowed / 16))), 0, 17);
+        for (int c = 0; c < 3; ++c) centre[c] = roundedDecimals(centre[c], decimals);
+    }
+    return centre;
+}
+
+// `instances` made relative to their batchOrigin; the batch node's translation (in its parent's frame).
+Eigen::Vector3d moveToOrigin(std::vector<InstanceTrs>& instances, bool mirrored, double allowed) {
+    const Eigen::Vector3d origin = batchOrigin(instances, allowed);
+    for (InstanceTrs& trs : instances) trs.translation -= origin;
+    return mirrored ? Eigen::Vector3d(-origin.x(), origin.y(), origin.z()) : origin;  // the mirror's own frame
+}
+
+Json batchNode(int mesh, const Json& attributes, bool mirrored, const Eigen::Vector3d& origin,
+               const std::vector<std::string>& names) {
     Json node = {{"mesh", mesh}, {"extensions", {{kExtension, {{"attributes", attributes}}}}}};
+    if (!origin.isZero(0)) node["translation"] = {origin.x(), origin.y(), origin.z()};
     if (mirrored) node["scale"] = {-1, 1, 1};
     if (std::any_of(names.begin(), names.end(), [](const std::string& name) { return !name.empty(); }))
         node["extras"]["instanceNames"] = names;  // parallel to the instances; the reader gives them back
@@ -170,12 +195,12 @@ std::pair<std::array<std::optional<InstanceEncoding>, 3>, double> chosenEncoding
 // What a batch adds to the file: its node (with its index in its parent's list), its accessors (indices and
 // offsets of a typical size) and its binary data, and the streams `inUse` did not hold yet.
 double batchBytes(const std::vector<InstanceTrs>& instances, const std::vector<std::string>& names, bool mirrored,
-                  double encodedBytes) {
+                  const Eigen::Vector3d& origin, double encodedBytes) {
     Json attributes = Json::object();
     const std::array<bool, 3> used = attributesOf(instances);
     for (int a = 0; a < 3; ++a)
         if (used[std::size_t(a)]) attributes[kNames[a]] = 100;
-    return encodedBytes + double(jsonText(batchNode(10, attributes, mirrored, names)).size() + 1 + 3);
+    return encodedBytes + double(jsonText(batchNode(10, attributes, mirrored, origin, names)).size() + 1 + 3);
 }
 
 // What the first batch adds once: the extension's name in extensionsUsed and extensionsRequired.
@@ -258,7 +283,7 @@ GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& 
             const Node& node = scene.nodes[std::size_t(n)];
             const auto key = std::make_tuple(parent, node.mesh, mirrors(node.transform));
             const auto [at, isNew] = groupOf.emplace(key, groups.size());
-            if (isNew) groups.push_back({parent, node.mesh, std::get<2>(key), {}, {}, {}});
+            if (isNew) groups.push_back({parent, node.mesh, std::get<2>(key), {}, {}, {}, {}});
             groups[at->second].nodes.push_back(n);
         }
     };
@@ -280,11 +305,13 @@ GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& 
         // Without Draco the file is float throughout, as exact as its reader: the rotations too.
         BatchAllowance allowance{options.draco, options.instanceTranslationDeviation * diagonal,
                                  options.instanceRotationDeviation * diagonal, r, {}};
+        batch.origin = moveToOrigin(batch.instances, batch.mirrored, allowance.translation);
         for (const InstanceTrs& trs : batch.instances) allowance.rotationLever.push_back(r * trs.scale.maxCoeff());
         StreamsInUse withBatch = inUse;
         auto [attributes, encodedBytes] = chosenEncodings(batch.instances, allowance, withBatch);
-        const double batched = batchBytes(batch.instances, namesOf(scene, batch.nodes), batch.mirrored, encodedBytes) +
-                               (plan.batches.empty() ? fileBytesOfFirstBatch() : 0);
+        const double batched =
+            batchBytes(batch.instances, namesOf(scene, batch.nodes), batch.mirrored, batch.origin, encodedBytes) +
+            (plan.batches.empty() ? fileBytesOfFirstBatch() : 0);
         if (batched >= separate) continue;
         inUse = std::move(withBatch);
         batch.attributes = std::move(attributes);
@@ -312,11 +339,12 @@ double gpuBatchBytes(const std::vector<Node>& nodes, const WriteOptions& options
     // has; translations within the allowance of their own extent, no larger than the scene's.
     BatchAllowance allowance{options.draco, options.instanceTranslationDeviation * extent.diagonal().norm(),
                              shortRotationError(rotations), 0, std::vector<double>(nodes.size(), 1.0)};
+    const Eigen::Vector3d origin = moveToOrigin(instances, mirrored, allowance.translation);
     // Priced as the file's only batch, with every view and extension name its own: the plan weighs one mesh's
     // nodes at a time, and a small scene's batch pays for them all.
     StreamsInUse inUse;
     const double encodedBytes = chosenEncodings(instances, allowance, inUse).second;
-    return batchBytes(instances, names, mirrored, encodedBytes) + fileBytesOfFirstBatch();
+    return batchBytes(instances, names, mirrored, origin, encodedBytes) + fileBytesOfFirstBatch();
 }
 
 void writeGpuBatches(const GpuInstancingPlan& plan, const Scene& scene, const std::vector<int>& meshIndex,
@@ -361,8 +389,8 @@ void writeGpuBatches(const GpuInstancingPlan& plan, const Scene& scene, const st
             attributes[kNames[a]] = builder.addAccessor(
                 instanceAccessor(view, offsets[b][std::size_t(a)], encoding->componentType, count, kTypes[a]));
         }
-        root["nodes"].push_back(
-            batchNode(meshIndex[std::size_t(batch.mesh)], attributes, batch.mirrored, namesOf(scene, batch.nodes)));
+        root["nodes"].push_back(batchNode(meshIndex[std::size_t(batch.mesh)], attributes, batch.mirrored, batch.origin,
+                                          namesOf(scene, batch.nodes)));
     }
 }
 

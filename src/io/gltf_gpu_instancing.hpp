@@ -29,7 +29,11 @@ struct InstanceBatch {
     int mesh = -1;    // into Scene::meshes
     bool mirrored = false;
     std::vector<int> nodes;              // the scene nodes, in the order their parent lists them
-    std::vector<InstanceTrs> instances;  // one per node
+    std::vector<InstanceTrs> instances;  // one per node, relative to `origin`
+    // The batch node's translation, in its parent's frame: where the batch lies far from the parent's origin (a
+    // scene placed 1e5 units away), the centre of the instances' box, so that float32 holds their translations
+    // from it within their allowance; else zero.
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     // How TRANSLATION, ROTATION and SCALE are stored, in that order; none where no instance needs it.
     std::array<std::optional<InstanceEncoding>, 3> attributes;
 };
