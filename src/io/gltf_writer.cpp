@@ -7,6 +7,7 @@
 #include "common/image_size.hpp"
 #include "common/number_text.hpp"
 #include "common/with_threads.hpp"
+#include "geometry/bounds.hpp"
 #include "gltf_animation_keys.hpp"
 #include "gltf_builder.hpp"
 #include "gltf_gpu_instancing.hpp"
@@ -405,7 +406,20 @@ std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& option
     if (primitive.triangles.empty()) return 0;
     Json root = Json::object(), primitives = Json::array();
     GltfBuilder builder(root);
-    writePrimitive(builder, primitive, options, "(a mesh measured for the plan)", primitives);
+    // Far from the origin, measured about its centre, as the plan's scene stores it (emitScene): at its place,
+    // float32 rounds the corners beyond any bits, and Draco took seconds over 24 of them for a part 1e5 units away.
+    const double bound = positionErrorBound(primitive, options);
+    const Eigen::Vector3d centre =
+        bound > 0 ? centreIfFloat32RoundsBeyond(boundsOfCorners(primitive.positions, primitive.triangles),
+                                                kFloat32RoundingShare * bound)
+                  : Eigen::Vector3d::Zero();
+    if (!centre.isZero(0) && !primitive.positionGrid) {
+        Primitive centred = primitive;
+        for (Eigen::Vector3d& p : centred.positions) p -= centre;
+        writePrimitive(builder, centred, options, "(a mesh measured for the plan)", primitives);
+    } else {
+        writePrimitive(builder, primitive, options, "(a mesh measured for the plan)", primitives);
+    }
     const Json mesh = {{"primitives", primitives}};
     const std::size_t binary = builder.binary().size();  // first: it writes the views the JSON names
     return jsonText(root).size() + jsonText(mesh).size() + binary;

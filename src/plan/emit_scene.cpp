@@ -1,6 +1,7 @@
 // The one step that turns a plan into a Scene: what is kept as it is (the author's shared meshes, animated
 // subtrees, cameras and lights), every shared part with its nodes, the tiles stored as they are merged into
 // one mesh per material, and the stats counted from the plan.
+#include "geometry/bounds.hpp"
 #include "plan/planners.hpp"
 #include "plan/primitives_by_kind.hpp"
 #include "symcompress/detail/compression_plan.hpp"
@@ -112,17 +113,12 @@ void dropPointLikeTriangles(Scene& out, const std::vector<std::vector<int>>& var
 // moved to be about its centre, and the translation back returned for the node drawing it (a JSON number, a
 // double). Otherwise the identity, the mesh as it is.
 Eigen::Matrix4d centredIfFar(Mesh& mesh, double budget) {
-    constexpr double kRoundingShare = 1.0 / 16;  // of the budget, the most float32's rounding may take
     Eigen::AlignedBox3d box;
     for (const Primitive& primitive : mesh.primitives)
         for (const Eigen::Vector3d& p : primitive.positions) box.extend(p);
     Eigen::Matrix4d back = Eigen::Matrix4d::Identity();
-    if (box.isEmpty()) return back;
-    const double largest = box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff();
-    // A corner rounds by at most half float32's spacing on each axis.
-    if (!(largest > 0) || std::sqrt(3.0) / 2 * std::ldexp(1.0, std::ilogb(largest) - 23) <= kRoundingShare * budget)
-        return back;
-    const Eigen::Vector3d centre = box.center();
+    const Eigen::Vector3d centre = centreIfFloat32RoundsBeyond(box, kFloat32RoundingShare * budget);
+    if (centre.isZero(0)) return back;
     for (Primitive& primitive : mesh.primitives)
         for (Eigen::Vector3d& p : primitive.positions) p -= centre;
     back.topRightCorner<3, 1>() = centre;
