@@ -181,12 +181,22 @@ struct VertexAttribute {
 // A glTF morph target: displaced attributes of its primitive, one value per vertex each.
 using MorphTarget = std::vector<VertexAttribute>;
 
+// What a primitive draws: triangles; line segments (glTF's LINES, line strips and loops as their segments; X3D's
+// line sets; OBJ's l); or each vertex as a point (glTF's POINTS, X3D's PointSet, a PLY file of vertices only).
+enum class Topology { Triangles, Lines, Points };
+
+// A pair of vertex indices: one line segment.
+using Segment = std::array<std::uint32_t, 2>;
+
+// Lines and points are kept as they are: never tiled, classified or cut; only triangles carry the method.
 struct Primitive {
+    Topology topology = Topology::Triangles;
     std::vector<Eigen::Vector3d> positions;
     std::vector<Eigen::Vector3d> normals;    // empty or one per vertex
     std::vector<Eigen::Vector2d> texcoords;  // TEXCOORD_0, glTF convention (v down); empty or one per vertex
     std::vector<Eigen::Vector4d> colors;     // COLOR_0 as linear RGBA; empty or one per vertex
-    std::vector<Triangle> triangles;
+    std::vector<Triangle> triangles;         // Topology::Triangles only
+    std::vector<Segment> lines;              // Topology::Lines only
     std::vector<VertexAttribute> attributes;  // every other attribute (VertexAttribute), sorted by name
     std::vector<MorphTarget> targets;         // glTF morph targets, in the file's order
     int material = -1;  // index into Scene::materials, -1 for the default material
@@ -200,6 +210,12 @@ struct Primitive {
     // of, where not the primitive's own box's: a part stored turned from the world keeps the larger of its
     // world box's and its own, so that a frame never tightens the bound.
     double closeUpDiagonal = 0;
+
+    bool drawsNothing() const {
+        return topology == Topology::Triangles ? triangles.empty()
+               : topology == Topology::Lines   ? lines.empty()
+                                               : positions.empty();
+    }
 };
 
 struct Mesh {

@@ -83,6 +83,16 @@ void transformAttribute(VertexAttribute& attribute, const Eigen::Matrix3d& linea
 // `local` placed by `world` as WorldPrimitive says (a primitive passed as an rvalue is placed in its own arrays).
 Primitive transformPrimitive(Primitive local, const Eigen::Matrix4d& world);
 
+// Each mesh that draws triangles and also lines or points (a CAD part with its edges) split in two, the lines
+// and points moved to a mesh of their own that a new child of each node drawing the mesh draws (at the identity),
+// so that the triangles can still be tiled while the lines and points are kept as they are. The order of a mesh's
+// primitives changes (triangles first); a morphed or skinned mesh stays whole. Returns the child nodes added.
+std::size_t splitLinesAndPoints(Scene& scene);
+
+// The primitive's vertices `kept` (indices into its arrays, in their new order; one may come twice), every
+// attribute and morph target with them. Triangles and lines are left to the caller to renumber.
+void keepVertices(Primitive& primitive, const std::vector<std::uint32_t>& kept);
+
 // The names and sizes of the primitive's other attributes (Primitive::attributes), as one key ("TANGENT:4;"):
 // primitives or tiles with different keys are never merged into one.
 std::string attributeSignature(const Primitive& primitive);

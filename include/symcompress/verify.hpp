@@ -27,7 +27,7 @@ struct SurfaceDigest {
 
 SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance);
 // The same digest (the same sums in the same order) of the primitives one after the other: flattenScene's
-// soup, without copying it into one mesh.
+// soup, without copying it into one mesh. What they draw as points and lines counts towards the bounds.
 SurfaceDigest digestOf(const std::vector<WorldPrimitive>& soup, double tolerance);
 
 struct SurfaceComparison {

@@ -135,6 +135,7 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     if (formatFromExtension(output) == FileFormat::Obj || formatFromExtension(output) == FileFormat::Ply)
         optimize.dropFlatNormals = false;
     report.optimizations = optimizeScene(scene, optimize);
+    splitLinesAndPoints(scene);
     // What the output's format cannot hold, said before the writer leaves it out.
     for (std::string& loss : formatLosses(scene, output)) scene.warnings.push_back(std::move(loss));
     report.readerWarnings = scene.warnings.size();

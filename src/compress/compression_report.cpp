@@ -18,6 +18,8 @@ std::string CompressionReport::json() const {
         {"plan", plan},
         {"triangles_in", stats.trianglesIn},
         {"triangles_stored", stats.trianglesStored},
+        {"line_segments_kept", stats.lineSegmentsKept},
+        {"points_kept", stats.pointsKept},
         {"tiles", stats.tiles},
         {"classes", stats.classes},
         {"instanced_classes", stats.instancedClasses},

@@ -193,6 +193,17 @@ std::vector<Triangle> trianglesFromIndices(const std::vector<std::uint32_t>& ind
     return triangles;
 }
 
+std::vector<Segment> segmentsFromIndices(const std::vector<std::uint32_t>& indices, int mode) {
+    std::vector<Segment> segments;
+    if (mode == TINYGLTF_MODE_LINE) {
+        for (std::size_t i = 0; i + 1 < indices.size(); i += 2) segments.push_back({indices[i], indices[i + 1]});
+        return segments;
+    }
+    for (std::size_t i = 0; i + 1 < indices.size(); ++i) segments.push_back({indices[i], indices[i + 1]});
+    if (mode == TINYGLTF_MODE_LINE_LOOP && indices.size() > 2) segments.push_back({indices.back(), indices.front()});
+    return segments;
+}
+
 std::vector<Eigen::Vector4d> toColors(const std::vector<double>& flat, int components) {
     std::vector<Eigen::Vector4d> colors = toVectors<Eigen::Vector4d>(flat, components);
     if (components == 3)

@@ -44,6 +44,7 @@ inline std::string jsonText(Json json, int indent = -1) {
 
 constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+constexpr int kModePoints = 0, kModeLines = 1;  // a primitive's mode (TRIANGLES, 4, is the default)
 
 // The growing binary buffer and the JSON arrays that describe it.
 class GltfBuilder {
@@ -237,7 +238,7 @@ struct DracoPart {
 struct EncodedPrimitive {
     bool plain = false;
     std::vector<DracoPart> parts;
-    // A plain primitive's vertices rounded (roundedMorphedVertices), used where the builder codes data by meshopt.
+    // A plain primitive's vertices rounded (roundedPlainVertices), used where the builder codes data by meshopt.
     RoundedVertices rounded;
 };
 EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions& options, const std::filesystem::path& file);

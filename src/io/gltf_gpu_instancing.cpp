@@ -271,8 +271,12 @@ GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& 
     const std::vector<bool> fixed = fixedNodes(scene);
     auto eligible = [&](int n) {
         const Node& node = scene.nodes[std::size_t(n)];
+        const Mesh& mesh = scene.meshes[std::size_t(node.mesh)];
+        // three.js instances no lines or points (its loader draws such a node once).
         return !fixed[std::size_t(n)] && plainLeaf(node) && meshIndex[std::size_t(node.mesh)] >= 0 &&
-               morphTargetCount(scene.meshes[std::size_t(node.mesh)]) == 0;
+               morphTargetCount(mesh) == 0 &&
+               std::all_of(mesh.primitives.begin(), mesh.primitives.end(),
+                           [](const Primitive& p) { return p.topology == Topology::Triangles; });
     };
     // Groups by parent, mesh and handedness, in the order of their first node.
     std::map<std::tuple<int, int, bool>, std::size_t> groupOf;
@@ -415,7 +419,7 @@ GpuInstancingCount gltfGpuInstancing(const Scene& scene, const WriteOptions& opt
     std::vector<int> meshIndex(scene.meshes.size(), -1);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         for (const Primitive& primitive : scene.meshes[m].primitives)
-            if (!primitive.triangles.empty()) meshIndex[m] = int(m);
+            if (!primitive.drawsNothing()) meshIndex[m] = int(m);
     GpuInstancingCount count;
     for (const InstanceBatch& batch : planGpuInstancing(scene, meshIndex, options).batches) {
         ++count.batches;

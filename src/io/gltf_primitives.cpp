@@ -372,22 +372,29 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const
             add("COLOR_0", -1, [&] { return builder.addFloatAccessor(primitive.colors, 4, "VEC4", false); });
     for (const VertexAttribute& attribute : primitive.attributes)
         attributes[attribute.name] = add(attribute.name, -1, [&] { return addAttribute(builder, attribute); });
-    Json indices;
-    if (primitive.positions.size() <= 65535) {
-        std::vector<std::uint16_t> flat;
-        for (const Triangle& t : primitive.triangles)
-            for (std::uint32_t i : t) flat.push_back(static_cast<std::uint16_t>(i));
-        indices = {{"bufferView", builder.addBufferView(flat.data(), flat.size() * 2, kElementArrayBuffer)},
-                   {"componentType", kUnsignedShort}};
-    } else {
-        std::vector<std::uint32_t> flat;
-        for (const Triangle& t : primitive.triangles) flat.insert(flat.end(), t.begin(), t.end());
-        indices = {{"bufferView", builder.addBufferView(flat.data(), flat.size() * 4, kElementArrayBuffer)},
-                   {"componentType", kUnsignedInt}};
+    Json out = {{"attributes", attributes}};
+    // Points draw every vertex, in order: no indices. TRIANGLES is the default mode.
+    if (primitive.topology == Topology::Points) out["mode"] = kModePoints;
+    std::vector<std::uint32_t> flat;
+    if (primitive.topology == Topology::Lines) {
+        out["mode"] = kModeLines;
+        for (const Segment& s : primitive.lines) flat.insert(flat.end(), s.begin(), s.end());
     }
-    indices["count"] = primitive.triangles.size() * 3;
-    indices["type"] = "SCALAR";
-    Json out = {{"attributes", attributes}, {"indices", builder.addAccessor(indices)}};  // mode: TRIANGLES by default
+    for (const Triangle& t : primitive.triangles) flat.insert(flat.end(), t.begin(), t.end());
+    if (primitive.topology != Topology::Points) {
+        Json indices;
+        if (primitive.positions.size() <= 65535) {
+            const std::vector<std::uint16_t> shorts(flat.begin(), flat.end());
+            indices = {{"bufferView", builder.addBufferView(shorts.data(), shorts.size() * 2, kElementArrayBuffer)},
+                       {"componentType", kUnsignedShort}};
+        } else {
+            indices = {{"bufferView", builder.addBufferView(flat.data(), flat.size() * 4, kElementArrayBuffer)},
+                       {"componentType", kUnsignedInt}};
+        }
+        indices["count"] = flat.size();
+        indices["type"] = "SCALAR";
+        out["indices"] = builder.addAccessor(indices);
+    }
     for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
         Json displaced = Json::object();
         for (const VertexAttribute& attribute : primitive.targets[t])
@@ -408,8 +415,9 @@ EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions&
     for (const MorphTarget& target : primitive.targets)
         for (const VertexAttribute& attribute : target) refuseBeyondFloat(attribute, file);
     EncodedPrimitive encoded;
-    // Morph targets stay plain accessors, which Draco's reordering of the vertices would no longer match.
-    if (!options.draco || !primitive.targets.empty()) {
+    // Morph targets stay plain accessors, which Draco's reordering of the vertices would no longer match; lines
+    // and points too, which KHR_draco_mesh_compression does not hold.
+    if (!options.draco || !primitive.targets.empty() || primitive.topology != Topology::Triangles) {
         encoded.plain = true;
         return encoded;
     }

@@ -28,14 +28,19 @@ constexpr std::size_t kMaxNodeDepth = 256;
 
 void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, const std::string& where) {
     const int mode = source.mode < 0 ? TINYGLTF_MODE_TRIANGLES : source.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        static const char* names[] = {"points", "lines", "line loops", "line strips"};
-        ++skippedModes_[mode >= 0 && mode < 4 ? names[mode] : "primitives of unknown mode"];
+    auto draco = source.extensions.find("KHR_draco_mesh_compression");
+    const bool triangles =
+        mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+    if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+        ++skippedModes_["primitives of unknown mode"];
+        return;
+    }
+    if (!triangles && draco != source.extensions.end()) {  // the extension holds triangles only
+        ++skippedModes_["Draco-compressed points or lines"];
         return;
     }
     Primitive out;
     std::vector<std::uint32_t> indices;
-    auto draco = source.extensions.find("KHR_draco_mesh_compression");
     if (draco != source.extensions.end()) {
         decodeDracoPrimitive(source, draco->second, out, indices, where);
     } else {
@@ -109,7 +114,16 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
         if (index >= vertexCount)
             fail(where + ": index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) +
                  " vertices)");
-    out.triangles = trianglesFromIndices(indices, mode);
+    if (triangles) {
+        out.triangles = trianglesFromIndices(indices, mode);
+    } else if (mode == TINYGLTF_MODE_POINTS) {
+        out.topology = Topology::Points;
+        // Each index draws its vertex: the vertices in that order (a vertex no index names draws nothing).
+        if (source.indices >= 0) keepVertices(out, indices);
+    } else {
+        out.topology = Topology::Lines;
+        out.lines = segmentsFromIndices(indices, mode);
+    }
     out.material =
         source.material >= 0 && source.material < static_cast<int>(model_.materials.size()) ? source.material : -1;
     mesh.primitives.push_back(std::move(out));
@@ -533,8 +547,7 @@ Scene GltfReader::read() {
         warnAbout(std::to_string(model_.scenes.size() - 1) + " scenes besides the default one ignored");
     readSkins(scene);
     readAnimations(scene);
-    for (const auto& [mode, count] : skippedModes_)
-        warnAbout(std::to_string(count) + " " + mode + " skipped (only triangles are kept)");
+    for (const auto& [mode, count] : skippedModes_) warnAbout(std::to_string(count) + " " + mode + " skipped");
     for (const std::string& warning : warnings_) scene.warnings.push_back(file_.filename().string() + ": " + warning);
     return scene;
 }

@@ -51,6 +51,8 @@ int componentCount(int type);
 
 // glTF's triangle topologies (list, strip, fan) as a triangle list.
 std::vector<Triangle> trianglesFromIndices(const std::vector<std::uint32_t>& indices, int mode);
+// The same for glTF's line topologies (LINES, LINE_LOOP, LINE_STRIP): the segments they draw.
+std::vector<Segment> segmentsFromIndices(const std::vector<std::uint32_t>& indices, int mode);
 
 // Flat components as vectors (components beyond the vector's size dropped, missing ones 0).
 template <typename Vector>

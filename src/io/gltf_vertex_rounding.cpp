@@ -1,6 +1,9 @@
 #include "gltf_vertex_rounding.hpp"
 
 #include "gltf_instance_encoding.hpp"
+#include "symcompress/scene_ops.hpp"
+
+#include <meshoptimizer.h>
 
 #include <algorithm>
 #include <cmath>
@@ -93,8 +96,8 @@ std::pair<double, bool> allowance(const std::string& name, const std::vector<flo
 
 }  // namespace
 
-RoundedVertices roundedMorphedVertices(const Primitive& primitive, const WriteOptions& options,
-                                       const std::vector<double>& largestWeights) {
+RoundedVertices roundedPlainVertices(const Primitive& primitive, const WriteOptions& options,
+                                     const std::vector<double>& largestWeights) {
     RoundedVertices out;
     const double positionBound = positionErrorBound(primitive, options);
     if (!(positionBound > 0)) return out;
@@ -117,7 +120,9 @@ RoundedVertices roundedMorphedVertices(const Primitive& primitive, const WriteOp
         auto [allowed, euclidean] = allowance(name, values.first, options);
         if (name == "POSITION") allowed = positionBound, euclidean = true;
         // A TANGENT's w (its handedness, +-1) is kept exactly at any bits: the largest component sets the exponent.
-        if (auto rounded = roundedWithin(values.first, values.second, allowed / 2, euclidean))
+        // Half of it where morph targets' displacements take the other half.
+        const double share = primitive.targets.empty() ? allowed : allowed / 2;
+        if (auto rounded = roundedWithin(values.first, values.second, share, euclidean))
             out[{-1, name}] = std::move(*rounded);
     }
     for (std::size_t t = 0; t < primitive.targets.size(); ++t)
@@ -131,6 +136,17 @@ RoundedVertices roundedMorphedVertices(const Primitive& primitive, const WriteOp
                 out[{int(t), displacement.name}] = std::move(*rounded);
         }
     return out;
+}
+
+Primitive spatiallySortedPoints(const Primitive& points) {
+    const std::vector<float> positions = floatsOf(points.positions, 3);
+    std::vector<unsigned int> remap(points.positions.size());  // old vertex -> new
+    meshopt_spatialSortRemap(remap.data(), positions.data(), points.positions.size(), 3 * sizeof(float));
+    std::vector<std::uint32_t> order(remap.size());  // new vertex -> old
+    for (std::size_t v = 0; v < remap.size(); ++v) order[remap[v]] = std::uint32_t(v);
+    Primitive sorted = points;
+    keepVertices(sorted, order);
+    return sorted;
 }
 
 std::vector<double> largestMorphWeights(const Scene& scene, std::size_t mesh) {

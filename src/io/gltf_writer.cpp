@@ -403,7 +403,7 @@ int weightBitsFor(const Scene& scene, const std::vector<std::vector<int>>& skins
 }  // namespace
 
 std::size_t gltfMeshBytes(const Primitive& primitive, const WriteOptions& options) {
-    if (primitive.triangles.empty()) return 0;
+    if (primitive.drawsNothing()) return 0;
     Json root = Json::object(), primitives = Json::array();
     GltfBuilder builder(root);
     // Far from the origin, measured about its centre, as the plan's scene stores it (emitScene): at its place,
@@ -509,7 +509,8 @@ struct GltfFile {
 };
 
 // The file of `scene`; with `codeData`, the data that neither Draco nor an image codes (animations' keys, skins'
-// matrices, the vertices of morphed primitives) coded by meshopt without loss where each view is smaller for it.
+// matrices, the vertices of morphed primitives, lines and points) coded by meshopt without loss where each view is
+// smaller for it.
 GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions& options, bool codeData) {
     GltfFile out;
     Json& root = out.root;
@@ -544,6 +545,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
         EncodedPrimitive encoded;
         std::exception_ptr error;
         std::vector<double> morphWeights;  // a morphed primitive's largest weights (largestMorphWeights)
+        std::optional<Primitive> sortedPoints;  // a point primitive in spatial order, written in its place
     };
     std::vector<Encoding> encodings;
     // Primitives equal but for their material (one part drawn in several: a family of classes, or an input's meshes
@@ -556,10 +558,10 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
         if (node.mesh >= 0 && node.skin >= 0) skinsOfMesh[std::size_t(node.mesh)].push_back(node.skin);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         for (const Primitive& primitive : scene.meshes[m].primitives) {
-            if (primitive.triangles.empty()) continue;
+            if (primitive.drawsNothing()) continue;
             const int texcoordBits = texcoordBitsFor(scene, primitive, options.texcoordBits);
             const int weightBits = weightBitsFor(scene, skinsOfMesh, m, primitive, options.skinWeightError);
-            if (primitive.targets.empty()) {
+            if (primitive.targets.empty() && primitive.topology == Topology::Triangles) {
                 const auto [first, added] =
                     byGeometry.try_emplace(fingerprintOf(primitive, options, false), encodings.size());
                 if (!added) {
@@ -576,7 +578,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             WriteOptions forPrimitive = options;
             forPrimitive.texcoordBits = texcoordBits;
             forPrimitive.weightBits = weightBits;
-            encodings.push_back({&primitive, std::move(forPrimitive), {}, nullptr, {}});
+            encodings.push_back({&primitive, std::move(forPrimitive), {}, nullptr, {}, {}});
             if (!primitive.targets.empty()) encodings.back().morphWeights = largestMorphWeights(scene, m);
         }
     withThreads(options.threads, [&] {
@@ -585,9 +587,12 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             try {
                 encoding.encoded = encodePrimitive(*encoding.primitive, encoding.options, file);
                 // Vertices Draco does not hold rounded by meshopt's filter, where meshopt codes the data.
-                if (codeData && encoding.encoded.plain && options.draco)
+                if (codeData && encoding.encoded.plain && options.draco) {
+                    if (encoding.primitive->topology == Topology::Points)
+                        encoding.primitive = &encoding.sortedPoints.emplace(spatiallySortedPoints(*encoding.primitive));
                     encoding.encoded.rounded =
-                        roundedMorphedVertices(*encoding.primitive, encoding.options, encoding.morphWeights);
+                        roundedPlainVertices(*encoding.primitive, encoding.options, encoding.morphWeights);
+                }
             } catch (...) {
                 encoding.error = std::current_exception();
             }
@@ -598,7 +603,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         Json primitives = Json::array();
         for (const Primitive& primitive : scene.meshes[m].primitives) {
-            if (primitive.triangles.empty()) continue;
+            if (primitive.drawsNothing()) continue;
             const std::size_t e = encodingOf[next++];
             Encoding& encoding = encodings[e];
             if (encoding.error) std::rethrow_exception(encoding.error);
@@ -676,12 +681,14 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     // Compressed output with data Draco does not code is built twice, that data plain and coded by meshopt, and
     // the smaller kept (a file with no other meshopt view pays for its fallback buffer and the extension's names);
     // the primitives' Draco encodings are made once for both.
-    const bool dataToCode = options.draco && options.gpuInstancing &&
-                            (!scene.animations.empty() || !scene.skins.empty() ||
-                             std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& mesh) {
-                                 return std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
-                                                    [](const Primitive& p) { return !p.targets.empty(); });
-                             }));
+    const bool dataToCode =
+        options.draco && options.gpuInstancing &&
+        (!scene.animations.empty() || !scene.skins.empty() ||
+         std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& mesh) {
+             return std::any_of(mesh.primitives.begin(), mesh.primitives.end(), [](const Primitive& p) {
+                 return !p.targets.empty() || p.topology != Topology::Triangles;
+             });
+         }));
     WriteOptions once = options;
     if (dataToCode && !once.encodings) once.encodings = makePrimitiveEncodings();
     GltfFile built = buildGltf(scene, file, once, false);

@@ -88,6 +88,11 @@ void writeObj(const Scene& scene, const fs::path& file, const WriteOptions&) {
             }
             out += '\n';
         }
+        // Lines and points by their vertices (OBJ's l and p name no texture coordinates or normals here).
+        for (const Segment& segment : primitive.lines)
+            out += "l " + std::to_string(base + segment[0]) + ' ' + std::to_string(base + segment[1]) + '\n';
+        if (primitive.topology == Topology::Points)
+            for (std::size_t v = 0; v < primitive.positions.size(); ++v) out += "p " + std::to_string(base + v) + '\n';
         base += primitive.positions.size();
         textureBase += primitive.texcoords.size();
         normalBase += primitive.normals.size();
@@ -98,7 +103,16 @@ void writeObj(const Scene& scene, const fs::path& file, const WriteOptions&) {
 
 void writePly(const Scene& scene, const fs::path& file, const WriteOptions&) {
     // Binary little endian, double positions (exact), and the attributes every drawn primitive has.
-    const std::vector<WorldPrimitive> world = flattenScene(scene);
+    // Lines cannot be held, and points only as the vertices of a file without faces (formatLosses says so).
+    std::vector<WorldPrimitive> world = flattenScene(scene);
+    const bool pointCloud = std::all_of(
+        world.begin(), world.end(), [](const WorldPrimitive& w) { return w.primitive.topology == Topology::Points; });
+    world.erase(std::remove_if(world.begin(), world.end(),
+                               [&](const WorldPrimitive& w) {
+                                   return w.primitive.topology == Topology::Lines ||
+                                          (w.primitive.topology == Topology::Points && !pointCloud);
+                               }),
+                world.end());
     bool normals = !world.empty(), colors = !world.empty(), texcoords = !world.empty();
     std::size_t vertexCount = 0, faceCount = 0;
     for (const WorldPrimitive& w : world) {

@@ -118,11 +118,12 @@ struct CornerKey {
     }
 };
 
-// The group being read: its mesh, and per material a primitive with its corner index.
+// The group being read: its mesh, and per topology (faces, lines, points) and material a primitive with its
+// corner index.
 struct Group {
     std::string name;
     Mesh mesh;
-    std::map<int, std::size_t> primitiveOfMaterial;
+    std::map<std::pair<Topology, int>, std::size_t> primitiveOf;
     std::vector<std::map<CornerKey, std::uint32_t>> cornerIndex;
 };
 
@@ -140,7 +141,7 @@ Scene readObj(const fs::path& file) {
     int currentMaterial = -1;
     std::vector<Group> groups(1);
     groups[0].name = file.stem().string();
-    std::size_t lines = 0, points = 0, curves = 0, degenerateFaces = 0;
+    std::size_t curves = 0, degenerateFaces = 0;
     bool anyColors = false, clampedColors = false;
 
     auto resolve = [&](std::string_view word, std::size_t count, const char* what) -> int {
@@ -181,7 +182,10 @@ Scene readObj(const fs::path& file) {
             const double v =
                 nextWord(vText).empty() ? 0.0 : nextFiniteNumber<double>(line, scanner, "texture coordinate");
             texcoords.emplace_back(u, 1 - v);  // OBJ's v points up, glTF's down
-        } else if (keyword == "f") {
+        } else if (keyword == "f" || keyword == "l" || keyword == "p") {
+            const Topology topology = keyword == "f"   ? Topology::Triangles
+                                      : keyword == "l" ? Topology::Lines
+                                                       : Topology::Points;
             std::vector<CornerKey> corners;
             for (std::string_view word = nextWord(line); !word.empty(); word = nextWord(line)) {
                 CornerKey key{-1, -1, -1};
@@ -197,12 +201,16 @@ Scene readObj(const fs::path& file) {
                 }
                 corners.push_back(key);
             }
-            if (corners.size() < 3) scanner.fail("a face with fewer than 3 vertices");
+            if (topology == Topology::Triangles && corners.size() < 3)
+                scanner.fail("a face with fewer than 3 vertices");
+            if (topology == Topology::Lines && corners.size() < 2) scanner.fail("a line with fewer than 2 vertices");
             Group& group = groups.back();
-            auto [entry, inserted] = group.primitiveOfMaterial.try_emplace(currentMaterial, group.mesh.primitives.size());
+            auto [entry, inserted] =
+                group.primitiveOf.try_emplace({topology, currentMaterial}, group.mesh.primitives.size());
             if (inserted) {
                 group.mesh.primitives.emplace_back();
                 group.mesh.primitives.back().material = currentMaterial;
+                group.mesh.primitives.back().topology = topology;
                 group.cornerIndex.emplace_back();
             }
             Primitive& primitive = group.mesh.primitives[entry->second];
@@ -224,6 +232,9 @@ Scene readObj(const fs::path& file) {
                 local.push_back(corner->second);
                 polygon.push_back(positions[key.position]);
             }
+            if (topology == Topology::Lines)
+                for (std::size_t k = 0; k + 1 < local.size(); ++k) primitive.lines.push_back({local[k], local[k + 1]});
+            if (topology != Topology::Triangles) continue;  // a point is its vertex
             const auto triangles = triangulatePolygon(polygon);
             if (triangles.empty()) ++degenerateFaces;
             for (const Triangle& t : triangles) primitive.triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
@@ -246,15 +257,23 @@ Scene readObj(const fs::path& file) {
             const std::string name = rest(line);
             for (const auto& [materialName, index] : readMaterialLibrary(file.parent_path() / name, scene))
                 materials[materialName] = index;
-        } else if (keyword == "l") {
-            ++lines;
-        } else if (keyword == "p") {
-            ++points;
         } else if (keyword == "curv" || keyword == "curv2" || keyword == "surf" || keyword == "cstype") {
             ++curves;
         }
     }
 
+    // Vertices and nothing drawn from them: a point cloud (a scan), drawn as points, as three.js's OBJLoader
+    // gives it.
+    const bool pointCloud =
+        std::all_of(groups.begin(), groups.end(), [](const Group& g) { return g.mesh.primitives.empty(); });
+    if (pointCloud && !positions.empty()) {
+        Primitive& cloud = groups.back().mesh.primitives.emplace_back();
+        cloud.topology = Topology::Points;
+        cloud.positions = positions;
+        cloud.colors = vertexColors;
+        cloud.colors.resize(anyColors ? positions.size() : 0, Eigen::Vector4d(1, 1, 1, 1));
+        groups.back().cornerIndex.emplace_back();
+    }
     // Which attributes the file really had: a primitive keeps one only if every face corner named it.
     for (Group& group : groups) {
         if (group.mesh.primitives.empty()) continue;
@@ -279,8 +298,6 @@ Scene readObj(const fs::path& file) {
     }
     const std::string name = file.filename().string();
     if (clampedColors) scene.warnings.push_back(name + ": vertex colour components outside [0, 1] clamped");
-    if (lines) scene.warnings.push_back(name + ": " + std::to_string(lines) + " line elements (l) skipped");
-    if (points) scene.warnings.push_back(name + ": " + std::to_string(points) + " point elements (p) skipped");
     if (curves) scene.warnings.push_back(name + ": " + std::to_string(curves) + " curve and surface statements skipped");
     if (degenerateFaces)
         scene.warnings.push_back(name + ": " + std::to_string(degenerateFaces) + " faces with no area skipped");

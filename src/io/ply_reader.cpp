@@ -273,6 +273,8 @@ Scene readPly(const fs::path& file) {
     if (otherElements)
         warnings.push_back(file.filename().string() + ": " + std::to_string(otherElements) +
                            " elements other than vertex and face ignored");
+    // Vertices without faces: a point cloud (a scan), drawn as points, as three.js's PLYLoader gives it.
+    if (faces.empty()) primitive.topology = Topology::Points;
     Scene scene = sceneOfOneMesh(file.stem().string(), std::move(primitive));
     scene.warnings = std::move(warnings);
     return scene;

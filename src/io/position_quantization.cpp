@@ -53,9 +53,11 @@ bool collapsesTriangles(const Primitive& primitive, int bits) {
 double positionErrorBound(const Primitive& primitive, const WriteOptions& options) {
     const double bound = primitive.maxPositionError > 0 ? primitive.maxPositionError : options.maxPositionError;
     if (!(bound > 0)) return 0;  // fixed bits: the relative bound only tightens a bound
-    if (!(options.maxRelativePositionError > 0) || primitive.triangles.empty()) return bound;
-    const double diagonal = primitive.closeUpDiagonal > 0
-                                ? primitive.closeUpDiagonal
+    if (!(options.maxRelativePositionError > 0) || primitive.drawsNothing()) return bound;
+    // Lines and points: the box of every vertex (a line's, a point's).
+    const double diagonal = primitive.closeUpDiagonal > 0 ? primitive.closeUpDiagonal
+                            : primitive.topology != Topology::Triangles
+                                ? boundsOf(primitive.positions).diagonal().norm()
                                 : boundsOfCorners(primitive.positions, primitive.triangles).diagonal().norm();
     return std::min(bound, options.maxRelativePositionError * diagonal);
 }

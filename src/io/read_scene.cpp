@@ -68,6 +68,20 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
             losses.push_back(std::to_string(attenuated) + " X3D lights' attenuation not written: " +
                              file.extension().string() + " lights fall off with the inverse square of the distance");
     }
+    if (format == FileFormat::Ply) {
+        // A PLY file holds lines nowhere, and points only as the vertices of a file without faces.
+        std::size_t segments = 0, points = 0, triangles = 0;
+        for (const Mesh& mesh : scene.meshes)
+            for (const Primitive& primitive : mesh.primitives) {
+                segments += primitive.lines.size();
+                triangles += primitive.triangles.size();
+                if (primitive.topology == Topology::Points) points += primitive.positions.size();
+            }
+        const std::size_t lostPoints = triangles || segments ? points : 0;
+        if (segments || lostPoints)
+            losses.push_back(std::to_string(segments) + " line segments and " + std::to_string(lostPoints) +
+                             " points not written: PLY output holds faces, and points only in a file without them");
+    }
     if (format == FileFormat::Glb || format == FileFormat::Gltf) return losses;
     const std::string extension = file.extension().string();
     std::set<std::string> attributes;

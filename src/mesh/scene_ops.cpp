@@ -49,6 +49,14 @@ void validatePrimitive(const Primitive& primitive, const std::string& where, std
             if (index >= n)
                 throw std::invalid_argument(where + ": triangle index " + std::to_string(index) + " out of range (" +
                                             std::to_string(n) + " vertices)");
+    for (const Segment& segment : primitive.lines)
+        for (std::uint32_t index : segment)
+            if (index >= n)
+                throw std::invalid_argument(where + ": line index " + std::to_string(index) + " out of range (" +
+                                            std::to_string(n) + " vertices)");
+    if ((primitive.topology != Topology::Triangles && !primitive.triangles.empty()) ||
+        (primitive.topology != Topology::Lines && !primitive.lines.empty()))
+        throw std::invalid_argument(where + ": triangles or lines in a primitive of another topology");
     if (primitive.material < -1 || primitive.material >= static_cast<int>(materialCount))
         throw std::invalid_argument(where + ": material " + std::to_string(primitive.material) + " out of range");
 }
@@ -117,6 +125,29 @@ Primitive transformPrimitive(Primitive local, const Eigen::Matrix4d& world) {
     if (linear.determinant() < 0)
         for (Triangle& triangle : out.triangles) std::swap(triangle[1], triangle[2]);
     return out;
+}
+
+void keepVertices(Primitive& primitive, const std::vector<std::uint32_t>& kept) {
+    auto keep = [&](auto& values) {
+        if (values.empty()) return;
+        std::remove_reference_t<decltype(values)> out;
+        out.reserve(kept.size());
+        for (std::uint32_t v : kept) out.push_back(values[v]);
+        values = std::move(out);
+    };
+    auto keepAttribute = [&](VertexAttribute& attribute) {
+        VertexAttribute out = attribute.withoutValues();
+        out.values.reserve(kept.size() * std::size_t(attribute.components));
+        for (std::uint32_t v : kept) out.appendVertex(attribute, v);
+        attribute = std::move(out);
+    };
+    keep(primitive.positions);
+    keep(primitive.normals);
+    keep(primitive.texcoords);
+    keep(primitive.colors);
+    for (VertexAttribute& attribute : primitive.attributes) keepAttribute(attribute);
+    for (MorphTarget& target : primitive.targets)
+        for (VertexAttribute& attribute : target) keepAttribute(attribute);
 }
 
 std::string attributeSignature(const Primitive& primitive) {

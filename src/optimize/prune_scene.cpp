@@ -103,24 +103,7 @@ void mergeEqualVertices(Primitive& primitive) {
         newIndex[v] = entry->second;
     }
     if (kept.size() == primitive.positions.size()) return;
-    auto keep = [&](auto& values) {
-        if (values.empty()) return;
-        std::remove_reference_t<decltype(values)> out;
-        out.reserve(kept.size());
-        for (std::uint32_t v : kept) out.push_back(values[v]);
-        values = std::move(out);
-    };
-    keep(primitive.positions);
-    keep(primitive.texcoords);
-    keep(primitive.colors);
-    for (VertexAttribute& attribute : primitive.attributes) {
-        std::vector<double> out;
-        out.reserve(kept.size() * std::size_t(attribute.components));
-        for (std::uint32_t v : kept)
-            out.insert(out.end(), attribute.values.begin() + std::ptrdiff_t(v) * attribute.components,
-                       attribute.values.begin() + std::ptrdiff_t(v + 1) * attribute.components);
-        attribute.values = std::move(out);
-    }
+    keepVertices(primitive, kept);
     for (Triangle& t : primitive.triangles)
         for (std::uint32_t& v : t) v = newIndex[v];
 }
@@ -138,7 +121,10 @@ std::size_t dropFlatNormals(Scene& scene) {
                 !primitive.targets.empty() || (material && readsTangents(*material)) ||
                 std::any_of(primitive.attributes.begin(), primitive.attributes.end(),
                             [](const VertexAttribute& a) { return a.name == "TANGENT"; });
-            if (primitive.normals.empty() || needsNormals || !normalsAreFlat(primitive)) continue;
+            // Lines and points have no face for a viewer to take a normal from.
+            if (primitive.normals.empty() || needsNormals || primitive.topology != Topology::Triangles ||
+                !normalsAreFlat(primitive))
+                continue;
             primitive.normals.clear();
             primitive.normals.shrink_to_fit();
             mergeEqualVertices(primitive);

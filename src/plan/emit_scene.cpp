@@ -285,6 +285,11 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceShare * analysis.diagonal, deviation,
                          variantsOf);
     dropPointLikeTriangles(out, variantsOf, stats);
+    for (const Mesh& mesh : out.meshes)
+        for (const Primitive& primitive : mesh.primitives) {
+            stats.lineSegmentsKept += primitive.lines.size();
+            if (primitive.topology == Topology::Points) stats.pointsKept += primitive.positions.size();
+        }
     return result;
 }
 

@@ -164,7 +164,8 @@ bool tilesCanCarry(const Mesh& mesh, const Eigen::Matrix3d& placement) {
         return !a.isJoints() && a.name.rfind("WEIGHTS_", 0) != 0 && (even || a.name != "TANGENT");
     };
     return std::all_of(mesh.primitives.begin(), mesh.primitives.end(), [&](const Primitive& p) {
-        return p.targets.empty() && std::all_of(p.attributes.begin(), p.attributes.end(), carried);
+        return p.topology == Topology::Triangles && p.targets.empty() &&
+               std::all_of(p.attributes.begin(), p.attributes.end(), carried);
     });
 }
 

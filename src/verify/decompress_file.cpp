@@ -70,13 +70,62 @@ void comparePoses(const Scene& rebuilt, const Scene& original, double diagonal, 
     }
 }
 
+// The vertices a scene draws as points, or as the ends of its line segments (`topology`), in world space: each a
+// triangle of three equal corners, so that the surfaces' measures take the distances between them.
+TriangleMesh drawnVertices(const Scene& scene, Topology topology) {
+    TriangleMesh out;
+    for (const WorldPrimitive& placed : flattenScene(scene)) {
+        const Primitive& primitive = placed.primitive;
+        if (primitive.topology != topology) continue;
+        auto add = [&](std::uint32_t v) {
+            const auto index = static_cast<std::uint32_t>(out.positions.size());
+            out.positions.push_back(primitive.positions[v]);
+            out.triangles.push_back({index, index, index});
+        };
+        for (const Segment& segment : primitive.lines) add(segment[0]), add(segment[1]);
+        if (topology == Topology::Points)
+            for (std::uint32_t v = 0; v < primitive.positions.size(); ++v) add(v);
+    }
+    return out;
+}
+
+// The box of what a scene draws as triangles (`surface`), points and lines.
+Eigen::AlignedBox3d drawnBounds(const TriangleMesh& surface, const TriangleMesh& points, const TriangleMesh& lineEnds) {
+    Eigen::AlignedBox3d box = digestOf(surface, 0).bounds;
+    for (const TriangleMesh* vertices : {&points, &lineEnds})
+        for (const Eigen::Vector3d& p : vertices->positions) box.extend(p);
+    return box;
+}
+
+// How far, relative to `diagonal`, the points or line ends drawn by the rebuilt scene and the original lie from
+// each other (both ways); infinite where they differ in number (lines and points are kept as they are).
+double vertexDeviation(const TriangleMesh& rebuilt, const TriangleMesh& original, double diagonal) {
+    if (rebuilt.positions.size() != original.positions.size()) return std::numeric_limits<double>::infinity();
+    if (original.positions.empty()) return 0;
+    const Eigen::AlignedBox3d box = digestOf(original, 0).bounds;
+    const double own = box.diagonal().norm();
+    // compareSurfaces measures relative to the original's own box: a single point has none.
+    const double distance = own > 0 ? compareSurfaces(rebuilt, original, 0).maxDeviation * own
+                                    : (digestOf(rebuilt, 0).bounds.max() - box.max()).norm();
+    return diagonal > 0 ? distance / diagonal : distance > 0 ? std::numeric_limits<double>::infinity() : 0;
+}
+
 // Against the original: the surfaces must agree (distance both ways, area, bounds); triangle counts may
 // differ, since fundamental regions split the triangles their planes cut. Quantization may turn over a
-// sliver or two, not a part.
+// sliver or two, not a part. Points and lines (kept as they are) must agree in number and lie within the
+// allowance of each other.
 void verifyAgainstOriginal(const TriangleMesh& rebuilt, const Scene& rebuiltScene, const Scene& original,
                            RebuildReport& report) {
     const TriangleMesh reference = worldMesh(original);
-    const SurfaceComparison comparison = compareSurfaces(rebuilt, reference, report.allowedDeviation);
+    const TriangleMesh referencePoints = drawnVertices(original, Topology::Points),
+                       referenceLineEnds = drawnVertices(original, Topology::Lines);
+    const double drawnDiagonal = drawnBounds(reference, referencePoints, referenceLineEnds).diagonal().norm();
+    const double vertices =
+        std::max(vertexDeviation(drawnVertices(rebuiltScene, Topology::Points), referencePoints, drawnDiagonal),
+                 vertexDeviation(drawnVertices(rebuiltScene, Topology::Lines), referenceLineEnds, drawnDiagonal));
+    SurfaceComparison comparison = compareSurfaces(rebuilt, reference, report.allowedDeviation);
+    if (reference.triangles.empty() && rebuilt.triangles.empty())
+        comparison.areaRatio = 1, comparison.sameBounds = true;
     report.against = RebuildReport::Against::Original;
     report.maxDeviation = comparison.maxDeviation;
     report.areaRatio = comparison.areaRatio;
@@ -90,7 +139,8 @@ void verifyAgainstOriginal(const TriangleMesh& rebuilt, const Scene& rebuiltScen
         for (int k = 0; k < 3; ++k) perimeters += (reference.positions[t[k]] - reference.positions[t[(k + 1) % 3]]).norm();
     const double diagonal = digest.bounds.isEmpty() ? 0 : digest.bounds.diagonal().norm();
     comparePoses(rebuiltScene, original, diagonal, report);
-    report.verified = comparison.maxDeviation <= allowed &&
+    report.maxDeviation = std::max(report.maxDeviation, vertices);
+    report.verified = report.maxDeviation <= allowed &&
                       std::abs(comparison.areaRatio - 1) * digest.area <=
                           allowedAreaChange(digest.area, perimeters, allowed, diagonal) &&
                       comparison.sameBounds && comparison.flippedArea <= kFlippedAllowance &&
@@ -134,7 +184,10 @@ RebuildReport decompressFile(const std::filesystem::path& input, const std::file
     exact.draco = false;  // the expanded scene is the reference geometry: keep it exact
     writeScene(flat, output, exact, {input});
     const TriangleMesh rebuilt = worldMesh(flat);
-    const SurfaceDigest rebuiltDigest = digestOf(rebuilt, 0);
+    SurfaceDigest rebuiltDigest = digestOf(rebuilt, 0);
+    // As the digest of the original holds them: points and lines count towards the bounds.
+    rebuiltDigest.bounds =
+        drawnBounds(rebuilt, drawnVertices(flat, Topology::Points), drawnVertices(flat, Topology::Lines));
     report.triangles = rebuiltDigest.triangles;
     SurfaceDigest stored;
     const bool haveDigest = SurfaceDigest::fromJson(scene.extrasJson, stored);

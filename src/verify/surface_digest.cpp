@@ -34,7 +34,15 @@ SurfaceDigest digestOf(const TriangleMesh& surface, double tolerance) {
 SurfaceDigest digestOf(const std::vector<WorldPrimitive>& soup, double tolerance) {
     SurfaceDigest digest;
     digest.tolerance = tolerance;
-    for (const WorldPrimitive& placed : soup) addTriangles(placed.primitive.positions, placed.primitive.triangles, digest);
+    for (const WorldPrimitive& placed : soup) {
+        const Primitive& primitive = placed.primitive;
+        addTriangles(primitive.positions, primitive.triangles, digest);
+        // What is drawn as points and lines is kept as it is: it counts towards the bounds only.
+        if (primitive.topology == Topology::Points)
+            for (const Eigen::Vector3d& p : primitive.positions) digest.bounds.extend(p);
+        for (const Segment& segment : primitive.lines)
+            for (std::uint32_t v : segment) digest.bounds.extend(primitive.positions[v]);
+    }
     return digest;
 }
 

@@ -258,6 +258,9 @@ void printReport(const CompressionReport& report) {
                     plan != plans.end() ? plan->second : report.plan.c_str());
     }
     std::printf("  triangles       %zu drawn, %zu stored\n", stats.trianglesIn, stats.trianglesStored);
+    if (stats.lineSegmentsKept || stats.pointsKept)
+        std::printf("  lines, points   %zu line segments and %zu points stored as they are\n", stats.lineSegmentsKept,
+                    stats.pointsKept);
     std::printf("  tiles           %zu in %zu classes; %zu classes stored once for %zu instances\n", stats.tiles,
                 stats.classes, stats.instancedClasses, stats.instances);
     std::printf("  symmetric       %zu classes, %zu stored as their fundamental region\n", stats.symmetricClasses,

@@ -99,8 +99,8 @@ SceneAnalysis analyzeScene(const Scene& input, const AnalysisOptions& options = 
 SceneAnalysis analyzeSceneTakingGeometry(Scene& input, const AnalysisOptions& options = {});
 
 // Whether tiles can carry everything the mesh's primitives hold where `placement` (the linear part of a node's
-// world transform) draws it: not morph targets or skin joints and weights (a mesh that moves is kept as it is),
-// and tangents only under a placement that scales alike on every axis.
+// world transform) draws it: not lines or points, morph targets or skin joints and weights (a mesh that moves is
+// kept as it is), and tangents only under a placement that scales alike on every axis.
 bool tilesCanCarry(const Mesh& mesh, const Eigen::Matrix3d& placement);
 
 // The cost model of a file written with `write`: every part measured by the format's writer (gltfMeshBytes,
