@@ -223,12 +223,34 @@ void X3dReader::readMaterialTextures(const pugi::xml_node& node, Material& mater
     if (material.occlusionTexture.texture >= 0) material.occlusionTexture.scale = scalar(node, "occlusionStrength", 1);
 }
 
-int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings) {
+// X3D draws lines and points unlit (X3D 3.3's line and point sets: "lines are not lit"): in the Material's
+// emissive colour, or in their Color's, which takes its place (PhysicalMaterial's emissive colour is linear;
+// UnlitMaterial's, and a missing Material's white, is the base colour already). glTF's viewers (three.js) draw
+// them in the base colour times COLOR_0: that colour, white where the vertex colours replace it, without
+// textures (X3D maps none onto lines and points) and without what lighting reads.
+Material X3dReader::unlitMaterial(const Material& read, bool physical, bool colored) const {
+    Material out;
+    out.name = read.name;
+    out.metallicFactor = 0;
+    Eigen::Vector3d color = read.baseColorFactor.head<3>();
+    if (read.phong) color = srgbToLinear(read.phong->emissiveColor);
+    if (physical) color = read.emissiveFactor;
+    if (colored) color = Eigen::Vector3d::Ones();
+    out.baseColorFactor << color, read.baseColorFactor[3];
+    out.alphaMode = read.alphaMode;
+    out.alphaCutoff = read.alphaCutoff;
+    return out;
+}
+
+int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings,
+                            const Primitive& geometry) {
     pugi::xml_node appearance = shape.child("Appearance");
     if (!appearance || !knownUse(appearance, "a Shape's Appearance")) return -1;
     if (const pugi::xml_attribute def = appearance.attribute("DEF")) definitions_[def.value()] = appearance;
     appearance = resolve(appearance);
-    auto [entry, inserted] = materialOfAppearance_.try_emplace(appearance.internal_object(), -1);
+    const bool unlitGeometry = geometry.topology != Topology::Triangles;
+    const int lighting = unlitGeometry ? (geometry.colors.empty() ? 1 : 2) : 0;
+    auto [entry, inserted] = materialOfAppearance_.try_emplace({appearance.internal_object(), lighting}, -1);
     if (!inserted) return entry->second;
     Material material;
     material.name = appearance.attribute("DEF").value();
@@ -294,10 +316,14 @@ int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::
         material.alphaMode = Material::AlphaMode::Mask;
         material.alphaCutoff = scalar(appearance, "alphaCutoff", 0.5);
     }
-    // The material's own base texture (X3D 4) takes the place of the Appearance's texture.
-    if (phong || physical || unlit)
-        readMaterialTextures(phong ? phong : physical ? physical : unlit, material, texcoordMappings);
-    if (material.baseColorTexture.texture < 0) material.baseColorTexture.texture = readTexture(appearance);
+    if (unlitGeometry) {
+        material = unlitMaterial(material, bool(physical), lighting == 2);
+    } else {
+        // The material's own base texture (X3D 4) takes the place of the Appearance's texture.
+        if (phong || physical || unlit)
+            readMaterialTextures(phong ? phong : physical ? physical : unlit, material, texcoordMappings);
+        if (material.baseColorTexture.texture < 0) material.baseColorTexture.texture = readTexture(appearance);
+    }
     // Appearances written out one per Shape, with the same Material and texture USEd in each, are one
     // material (else every Shape would look like its own part). Double-sidedness comes from the geometry
     // (solid="false" makes the material double-sided, below in readShape), so it is not compared.

@@ -7,8 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
 #include <optional>
 #include <tuple>
+#include <utility>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -16,6 +20,8 @@ namespace {
 
 // More texture coordinate sets than a material's five textures can use are not kept (TEXCOORD_0 to _7).
 constexpr std::size_t kMaxTexcoordSets = 8;
+// A colour index where the line set's index lists hold none (a short colorIndex): not a colour of its Color node.
+constexpr std::int64_t kMissingColor = std::numeric_limits<std::int64_t>::max();
 
 // A face of an IndexedFaceSet whose `convex` is TRUE (the default) as the browser cuts it: a fan from its first
 // corner (X_ITE's triangulateConvexPolygon). Where a diagonal lies matters: a non-planar quad bends along it,
@@ -34,6 +40,59 @@ std::optional<std::vector<Triangle>> convexFan(const std::vector<Eigen::Vector3d
         if (normal.norm() > 0 && along > 0) fan.push_back({0, k, k + 1});
     }
     return fan;
+}
+
+// One corner of a polyline: a point of the Coordinate node and the index of its colour (-1: none).
+struct LineCorner {
+    std::int64_t point, color;
+};
+using Polyline = std::vector<LineCorner>;
+
+// The vertices of a line or point set: one for each pair of point and colour it draws, added at its first use.
+class LineVertices {
+public:
+    LineVertices(const X3dPointsAndColors& data, Primitive& out) : data_(data), out_(out) {}
+
+    std::uint32_t operator()(const LineCorner& corner) {
+        const std::uint32_t next = std::uint32_t(out_.positions.size());
+        auto [entry, inserted] = vertexOf_.try_emplace({corner.point, corner.color}, next);
+        if (!inserted) return entry->second;
+        const double* p = data_.points.data() + 3 * corner.point;
+        out_.positions.emplace_back(p[0], p[1], p[2]);
+        if (corner.color >= 0) {
+            Eigen::Vector4d color(1, 1, 1, 1);
+            for (int c = 0; c < data_.colorComponents; ++c)
+                color[c] = data_.colors[std::size_t(data_.colorComponents * corner.color + c)];
+            out_.colors.push_back(color);
+        }
+        return entry->second;
+    }
+
+private:
+    const X3dPointsAndColors& data_;
+    Primitive& out_;
+    std::map<std::pair<std::int64_t, std::int64_t>, std::uint32_t> vertexOf_;
+};
+
+// An IndexedLineSet's polylines: coordIndex split at its -1s, each corner with its colour as X3D 3.3's
+// IndexedLineSet indexes it: per vertex (colorPerVertex, the default) by colorIndex laid out as coordIndex is,
+// else by the point; per polyline by colorIndex's i-th value, else i.
+std::vector<Polyline> indexedPolylines(const std::vector<std::int64_t>& coordIndex,
+                                       const std::vector<std::int64_t>& colorIndex, bool colorPerVertex, bool colored) {
+    const auto indexed = [&](std::size_t i) { return i < colorIndex.size() ? colorIndex[i] : kMissingColor; };
+    std::vector<Polyline> polylines(1);
+    for (std::size_t k = 0; k < coordIndex.size(); ++k) {
+        if (coordIndex[k] < 0) {
+            polylines.emplace_back();
+            continue;
+        }
+        std::int64_t color = -1;
+        const std::size_t line = polylines.size() - 1;
+        if (colored && colorPerVertex) color = colorIndex.empty() ? coordIndex[k] : indexed(k);
+        if (colored && !colorPerVertex) color = colorIndex.empty() ? std::int64_t(line) : indexed(line);
+        polylines.back().push_back({coordIndex[k], color});
+    }
+    return polylines;
 }
 
 }  // namespace
@@ -56,6 +115,10 @@ bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out,
     } else if (type == "Cone") {
         out = x3d::tessellateCylinder(scalar(geometry, "bottomRadius", 1), 0, scalar(geometry, "height", 2),
                                       boolean(geometry, "side", true), boolean(geometry, "bottom", true), false);
+    } else if (type == "IndexedLineSet" || type == "LineSet") {
+        return readLineSet(geometry, out, type == "IndexedLineSet");
+    } else if (type == "PointSet") {
+        return readPointSet(geometry, out);
     } else {
         ++skippedGeometry_[type];
         return false;
@@ -63,16 +126,110 @@ bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out,
     return true;
 }
 
+pugi::xml_node X3dReader::geometryChild(const pugi::xml_node& geometry, std::initializer_list<const char*> types) {
+    for (const char* type : types)
+        if (pugi::xml_node node = geometry.child(type)) {
+            if (const pugi::xml_attribute def = node.attribute("DEF")) definitions_[def.value()] = node;
+            return resolve(node);
+        }
+    return {};
+}
+
+void X3dReader::noteAbout(const pugi::xml_node& node, const std::string& problem) {
+    const std::string def = node.attribute("DEF").value();
+    notes_.insert(std::string(node.name()) + (def.empty() ? "" : " '" + def + "'") + ": " + problem);
+}
+
+bool X3dReader::readPointsAndColors(const pugi::xml_node& geometry, X3dPointsAndColors& out) {
+    const pugi::xml_node coordinate = geometryChild(geometry, {"Coordinate", "CoordinateDouble"});
+    if (!coordinate) {
+        noteAbout(geometry, "no Coordinate; left out");
+        return false;
+    }
+    out.points = numbers(coordinate, "point");
+    if (out.points.size() % 3) {
+        noteAbout(geometry, "its Coordinate's point values are not a multiple of 3; the last left out");
+        out.points.resize(out.points.size() / 3 * 3);
+    }
+    if (const pugi::xml_node color = geometryChild(geometry, {"Color", "ColorRGBA"})) {
+        out.colorComponents = std::strcmp(color.name(), "ColorRGBA") == 0 ? 4 : 3;
+        out.colors = numbers(color, "color");
+        if (out.colors.size() % std::size_t(out.colorComponents)) {
+            noteAbout(geometry, std::string("its ") + color.name() + "'s values are not a multiple of " +
+                                    std::to_string(out.colorComponents) + "; the last left out");
+            out.colors.resize(out.colorCount() * std::size_t(out.colorComponents));
+        }
+    }
+    return true;
+}
+
+// Lines as segments between the corners of each polyline. A corner naming no point splits its polyline; a corner
+// without a colour of the Color node leaves every colour out (a primitive has colours on every vertex or none).
+bool X3dReader::readLineSet(const pugi::xml_node& geometry, Primitive& out, bool indexed) {
+    X3dPointsAndColors data;
+    if (!readPointsAndColors(geometry, data)) return false;
+    const bool colored = !data.colors.empty();
+    std::vector<Polyline> polylines;
+    if (indexed) {
+        polylines = indexedPolylines(integers(geometry, "coordIndex"), integers(geometry, "colorIndex"),
+                                     boolean(geometry, "colorPerVertex", true), colored);
+    } else {
+        // LineSet: polylines of vertexCount points each, taken in order; its colours go with its points.
+        const std::int64_t points = std::int64_t(data.pointCount());
+        std::int64_t next = 0;
+        for (std::int64_t count : integers(geometry, "vertexCount")) {
+            if (count < 2) noteAbout(geometry, "a vertexCount below 2 draws nothing");
+            if (count > points - next)
+                noteAbout(geometry, "vertexCount counts more than its " + std::to_string(points) + " points");
+            Polyline& polyline = polylines.emplace_back();
+            for (std::int64_t k = 0; k < count && next < points; ++k, ++next)
+                polyline.push_back({next, colored ? next : -1});
+        }
+    }
+    std::vector<Polyline> valid;
+    bool colorsKept = colored;
+    for (const Polyline& polyline : polylines) {
+        valid.emplace_back();
+        for (const LineCorner& corner : polyline) {
+            if (corner.point >= std::int64_t(data.pointCount())) {
+                noteAbout(geometry, "a point index beyond its " + std::to_string(data.pointCount()) +
+                                        " points (the polyline is broken there)");
+                valid.emplace_back();
+                continue;
+            }
+            if (colored && (corner.color < 0 || corner.color >= std::int64_t(data.colorCount()))) colorsKept = false;
+            valid.back().push_back(corner);
+        }
+    }
+    if (colored && !colorsKept) noteAbout(geometry, "a colour index beyond its colours; the colours left out");
+    out.topology = Topology::Lines;
+    LineVertices vertex(data, out);
+    for (Polyline& polyline : valid) {
+        if (!colorsKept)
+            for (LineCorner& corner : polyline) corner.color = -1;
+        for (std::size_t k = 1; k < polyline.size(); ++k) {
+            const Segment segment{vertex(polyline[k - 1]), vertex(polyline[k])};
+            if (segment[0] != segment[1]) out.lines.push_back(segment);
+        }
+    }
+    return true;
+}
+
+// Every point drawn, with the colour of the same index where the Color node has one for each.
+bool X3dReader::readPointSet(const pugi::xml_node& geometry, Primitive& out) {
+    X3dPointsAndColors data;
+    if (!readPointsAndColors(geometry, data)) return false;
+    const bool colored = !data.colors.empty() && data.colorCount() >= data.pointCount();
+    if (!data.colors.empty() && !colored) noteAbout(geometry, "fewer colours than points; the colours left out");
+    out.topology = Topology::Points;
+    LineVertices vertex(data, out);
+    for (std::int64_t p = 0; p < std::int64_t(data.pointCount()); ++p) vertex({p, colored ? p : -1});
+    return true;
+}
+
 void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces,
                             std::vector<std::string>& texcoordMappings) {
-    auto child = [&](std::initializer_list<const char*> types) -> pugi::xml_node {
-        for (const char* type : types)
-            if (pugi::xml_node node = geometry.child(type)) {
-                if (const pugi::xml_attribute def = node.attribute("DEF")) definitions_[def.value()] = node;
-                return resolve(node);
-            }
-        return {};
-    };
+    auto child = [&](std::initializer_list<const char*> types) { return geometryChild(geometry, types); };
     const pugi::xml_node coordinate = child({"Coordinate", "CoordinateDouble"});
     if (!coordinate) fail(geometry, "no Coordinate");
     const std::vector<double> points = numbers(coordinate, "point");

@@ -36,6 +36,15 @@ PhongMaterial phongOf(const Material& material) {
     return phong;
 }
 
+PhongMaterial unlitPhongOf(const Material& material) {
+    const PhongMaterial lit = phongOf(material);
+    PhongMaterial out;
+    out.diffuseColor = Eigen::Vector3d::Zero();
+    out.emissiveColor = lit.diffuseColor;
+    out.transparency = lit.transparency;
+    return out;
+}
+
 MaterialTextures materialTextures(const Material& material) {
     MaterialTextures out;
     const bool physical = needsPhysicalMaterial(material), unlit = isUnlit(material);

@@ -23,6 +23,11 @@ bool needsPhysicalMaterial(const Material& material);
 // The Phong fields written for a material: those it was read with, else its glTF factors sRGB-encoded.
 PhongMaterial phongOf(const Material& material);
 
+// The Phong fields written for a material that draws lines or points: X3D draws those unlit, in the emissive
+// colour, glTF's viewers in the base colour; so that colour (sRGB-encoded as phongOf's diffuse colour) is the
+// emissive colour, with phongOf's transparency, of a Material that reflects nothing.
+PhongMaterial unlitPhongOf(const Material& material);
+
 // One texture field the writer fills: the X3D field, the texture use, and the texture coordinates it reads (an
 // index into texcoordChannels).
 struct TextureField {

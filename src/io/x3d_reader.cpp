@@ -42,9 +42,6 @@ const std::set<std::string> kReadElsewhere = {
 const std::set<std::string> kUnsupportedGeometry = {"Extrusion",
                                                     "ElevationGrid",
                                                     "Text",
-                                                    "PointSet",
-                                                    "LineSet",
-                                                    "IndexedLineSet",
                                                     "NurbsPatchSurface",
                                                     "NurbsTrimmedSurface",
                                                     "NurbsCurve",
@@ -372,7 +369,7 @@ int X3dReader::readShape(const pugi::xml_node& shape) {
     std::vector<std::string> texcoordMappings;
     if (!readGeometry(geometry, primitive, texcoordMappings)) return -1;
     // After the geometry: an X3D 4 material's textures name its texture coordinate sets by their mapping.
-    int material = readMaterial(shape, texcoordMappings);
+    int material = readMaterial(shape, texcoordMappings, primitive);
     // Double-sidedness is the geometry's (solid='false'): a material shared with shapes of the other kind is
     // drawn from a copy that differs in it alone, so that a solid shape's back faces stay culled (the Chevy's
     // roof rails, drawn with a material that a box with solid='false' also uses).

@@ -9,15 +9,25 @@
 #include <Eigen/Geometry>
 
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace symcompress {
 
 // An SFRotation (axis x y z, angle) as an angle-axis; the identity where it has fewer than 4 numbers.
 Eigen::AngleAxisd rotationField(const std::vector<double>& values);
+
+// A line or point set's Coordinate points and Color (or ColorRGBA) colours, as numbers.
+struct X3dPointsAndColors {
+    std::vector<double> points, colors;
+    int colorComponents = 3;
+    std::size_t pointCount() const { return points.size() / 3; }
+    std::size_t colorCount() const { return colors.size() / std::size_t(colorComponents); }
+};
 
 class X3dReader {
 public:
@@ -46,8 +56,12 @@ private:
     int readNode(const pugi::xml_node& node, int depth);
     int readShape(const pugi::xml_node& shape);
     // `texcoordMappings`: the mapping of each texture coordinate set of the shape's geometry (x3d_geometry.cpp),
-    // which the X3D 4 materials' *TextureMapping fields name.
-    int readMaterial(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings);
+    // which the X3D 4 materials' *TextureMapping fields name. `geometry`: the primitive read, whose lines or points
+    // X3D draws unlit (unlitMaterial).
+    int readMaterial(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings,
+                     const Primitive& geometry);
+    // The material of an Appearance as lines and points draw it: unlit, in the colour the browser gives them.
+    Material unlitMaterial(const Material& read, bool physical, bool colored) const;
     void readMaterialTextures(const pugi::xml_node& node, Material& material,
                               const std::vector<std::string>& texcoordMappings);
     int readTexture(const pugi::xml_node& appearance);
@@ -58,6 +72,17 @@ private:
     bool readGeometry(const pugi::xml_node& geometry, Primitive& out, std::vector<std::string>& texcoordMappings);
     void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces,
                      std::vector<std::string>& texcoordMappings);
+    // The first child of `geometry` of one of `types`, its DEF known and a USE resolved; none: a null node.
+    pugi::xml_node geometryChild(const pugi::xml_node& geometry, std::initializer_list<const char*> types);
+    // IndexedLineSet and LineSet (their polylines as segments), PointSet (every point drawn); false where the node
+    // has no coordinates. Bad indices and counts leave out what they name, with a note.
+    bool readLineSet(const pugi::xml_node& geometry, Primitive& out, bool indexed);
+    bool readPointSet(const pugi::xml_node& geometry, Primitive& out);
+    // The points and colours of a line or point set (values beyond a whole point or colour left out, with a
+    // note); false where it has no Coordinate.
+    bool readPointsAndColors(const pugi::xml_node& geometry, X3dPointsAndColors& out);
+    // A note about `node` of the file (a warning once the file is read).
+    void noteAbout(const pugi::xml_node& node, const std::string& problem);
     // `material`, or the material that differs from it in its double-sidedness alone (found or added).
     int withSidedness(int material, bool doubleSided);
     // A shape's Color values as glTF's COLOR_0, once its material is known (docs/scene-model.md, "Colour spaces").
@@ -75,7 +100,9 @@ private:
     pugi::xml_document document_;
     std::map<std::string, pugi::xml_node> definitions_;
     std::map<std::string, std::vector<int>> nodesOfTransform_;  // a DEF'd Transform's scene nodes (one per USE)
-    std::map<const void*, int> meshOfShape_, materialOfAppearance_, textureOfNode_;
+    std::map<const void*, int> meshOfShape_, textureOfNode_;
+    // An Appearance's material for surfaces (0), and for lines and points, unlit (1; 2 with vertex colours).
+    std::map<std::pair<const void*, int>, int> materialOfAppearance_;
     std::set<int> physicalMaterials_;  // materials read from a PhysicalMaterial (vertexColorsAsGltf)
     std::set<int> usedMaterials_;      // materials a shape draws (withSidedness)
     std::map<std::string, int> skippedGeometry_;

@@ -171,6 +171,17 @@ std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive, const
     return std::nullopt;
 }
 
+// Segments as polylines, each segment that starts where the one before it ends continuing its polyline (a strip
+// a-b, b-c as a b c): X3D's coordIndex then takes one index a segment instead of three.
+std::vector<std::vector<std::uint32_t>> polylinesOf(const std::vector<Segment>& segments) {
+    std::vector<std::vector<std::uint32_t>> polylines;
+    for (const Segment& segment : segments) {
+        if (polylines.empty() || polylines.back().back() != segment[0]) polylines.push_back({segment[0]});
+        polylines.back().push_back(segment[1]);
+    }
+    return polylines;
+}
+
 std::string base64(const std::vector<std::uint8_t>& bytes) {
     static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
@@ -242,7 +253,8 @@ public:
         bool physical = false;
         for (const Mesh& mesh : scene_.meshes)
             for (const Primitive& primitive : mesh.primitives)
-                if (primitive.material >= 0 && !primitive.triangles.empty()) {
+                // Lines and points are drawn with X3D 3.3's Material whatever theirs (writeUnlitShape).
+                if (primitive.material >= 0 && primitive.topology == Topology::Triangles && !primitive.drawsNothing()) {
                     const Material& material = scene_.materials[std::size_t(primitive.material)];
                     version4_ = version4_ || x3d::needsX3d4(material);
                     physical = physical || x3d::needsPhysicalMaterial(material);
@@ -445,8 +457,13 @@ private:
         }
         written_[mesh] = true;
         out_ += "<Group DEF='" + def + "'>\n";
-        for (const Primitive& primitive : scene_.meshes[mesh].primitives)
-            if (!primitive.triangles.empty()) writeShape(primitive, depth + 1);
+        for (const Primitive& primitive : scene_.meshes[mesh].primitives) {
+            if (primitive.drawsNothing()) continue;
+            if (primitive.topology == Topology::Triangles)
+                writeShape(primitive, depth + 1);
+            else
+                writeUnlitShape(primitive, depth + 1);
+        }
         indent(depth);
         out_ += "</Group>\n";
     }
@@ -486,6 +503,27 @@ private:
         for (const x3d::TextureField& field : textures.fields)
             if (std::string(field.field) == "texture") writeImageTexture(field.use->texture, "");
         out_ += "</Appearance>\n";
+    }
+
+    // The Appearance of lines and points (x3d::unlitPhongOf), shared as writeAppearance's is.
+    void writeUnlitAppearance(int material, int depth) {
+        indent(depth);
+        std::string def;
+        if (material >= 0) {
+            def = defOf("emissive", material);
+            if (!unlitMaterialWritten_.insert(material).second) {
+                out_ += "<Appearance USE='" + def + "'/>\n";
+                return;
+            }
+        }
+        const PhongMaterial phong =
+            x3d::unlitPhongOf(material >= 0 ? scene_.materials[std::size_t(material)] : Material{});
+        out_ += def.empty() ? "<Appearance>" : "<Appearance DEF='" + def + "'>";
+        out_ += "<Material diffuseColor='0 0 0' emissiveColor='";
+        appendVector(out_, phong.emissiveColor, 3);
+        out_ += "'";
+        appendField("transparency", phong.transparency, 0.0);
+        out_ += "/></Appearance>\n";
     }
 
     // A field with the value it has unless that is X3D's default.
@@ -752,6 +790,48 @@ private:
         out_ += "</Shape>\n";
     }
 
+    // Lines as an IndexedLineSet, points as a PointSet (each vertex a point), drawn unlit as glTF's viewers draw
+    // them (writeUnlitAppearance); normals and texture coordinates, which neither draws, left out. Positions
+    // rounded as a triangle set's are.
+    void writeUnlitShape(const Primitive& primitive, int depth) {
+        indent(depth);
+        out_ += "<Shape>\n";
+        writeUnlitAppearance(primitive.material, depth + 1);
+        const std::optional<int> decimals = positionDecimals(primitive, options_);
+        const auto round = [&](double x) { return decimals ? roundedDecimals(x, *decimals) : x; };
+        const bool lines = primitive.topology == Topology::Lines;
+        indent(depth + 1);
+        const std::size_t geometryStart = out_.size();
+        if (lines) {
+            out_ += "<IndexedLineSet coordIndex='";
+            for (const std::vector<std::uint32_t>& polyline : polylinesOf(primitive.lines)) {
+                if (out_.back() != '\'') out_ += ' ';
+                for (std::uint32_t v : polyline) out_ += std::to_string(v) + ' ';
+                out_ += "-1";
+            }
+            out_ += "'>\n";
+        } else {
+            out_ += "<PointSet>\n";
+        }
+        indent(depth + 2);
+        out_ += "<Coordinate point='";
+        for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
+            if (v) out_ += ' ';
+            appendVector(out_, primitive.positions[v], 3, round);
+        }
+        out_ += "'/>\n";
+        if (!primitive.colors.empty()) {
+            std::vector<std::uint32_t> written(primitive.positions.size());
+            for (std::uint32_t v = 0; v < written.size(); ++v) written[v] = v;
+            writeColors(primitive, written, depth + 2);
+        }
+        indent(depth + 1);
+        out_ += lines ? "</IndexedLineSet>\n" : "</PointSet>\n";
+        shareGeometry(geometryStart, lines ? "IndexedLineSet" : "PointSet");
+        indent(depth);
+        out_ += "</Shape>\n";
+    }
+
     // The geometry node just written from `start`, where an earlier Shape wrote the same text (one part drawn in
     // several materials: a family of classes), becomes a USE of that one, which gets a DEF (withGeometryDefs).
     void shareGeometry(std::size_t start, const std::string& node) {
@@ -774,7 +854,7 @@ private:
         std::vector<std::pair<std::size_t, std::string>> defs;  // where (after the node's name), what
         for (const auto& [hash, same] : geometries_)
             for (const WrittenGeometry& g : same)
-                if (!g.def.empty()) defs.push_back({out_.find(' ', g.start), " DEF='" + g.def + "'"});
+                if (!g.def.empty()) defs.push_back({out_.find_first_of(" >", g.start), " DEF='" + g.def + "'"});
         if (defs.empty()) return std::move(out_);
         std::sort(defs.begin(), defs.end());
         std::string text;
@@ -796,7 +876,9 @@ private:
     void writeColors(const Primitive& primitive, const std::vector<std::uint32_t>& written, int depth) {
         const Material* material =
             primitive.material >= 0 ? &scene_.materials[std::size_t(primitive.material)] : nullptr;
-        const bool linear = material && x3d::needsPhysicalMaterial(*material);
+        // Lines and points are written with Phong's Material (writeUnlitAppearance).
+        const bool linear =
+            material && primitive.topology == Topology::Triangles && x3d::needsPhysicalMaterial(*material);
         const Eigen::Vector3d base =
             material ? Eigen::Vector3d(material->baseColorFactor.head<3>()) : Eigen::Vector3d::Ones();
         const bool rgba =
@@ -823,7 +905,7 @@ private:
     fs::path file_;
     std::string out_;
     std::vector<bool> written_;
-    std::set<int> materialWritten_;
+    std::set<int> materialWritten_, unlitMaterialWritten_;
     struct WrittenGeometry {
         std::size_t start, length;  // in out_
         std::string def;            // where a later Shape USEs it
@@ -876,7 +958,7 @@ std::uintmax_t x3dReferencedImageBytes(const Scene& scene) {
 }
 
 std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options) {
-    if (primitive.triangles.empty()) return 0;
+    if (primitive.drawsNothing()) return 0;
     // The file with a node drawing the mesh, less the file with the node alone.
     Scene scene;
     scene.meshes.push_back({"", {primitive}, "", {}});
