@@ -271,10 +271,10 @@ GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& 
     const std::vector<bool> fixed = fixedNodes(scene);
     auto eligible = [&](int n) {
         const Node& node = scene.nodes[std::size_t(n)];
+        if (fixed[std::size_t(n)] || !plainLeaf(node) || meshIndex[std::size_t(node.mesh)] < 0) return false;
         const Mesh& mesh = scene.meshes[std::size_t(node.mesh)];
         // three.js instances no lines or points (its loader draws such a node once).
-        return !fixed[std::size_t(n)] && plainLeaf(node) && meshIndex[std::size_t(node.mesh)] >= 0 &&
-               morphTargetCount(mesh) == 0 &&
+        return morphTargetCount(mesh) == 0 &&
                std::all_of(mesh.primitives.begin(), mesh.primitives.end(),
                            [](const Primitive& p) { return p.topology == Topology::Triangles; });
     };
