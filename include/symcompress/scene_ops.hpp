@@ -113,6 +113,13 @@ std::vector<WorldPrimitive> flattenSceneTaking(Scene& scene, const std::vector<c
 // scene taken as one shape.
 TriangleMesh worldMesh(const Scene& scene);
 
+// What the scene draws as points and as the ends of line segments (two a segment), in world space: each vertex a
+// triangle of three equal corners, so that the surfaces' measures take the distances between them.
+struct DrawnVertices {
+    TriangleMesh points, lineEnds;
+};
+DrawnVertices worldPointsAndLineEnds(const Scene& scene);
+
 // The same drawing as one mesh under one root node with the identity transform: every instance
 // expanded, materials and textures kept, cameras and lights kept on root nodes at their world
 // placement; the animated subtrees (markAnimatedSubtrees) kept as they are, with their animations.

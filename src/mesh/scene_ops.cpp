@@ -429,6 +429,25 @@ TriangleMesh worldMesh(const Scene& scene) {
     return mesh;
 }
 
+DrawnVertices worldPointsAndLineEnds(const Scene& scene) {
+    DrawnVertices out;
+    traverse(scene, [&](int node, const Eigen::Matrix4d& world) {
+        const int mesh = scene.nodes[std::size_t(node)].mesh;
+        if (mesh < 0) return;
+        for (const Primitive& primitive : scene.meshes[std::size_t(mesh)].primitives) {
+            auto add = [&](TriangleMesh& to, std::uint32_t v) {
+                const auto index = static_cast<std::uint32_t>(to.positions.size());
+                to.positions.push_back((world * primitive.positions[v].homogeneous()).head<3>());
+                to.triangles.push_back({index, index, index});
+            };
+            for (const Segment& segment : primitive.lines) add(out.lineEnds, segment[0]), add(out.lineEnds, segment[1]);
+            if (primitive.topology == Topology::Points)
+                for (std::uint32_t v = 0; v < primitive.positions.size(); ++v) add(out.points, v);
+        }
+    });
+    return out;
+}
+
 Scene sceneOfOneMesh(const std::string& name, Primitive primitive) {
     Scene scene;
     // Moved, not listed in braces: an initializer list copies its elements (a large STL's arrays, twice).

@@ -70,29 +70,10 @@ void comparePoses(const Scene& rebuilt, const Scene& original, double diagonal, 
     }
 }
 
-// The vertices a scene draws as points, or as the ends of its line segments (`topology`), in world space: each a
-// triangle of three equal corners, so that the surfaces' measures take the distances between them.
-TriangleMesh drawnVertices(const Scene& scene, Topology topology) {
-    TriangleMesh out;
-    for (const WorldPrimitive& placed : flattenScene(scene)) {
-        const Primitive& primitive = placed.primitive;
-        if (primitive.topology != topology) continue;
-        auto add = [&](std::uint32_t v) {
-            const auto index = static_cast<std::uint32_t>(out.positions.size());
-            out.positions.push_back(primitive.positions[v]);
-            out.triangles.push_back({index, index, index});
-        };
-        for (const Segment& segment : primitive.lines) add(segment[0]), add(segment[1]);
-        if (topology == Topology::Points)
-            for (std::uint32_t v = 0; v < primitive.positions.size(); ++v) add(v);
-    }
-    return out;
-}
-
 // The box of what a scene draws as triangles (`surface`), points and lines.
-Eigen::AlignedBox3d drawnBounds(const TriangleMesh& surface, const TriangleMesh& points, const TriangleMesh& lineEnds) {
+Eigen::AlignedBox3d drawnBounds(const TriangleMesh& surface, const DrawnVertices& drawn) {
     Eigen::AlignedBox3d box = digestOf(surface, 0).bounds;
-    for (const TriangleMesh* vertices : {&points, &lineEnds})
+    for (const TriangleMesh* vertices : {&drawn.points, &drawn.lineEnds})
         for (const Eigen::Vector3d& p : vertices->positions) box.extend(p);
     return box;
 }
@@ -114,15 +95,14 @@ double vertexDeviation(const TriangleMesh& rebuilt, const TriangleMesh& original
 // differ, since fundamental regions split the triangles their planes cut. Quantization may turn over a
 // sliver or two, not a part. Points and lines (kept as they are) must agree in number and lie within the
 // allowance of each other.
-void verifyAgainstOriginal(const TriangleMesh& rebuilt, const Scene& rebuiltScene, const Scene& original,
-                           RebuildReport& report) {
+void verifyAgainstOriginal(const TriangleMesh& rebuilt, const DrawnVertices& rebuiltVertices, const Scene& rebuiltScene,
+                           const Scene& original, RebuildReport& report) {
     const TriangleMesh reference = worldMesh(original);
-    const TriangleMesh referencePoints = drawnVertices(original, Topology::Points),
-                       referenceLineEnds = drawnVertices(original, Topology::Lines);
-    const double drawnDiagonal = drawnBounds(reference, referencePoints, referenceLineEnds).diagonal().norm();
+    const DrawnVertices referenceVertices = worldPointsAndLineEnds(original);
+    const double drawnDiagonal = drawnBounds(reference, referenceVertices).diagonal().norm();
     const double vertices =
-        std::max(vertexDeviation(drawnVertices(rebuiltScene, Topology::Points), referencePoints, drawnDiagonal),
-                 vertexDeviation(drawnVertices(rebuiltScene, Topology::Lines), referenceLineEnds, drawnDiagonal));
+        std::max(vertexDeviation(rebuiltVertices.points, referenceVertices.points, drawnDiagonal),
+                 vertexDeviation(rebuiltVertices.lineEnds, referenceVertices.lineEnds, drawnDiagonal));
     SurfaceComparison comparison = compareSurfaces(rebuilt, reference, report.allowedDeviation);
     if (reference.triangles.empty() && rebuilt.triangles.empty())
         comparison.areaRatio = 1, comparison.sameBounds = true;
@@ -184,10 +164,10 @@ RebuildReport decompressFile(const std::filesystem::path& input, const std::file
     exact.draco = false;  // the expanded scene is the reference geometry: keep it exact
     writeScene(flat, output, exact, {input});
     const TriangleMesh rebuilt = worldMesh(flat);
+    const DrawnVertices rebuiltVertices = worldPointsAndLineEnds(flat);
     SurfaceDigest rebuiltDigest = digestOf(rebuilt, 0);
     // As the digest of the original holds them: points and lines count towards the bounds.
-    rebuiltDigest.bounds =
-        drawnBounds(rebuilt, drawnVertices(flat, Topology::Points), drawnVertices(flat, Topology::Lines));
+    rebuiltDigest.bounds = drawnBounds(rebuilt, rebuiltVertices);
     report.triangles = rebuiltDigest.triangles;
     SurfaceDigest stored;
     const bool haveDigest = SurfaceDigest::fromJson(scene.extrasJson, stored);
@@ -195,7 +175,7 @@ RebuildReport decompressFile(const std::filesystem::path& input, const std::file
                                   ? stored.maxError * (1 + kBudgetSlack)
                                   : kQuantizationAllowance + (haveDigest ? stored.tolerance : 0);
     if (!original.empty())
-        verifyAgainstOriginal(rebuilt, flat, reference, report);
+        verifyAgainstOriginal(rebuilt, rebuiltVertices, flat, reference, report);
     else if (haveDigest)
         verifyAgainstDigest(rebuiltDigest, stored, report);
     return report;
