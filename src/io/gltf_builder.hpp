@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/number_text.hpp"
+#include "gltf_constants.hpp"
 #include "gltf_vertex_rounding.hpp"
 #include "symcompress/io.hpp"
 
@@ -42,10 +43,6 @@ inline std::string jsonText(Json json, int indent = -1) {
     return json.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
-constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125;
-constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
-constexpr int kModePoints = 0, kModeLines = 1;  // a primitive's mode (TRIANGLES, 4, is the default)
-
 // The growing binary buffer and the JSON arrays that describe it.
 class GltfBuilder {
 public:
@@ -64,13 +61,13 @@ public:
     }
 
     // A view of EXT_meshopt_compression's fallback buffer (buffer 1, which holds no data) decoded from
-    // `encoded`, meshopt's ATTRIBUTES of `count` elements of `stride` bytes under `filter` ("NONE": none), which
-    // goes in the binary buffer; returns its index.
+    // `encoded`, meshopt's ATTRIBUTES of `count` elements of `stride` bytes under `filter` ("NONE": none), or its
+    // `mode` TRIANGLES or INDICES of indices, which goes in the binary buffer; returns its index.
     int addMeshoptBufferView(const std::vector<unsigned char>& encoded, std::size_t count, std::size_t stride,
-                             const std::string& filter, int target = 0) {
+                             const std::string& filter, int target = 0, const char* mode = "ATTRIBUTES") {
         while (binary_.size() % 4) binary_.push_back(0);
-        Json compressed = {{"buffer", 0},     {"byteLength", encoded.size()}, {"byteStride", stride},
-                           {"count", count},  {"mode", "ATTRIBUTES"}};
+        Json compressed = {
+            {"buffer", 0}, {"byteLength", encoded.size()}, {"byteStride", stride}, {"count", count}, {"mode", mode}};
         if (!binary_.empty()) compressed["byteOffset"] = binary_.size();
         if (filter != "NONE") compressed["filter"] = filter;
         Json view = {{"buffer", 1}, {"byteLength", count * stride}};
@@ -124,7 +121,18 @@ public:
         const std::string group = std::to_string(target) + filter + std::to_string(elementBytes) +
                                   accessor["type"].get<std::string>() +
                                   std::to_string(accessor["componentType"].get<int>());
-        return addPendingAccessor(std::move(accessor), filtered, elementBytes, filter, target, group);
+        const bool padded = elementBytes != packedBytes(accessor);
+        const int index = addPendingAccessor(std::move(accessor), filtered, elementBytes, filter, target, group);
+        pendingData_[group].padded = pendingData_[group].padded || padded;
+        return index;
+    }
+
+    // The bytes of one element of `accessor` packed tight: its components' sizes.
+    static std::size_t packedBytes(const Json& accessor) {
+        static const std::map<std::string, std::size_t> kComponents = {
+            {"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}, {"MAT2", 4}, {"MAT3", 9}, {"MAT4", 16}};
+        return std::size_t(componentBytes(accessor["componentType"].get<int>())) *
+               kComponents.at(accessor["type"].get<std::string>());
     }
 
     // Where set, float data is stored encoded by it (the writer's meshopt ATTRIBUTES, filter NONE: lossless) where
@@ -197,14 +205,16 @@ private:
         int target = 0;
         std::size_t elementBytes = 4;
         std::string filter;  // meshopt's, for data already filtered; empty: float data
+        bool padded = false;  // elements longer than their components (3 shorts in 8 bytes, as vertex strides ask)
         std::vector<unsigned char> bytes;
         std::vector<std::pair<int, std::size_t>> accessors;  // each accessor and its offset in bytes
     };
     void writePendingData() {
         for (auto& [group, pending] : pendingData_) {
             const int view = addDataView(pending.bytes, pending.elementBytes, pending.filter, pending.target);
-            // Vertex attributes that share a view are read at its stride, which glTF then asks to be given.
-            if (pending.target == kArrayBuffer && pending.accessors.size() > 1)
+            // Vertex attributes that share a view, or are padded, are read at its stride, which glTF then asks
+            // to be given.
+            if (pending.target == kArrayBuffer && (pending.accessors.size() > 1 || pending.padded))
                 setByteStride(view, pending.elementBytes);
             for (const auto& [accessor, offset] : pending.accessors) {
                 Json& json = root_["accessors"][std::size_t(accessor)];

@@ -15,8 +15,6 @@
 
 namespace symcompress {
 
-constexpr int kShort = 5122;
-
 // One way to store one attribute of one batch.
 struct InstanceEncoding {
     int componentType = kFloat;         // of the accessor: FLOAT, or normalized SHORT (rotations)

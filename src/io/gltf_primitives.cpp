@@ -11,6 +11,8 @@
 #include <draco/compression/expert_encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
+#include <meshoptimizer.h>
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -343,13 +345,42 @@ int addRoundedAttribute(GltfBuilder& builder, const RoundedVertices& rounded, in
     const auto found = rounded.find({target, name});
     if (!builder.dataEncoder || found == rounded.end()) return -1;
     const RoundedAttribute& values = found->second;
-    const int components = int(values.elementBytes / 4);
-    Json accessor = {{"componentType", kFloat},
-                     {"count", values.decoded.size() / std::size_t(components)},
-                     {"type", accessorType(components)}};
-    if (name == "POSITION") GltfBuilder::addBounds(accessor, values.decoded, components);  // of what a viewer reads
-    return builder.addFilteredAccessor(std::move(accessor), values.filtered, values.elementBytes, "EXPONENTIAL",
+    Json accessor = {{"componentType", values.componentType},
+                     {"count", values.decoded.size() / std::size_t(values.components)},
+                     {"type", accessorType(values.components)}};
+    if (values.normalized) accessor["normalized"] = true;
+    if (name == "POSITION") GltfBuilder::addBounds(accessor, values.decoded, values.components);  // as a viewer reads
+    return builder.addFilteredAccessor(std::move(accessor), values.filtered, values.elementBytes, values.filter,
                                        kArrayBuffer);
+}
+
+// An accessor of `indices` (of triangles, else of segments) into `vertices` vertices: 16 bits where they suffice; coded
+// by meshopt's index codecs where the builder codes data by meshopt and that is smaller.
+int addIndices(GltfBuilder& builder, const std::vector<std::uint32_t>& indices, std::size_t vertices, bool triangles) {
+    const bool shorts = vertices <= 65535;
+    const std::size_t stride = shorts ? 2 : 4;
+    Json accessor = {
+        {"componentType", shorts ? kUnsignedShort : kUnsignedInt}, {"count", indices.size()}, {"type", "SCALAR"}};
+    if (builder.dataEncoder) {
+        std::vector<unsigned char> encoded(triangles ? meshopt_encodeIndexBufferBound(indices.size(), vertices)
+                                                     : meshopt_encodeIndexSequenceBound(indices.size(), vertices));
+        encoded.resize(
+            triangles ? meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), indices.data(), indices.size())
+                      : meshopt_encodeIndexSequence(encoded.data(), encoded.size(), indices.data(), indices.size()));
+        constexpr std::size_t kExtensionJson = 100;  // the view's EXT_meshopt_compression object
+        if (!encoded.empty() && encoded.size() + kExtensionJson < indices.size() * stride) {
+            accessor["bufferView"] = builder.addMeshoptBufferView(
+                encoded, indices.size(), stride, "NONE", kElementArrayBuffer, triangles ? "TRIANGLES" : "INDICES");
+            return builder.addAccessor(accessor);
+        }
+    }
+    if (shorts) {
+        const std::vector<std::uint16_t> values(indices.begin(), indices.end());
+        accessor["bufferView"] = builder.addBufferView(values.data(), values.size() * 2, kElementArrayBuffer);
+    } else {
+        accessor["bufferView"] = builder.addBufferView(indices.data(), indices.size() * 4, kElementArrayBuffer);
+    }
+    return builder.addAccessor(accessor);
 }
 
 Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const RoundedVertices& rounded) {
@@ -381,20 +412,9 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const
         for (const Segment& s : primitive.lines) flat.insert(flat.end(), s.begin(), s.end());
     }
     for (const Triangle& t : primitive.triangles) flat.insert(flat.end(), t.begin(), t.end());
-    if (primitive.topology != Topology::Points) {
-        Json indices;
-        if (primitive.positions.size() <= 65535) {
-            const std::vector<std::uint16_t> shorts(flat.begin(), flat.end());
-            indices = {{"bufferView", builder.addBufferView(shorts.data(), shorts.size() * 2, kElementArrayBuffer)},
-                       {"componentType", kUnsignedShort}};
-        } else {
-            indices = {{"bufferView", builder.addBufferView(flat.data(), flat.size() * 4, kElementArrayBuffer)},
-                       {"componentType", kUnsignedInt}};
-        }
-        indices["count"] = flat.size();
-        indices["type"] = "SCALAR";
-        out["indices"] = builder.addAccessor(indices);
-    }
+    if (primitive.topology != Topology::Points)
+        out["indices"] =
+            addIndices(builder, flat, primitive.positions.size(), primitive.topology == Topology::Triangles);
     for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
         Json displaced = Json::object();
         for (const VertexAttribute& attribute : primitive.targets[t])

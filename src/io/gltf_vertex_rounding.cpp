@@ -1,6 +1,9 @@
 #include "gltf_vertex_rounding.hpp"
 
+#include "geometry/bounds.hpp"
+#include "geometry/hilbert_curve.hpp"
 #include "gltf_instance_encoding.hpp"
+#include "gltf_integer_positions.hpp"
 #include "symcompress/scene_ops.hpp"
 
 #include <meshoptimizer.h>
@@ -24,6 +27,7 @@ RoundedAttribute exponentialRounded(const std::vector<float>& values, int compon
     out.elementBytes = std::size_t(components) * 4;
     out.decoded = exponentialDecoded(encoded, std::size_t(components));
     out.bits = bits;
+    out.components = components;
     return out;
 }
 
@@ -63,6 +67,83 @@ std::optional<RoundedAttribute> roundedWithin(const std::vector<float>& values, 
     return kept;
 }
 
+// `values` (each within 0 to 1) as normalized unsigned bytes, else shorts, where each component stays within `allowed`
+// (as glTF stores colours: a byte for each of 8 bits); none where neither does or a value lies outside.
+std::optional<RoundedAttribute> normalizedWithin(const std::vector<float>& values, int components, double allowed) {
+    if (values.empty() || std::any_of(values.begin(), values.end(), [](float x) { return !(x >= 0 && x <= 1); }))
+        return std::nullopt;
+    for (const int bytes : {1, 2}) {
+        const double largest = bytes == 1 ? 255 : 65535;
+        RoundedAttribute out;
+        out.componentType = bytes == 1 ? kUnsignedByte : kUnsignedShort;
+        out.normalized = true;
+        out.filter = "NONE";
+        out.components = components;
+        out.bits = 8 * bytes;
+        out.elementBytes = (std::size_t(components * bytes) + 3) / 4 * 4;  // vertex strides are multiples of 4
+        out.filtered.assign(values.size() / std::size_t(components) * out.elementBytes, 0);
+        bool within = true;
+        for (std::size_t i = 0; i < values.size() && within; ++i) {
+            const auto q = static_cast<std::uint32_t>(std::lround(double(values[i]) * largest));
+            out.decoded.push_back(float(q / largest));
+            within = std::abs(double(out.decoded.back()) - double(values[i])) <= allowed;
+            unsigned char* at = out.filtered.data() + i / std::size_t(components) * out.elementBytes +
+                                i % std::size_t(components) * std::size_t(bytes);
+            for (int b = 0; b < bytes; ++b) at[b] = static_cast<unsigned char>(q >> (8 * b));  // little-endian
+        }
+        if (within) return out;
+    }
+    return std::nullopt;
+}
+
+// Unit vectors (`components` 3: normals, 4: tangents, whose w meshopt keeps) through meshopt's octahedral filter at the
+// fewest bits that keep each within `allowed` (Euclidean, as a viewer reads the normalized integers), in bytes (a
+// stride of 4) or shorts (8), whichever meshopt codes smaller; none where neither holds them.
+std::optional<RoundedAttribute> octahedralWithin(const std::vector<float>& values, int components, double allowed) {
+    const std::size_t count = values.size() / std::size_t(components);
+    std::vector<float> padded(count * 4, 0.0f);  // the filter's input: 4 floats a vector
+    for (std::size_t v = 0; v < count; ++v)
+        for (int c = 0; c < components; ++c)
+            padded[4 * v + std::size_t(c)] = values[v * std::size_t(components) + std::size_t(c)];
+    auto rounded = [&](int stride, int bits) {
+        RoundedAttribute out;
+        out.filtered.resize(count * std::size_t(stride));
+        meshopt_encodeFilterOct(out.filtered.data(), count, std::size_t(stride), bits, padded.data());
+        std::vector<unsigned char> decoded = out.filtered;
+        meshopt_decodeFilterOct(decoded.data(), count, std::size_t(stride));
+        const double largest = stride == 4 ? 127 : 32767;
+        for (std::size_t v = 0; v < count; ++v)
+            for (int c = 0; c < components; ++c) {
+                const unsigned char* at = decoded.data() + v * std::size_t(stride) + std::size_t(c * stride / 4);
+                std::int16_t value = 0;
+                if (stride == 4)
+                    value = static_cast<std::int8_t>(at[0]);
+                else
+                    std::memcpy(&value, at, 2);
+                out.decoded.push_back(float(std::max(value / largest, -1.0)));
+            }
+        out.elementBytes = std::size_t(stride);
+        out.bits = bits;
+        out.components = components;
+        out.componentType = stride == 4 ? kByte : kShort;
+        out.normalized = true;
+        out.filter = "OCTAHEDRAL";
+        return out;
+    };
+    std::optional<RoundedAttribute> kept;
+    std::size_t keptBytes = 0;
+    for (const int stride : {4, 8}) {
+        const int bits = fewestBits(4, stride == 4 ? 8 : 16, [&](int b) {
+            return largestError(values, rounded(stride, b), components, true) <= allowed;
+        });
+        if (bits == 0) continue;
+        RoundedAttribute out = rounded(stride, bits);
+        const std::size_t bytes = meshoptEncoded(out.filtered, out.elementBytes).size();
+        if (!kept || bytes < keptBytes) kept = std::move(out), keptBytes = bytes;
+    }
+    return kept;
+}
+
 template <typename Vector>
 std::vector<float> floatsOf(const std::vector<Vector>& vectors, int components) {
     std::vector<float> flat;
@@ -97,7 +178,8 @@ std::pair<double, bool> allowance(const std::string& name, const std::vector<flo
 }  // namespace
 
 RoundedVertices roundedPlainVertices(const Primitive& primitive, const WriteOptions& options,
-                                     const std::vector<double>& largestWeights) {
+                                     const std::vector<double>& largestWeights,
+                                     const IntegerPositionGrid* integerGrid) {
     RoundedVertices out;
     const double positionBound = positionErrorBound(primitive, options);
     if (!(positionBound > 0)) return out;
@@ -116,14 +198,31 @@ RoundedVertices roundedPlainVertices(const Primitive& primitive, const WriteOpti
             own[attribute.name] = {std::vector<float>(attribute.values.begin(), attribute.values.end()),
                                    attribute.components};
 
+    if (integerGrid) {
+        out[{-1, "POSITION"}] = integerPositions(primitive, *integerGrid);
+        own.erase("POSITION");
+    }
     for (const auto& [name, values] : own) {
         auto [allowed, euclidean] = allowance(name, values.first, options);
         if (name == "POSITION") allowed = positionBound, euclidean = true;
         // A TANGENT's w (its handedness, +-1) is kept exactly at any bits: the largest component sets the exponent.
         // Half of it where morph targets' displacements take the other half.
         const double share = primitive.targets.empty() ? allowed : allowed / 2;
-        if (auto rounded = roundedWithin(values.first, values.second, share, euclidean))
-            out[{-1, name}] = std::move(*rounded);
+        std::optional<RoundedAttribute> rounded = roundedWithin(values.first, values.second, share, euclidean);
+        // Colours as normalized integers, normals and tangents through the octahedral filter, where they hold them
+        // within the share and meshopt codes them smaller.
+        // Smaller by more than the JSON of a view of their own, to be sure of a smaller file.
+        std::optional<RoundedAttribute> other;
+        std::size_t overhead = kOwnViewBytes;
+        if (name.rfind("COLOR_", 0) == 0) other = normalizedWithin(values.first, values.second, share);
+        if (name == "NORMAL" || name == "TANGENT") {
+            other = octahedralWithin(values.first, values.second, share);
+            overhead += kQuantizationNamesBytes;
+        }
+        if (other && (!rounded || meshoptEncoded(other->filtered, other->elementBytes).size() + overhead <
+                                      meshoptEncoded(rounded->filtered, rounded->elementBytes).size()))
+            rounded = std::move(other);
+        if (rounded) out[{-1, name}] = std::move(*rounded);
     }
     for (std::size_t t = 0; t < primitive.targets.size(); ++t)
         for (const VertexAttribute& displacement : primitive.targets[t]) {
@@ -138,14 +237,45 @@ RoundedVertices roundedPlainVertices(const Primitive& primitive, const WriteOpti
     return out;
 }
 
-Primitive spatiallySortedPoints(const Primitive& points) {
-    const std::vector<float> positions = floatsOf(points.positions, 3);
-    std::vector<unsigned int> remap(points.positions.size());  // old vertex -> new
-    meshopt_spatialSortRemap(remap.data(), positions.data(), points.positions.size(), 3 * sizeof(float));
-    std::vector<std::uint32_t> order(remap.size());  // new vertex -> old
-    for (std::size_t v = 0; v < remap.size(); ++v) order[remap[v]] = std::uint32_t(v);
-    Primitive sorted = points;
+std::optional<RoundedAttribute> exponentialPositions(const Primitive& primitive, double bound) {
+    return roundedWithin(floatsOf(primitive.positions, 3), 3, bound, true);
+}
+
+bool needsMeshQuantization(const RoundedVertices& rounded) {
+    return std::any_of(rounded.begin(), rounded.end(), [](const auto& entry) {
+        const std::string& name = entry.first.second;
+        return entry.second.componentType != kFloat && (name == "POSITION" || name == "NORMAL" || name == "TANGENT");
+    });
+}
+
+Primitive spatiallySorted(const Primitive& primitive, const IntegerPositionGrid* grid) {
+    // The cells of the grid, else of 2^16 a side over the points' box.
+    constexpr int kCellBits = 16;
+    const Eigen::AlignedBox3d box = boundsOf(primitive.positions);
+    const double side = box.sizes().maxCoeff();
+    auto cell = [&](const Eigen::Vector3d& p, int axis) -> std::uint32_t {
+        if (grid) return grid->coordinate(p, axis);
+        if (!(side > 0)) return 0;
+        const double largest = (1 << kCellBits) - 1;
+        return std::uint32_t(std::clamp(std::round((p[axis] - box.min()[axis]) / side * largest), 0.0, largest));
+    };
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(primitive.positions.size());  // along the curve, vertex
+    for (std::size_t v = 0; v < keyed.size(); ++v) {
+        const Eigen::Vector3d& p = primitive.positions[v];
+        keyed[v] = {hilbertIndex({cell(p, 0), cell(p, 1), cell(p, 2)}, kCellBits), std::uint32_t(v)};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<std::uint32_t> order(keyed.size()), renumbered(keyed.size());  // new vertex -> old, old -> new
+    for (std::size_t v = 0; v < keyed.size(); ++v) order[v] = keyed[v].second, renumbered[keyed[v].second] = v;
+    Primitive sorted = primitive;
     keepVertices(sorted, order);
+    // Each segment from its earlier vertex, the segments in order: meshopt's index codec codes each index as its
+    // difference from one before.
+    for (Segment& segment : sorted.lines) {
+        segment = {renumbered[segment[0]], renumbered[segment[1]]};
+        if (segment[1] < segment[0]) std::swap(segment[0], segment[1]);
+    }
+    std::sort(sorted.lines.begin(), sorted.lines.end());
     return sorted;
 }
 

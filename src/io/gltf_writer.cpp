@@ -12,6 +12,7 @@
 #include "gltf_builder.hpp"
 #include "gltf_gpu_instancing.hpp"
 #include "gltf_instance_encoding.hpp"
+#include "gltf_integer_positions.hpp"
 #include "image_reference.hpp"
 #include "primitive_encodings.hpp"
 #include "rotation_and_scale.hpp"
@@ -467,6 +468,36 @@ Json writeAnimation(const Animation& animation, const std::vector<KeyValues>& st
 
 namespace {
 
+// Of each node, whether something reads or moves its transform beyond what it draws: an animation's channel, a skin
+// that takes it for a joint.
+std::vector<char> nodesWithAnimatedTransforms(const Scene& scene) {
+    std::vector<char> animated(scene.nodes.size(), 0);
+    auto mark = [&](int node) {
+        if (node >= 0 && std::size_t(node) < animated.size()) animated[std::size_t(node)] = 1;
+    };
+    for (const Animation& animation : scene.animations)
+        for (const AnimationChannel& channel : animation.channels) mark(channel.node);
+    for (const Skin& skin : scene.skins)
+        for (int joint : skin.joints) mark(joint);
+    return animated;
+}
+
+// Undoes `grid` (of the mesh `node` draws, written as `writtenMesh`) in `node`'s transform where that moves nothing
+// else: no children, camera or light, not `animated`; else in a child of its own that takes the mesh, appended to
+// `extra` (its index: firstExtra + its position there).
+void undoGrid(Node& node, bool animated, const IntegerPositionGrid& grid, int writtenMesh, std::size_t firstExtra,
+              std::vector<Json>& extra) {
+    if (node.children.empty() && node.camera < 0 && node.light < 0 && !animated) {
+        node.transform = node.transform * grid.dequantization();
+        return;
+    }
+    Json child = transformFields(grid.origin, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Constant(grid.step), 0);
+    child["mesh"] = writtenMesh;
+    node.children.push_back(int(firstExtra + extra.size()));
+    extra.push_back(std::move(child));
+    node.mesh = -1;
+}
+
 Json writeSkin(const Skin& skin, GltfBuilder& builder) {
     Json out = {{"joints", skin.joints}};
     if (!skin.name.empty()) out["name"] = skin.name;
@@ -536,7 +567,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     // Meshes with no triangles are left out (glTF requires at least one primitive), and so is the
     // reference to them from nodes.
     std::vector<int> meshIndex(scene.meshes.size(), -1);
-    bool usedDraco = false;
+    bool usedDraco = false, usesQuantization = false;
     // Every primitive encoded first, in parallel (Draco's work: each on its own), then added to the buffer in
     // order; an encoding's error is thrown where writing one after the other would have thrown it.
     struct Encoding {
@@ -545,7 +576,8 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
         EncodedPrimitive encoded;
         std::exception_ptr error;
         std::vector<double> morphWeights;  // a morphed primitive's largest weights (largestMorphWeights)
-        std::optional<Primitive> sortedPoints;  // a point primitive in spatial order, written in its place
+        std::optional<Primitive> sorted;   // lines or points in spatial order, written in their place
+        const IntegerPositionGrid* integerGrid = nullptr;  // its mesh's (integerGrids)
     };
     std::vector<Encoding> encodings;
     // Primitives equal but for their material (one part drawn in several: a family of classes, or an input's meshes
@@ -556,6 +588,12 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     std::vector<std::vector<int>> skinsOfMesh(scene.meshes.size());
     for (const Node& node : scene.nodes)
         if (node.mesh >= 0 && node.skin >= 0) skinsOfMesh[std::size_t(node.mesh)].push_back(node.skin);
+    // Meshes of lines and points, where meshopt codes their vertices, on a grid of integers that their nodes undo (a
+    // skinned mesh is drawn by its joints, not its node).
+    std::vector<std::optional<IntegerPositionGrid>> integerGrids(scene.meshes.size());
+    if (codeData && options.draco)
+        for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+            if (skinsOfMesh[m].empty()) integerGrids[m] = integerPositionGridFor(scene.meshes[m], options);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         for (const Primitive& primitive : scene.meshes[m].primitives) {
             if (primitive.drawsNothing()) continue;
@@ -578,7 +616,13 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             WriteOptions forPrimitive = options;
             forPrimitive.texcoordBits = texcoordBits;
             forPrimitive.weightBits = weightBits;
-            encodings.push_back({&primitive, std::move(forPrimitive), {}, nullptr, {}, {}});
+            encodings.push_back({&primitive,
+                                 std::move(forPrimitive),
+                                 {},
+                                 nullptr,
+                                 {},
+                                 {},
+                                 integerGrids[m] ? &*integerGrids[m] : nullptr});
             if (!primitive.targets.empty()) encodings.back().morphWeights = largestMorphWeights(scene, m);
         }
     withThreads(options.threads, [&] {
@@ -588,10 +632,11 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
                 encoding.encoded = encodePrimitive(*encoding.primitive, encoding.options, file);
                 // Vertices Draco does not hold rounded by meshopt's filter, where meshopt codes the data.
                 if (codeData && encoding.encoded.plain && options.draco) {
-                    if (encoding.primitive->topology == Topology::Points)
-                        encoding.primitive = &encoding.sortedPoints.emplace(spatiallySortedPoints(*encoding.primitive));
-                    encoding.encoded.rounded =
-                        roundedPlainVertices(*encoding.primitive, encoding.options, encoding.morphWeights);
+                    if (encoding.primitive->topology != Topology::Triangles)
+                        encoding.primitive =
+                            &encoding.sorted.emplace(spatiallySorted(*encoding.primitive, encoding.integerGrid));
+                    encoding.encoded.rounded = roundedPlainVertices(*encoding.primitive, encoding.options,
+                                                                    encoding.morphWeights, encoding.integerGrid);
                 }
             } catch (...) {
                 encoding.error = std::current_exception();
@@ -608,6 +653,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             Encoding& encoding = encodings[e];
             if (encoding.error) std::rethrow_exception(encoding.error);
             if (written[e].is_null()) {
+                usesQuantization = usesQuantization || needsMeshQuantization(encoding.encoded.rounded);
                 written[e] = Json::array();
                 addPrimitive(builder, *encoding.primitive, encoding.encoded, written[e]);
                 for (Json& part : written[e]) part.erase("material");
@@ -635,12 +681,17 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     // A node's translation moves all it draws: it takes a small share of the budget for positions.
     const double translationPrecision = options.maxPositionError / 16;
     std::vector<Json> extraNodes;
+    const std::vector<char> animated = nodesWithAnimatedTransforms(scene);
     for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
         if (gpu.batchOf[n] >= 0) continue;
         Node node = scene.nodes[n];
         node.children = numbering.list(node.children);
+        if (node.mesh >= 0 && meshIndex[std::size_t(node.mesh)] >= 0 && integerGrids[std::size_t(node.mesh)])
+            undoGrid(node, animated[n], *integerGrids[std::size_t(node.mesh)], meshIndex[std::size_t(node.mesh)],
+                     numbering.written, extraNodes);
         root["nodes"].push_back(writeNode(node, meshIndex, numbering.written, extraNodes, translationPrecision));
     }
+    if (usesQuantization) extensions.add("KHR_mesh_quantization", true);
     writeGpuBatches(gpu, scene, meshIndex, builder, root);
     if (!gpu.batches.empty()) extensions.add("EXT_mesh_gpu_instancing", true);
     for (Json& node : extraNodes) root["nodes"].push_back(std::move(node));
