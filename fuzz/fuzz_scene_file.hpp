@@ -7,14 +7,15 @@
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 
+#include <unistd.h>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <string_view>
-#include <unistd.h>
 #include <vector>
 
 namespace symcompress::fuzz {
@@ -57,11 +58,12 @@ inline void writeBytes(const std::filesystem::path& file, std::string_view bytes
     }
 }
 
-// Writes `scene` to `output` with the default options. The writer may refuse with a FileError; what it
-// writes must read back.
-inline void writeAndReadBack(const Scene& scene, const std::filesystem::path& output) {
+// Writes `scene` to `output` with `options`. The writer may refuse with a FileError; what it writes must read
+// back.
+inline void writeAndReadBack(const Scene& scene, const std::filesystem::path& output,
+                             const WriteOptions& options = {}) {
     try {
-        writeScene(scene, output);
+        writeScene(scene, output, options);
     } catch (const FileError&) {
         return;
     }
@@ -89,6 +91,12 @@ inline int readAndWrite(const std::vector<std::pair<std::string, std::string_vie
         validateScene(scene);  // readScene promises it; an exception here is a finding
         writeAndReadBack(scene, folder / "written.glb");
         writeAndReadBack(scene, folder / "written.x3d");
+        // Within an error budget, as symcompress writes: Draco's bits, meshopt's filters and integer grids chosen
+        // from each primitive's own diagonal.
+        WriteOptions budget;
+        budget.maxPositionError = std::numeric_limits<double>::max();
+        budget.maxRelativePositionError = 5e-5;
+        writeAndReadBack(scene, folder / "budget.glb", budget);
     }
     std::error_code ignored;
     for (const auto& entry : std::filesystem::directory_iterator(folder, ignored))
