@@ -136,6 +136,10 @@ void renumberTextures(Scene& scene, const std::vector<int>& newIndex);
 // (or an X3D file's several ImageTextures of one URL) use is written once.
 std::vector<int> firstTextureOfSameImage(const std::vector<Texture>& textures);
 
+// Of each node, whether an animation's channel targets it or a skin takes it for a joint: what moves its transform,
+// or reads it beyond what the node draws.
+std::vector<bool> nodesAnimationsAndSkinsMove(const Scene& scene);
+
 // Which nodes are animated or under an animated node (reached from the roots); `tops` gets the animated nodes
 // with no animated ancestor, in increasing order. Animated: the target of an animation channel, a skin's
 // joint, a node drawing a skinned mesh or one with morph targets: what they draw moves, and is kept as it is.

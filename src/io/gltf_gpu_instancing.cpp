@@ -235,13 +235,9 @@ double sceneDiagonal(const Scene& scene) {
 // Nodes that must stay nodes whatever they hold: what an animation moves and everything under it, a skin's
 // joints and skeleton.
 std::vector<bool> fixedNodes(const Scene& scene) {
-    std::vector<bool> fixed(scene.nodes.size(), false);
-    for (const Animation& animation : scene.animations)
-        for (const AnimationChannel& channel : animation.channels) fixed[std::size_t(channel.node)] = true;
-    for (const Skin& skin : scene.skins) {
-        for (int joint : skin.joints) fixed[std::size_t(joint)] = true;
+    std::vector<bool> fixed = nodesAnimationsAndSkinsMove(scene);
+    for (const Skin& skin : scene.skins)
         if (skin.skeleton >= 0) fixed[std::size_t(skin.skeleton)] = true;
-    }
     // Down the hierarchy, from every animated node: the scene is a forest (validateScene).
     std::vector<int> stack;
     for (std::size_t n = 0; n < fixed.size(); ++n)

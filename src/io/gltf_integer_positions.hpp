@@ -29,7 +29,9 @@ struct IntegerPositionGrid {
 
 // The coarsest grid that keeps every vertex of `mesh` within its primitives' error bound (positionErrorBound,
 // Euclidean), at the fewest bytes a component; none where the mesh draws triangles (Draco's), has morph targets (their
-// displacements would have to be on the grid too), has no bound (fixed bits), or would need more than 16 bits an axis.
+// displacements would have to be on the grid too), has no bound (fixed bits), would need more than 16 bits an axis,
+// or where meshopt codes the integers no smaller than the exponential filter's floats by the JSON they add (a view,
+// the extension's names, the node's dequantization): a few points.
 std::optional<IntegerPositionGrid> integerPositionGridFor(const Mesh& mesh, const WriteOptions& options);
 
 // `primitive`'s positions on `grid`: its integers (each vertex padded to 4 bytes, as glTF's vertex strides ask) and

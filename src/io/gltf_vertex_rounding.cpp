@@ -210,8 +210,7 @@ RoundedVertices roundedPlainVertices(const Primitive& primitive, const WriteOpti
         const double share = primitive.targets.empty() ? allowed : allowed / 2;
         std::optional<RoundedAttribute> rounded = roundedWithin(values.first, values.second, share, euclidean);
         // Colours as normalized integers, normals and tangents through the octahedral filter, where they hold them
-        // within the share and meshopt codes them smaller.
-        // Smaller by more than the JSON of a view of their own, to be sure of a smaller file.
+        // within the share and meshopt codes them smaller by more than the JSON of a view of their own.
         std::optional<RoundedAttribute> other;
         std::size_t overhead = kOwnViewBytes;
         if (name.rfind("COLOR_", 0) == 0) other = normalizedWithin(values.first, values.second, share);

@@ -468,20 +468,6 @@ Json writeAnimation(const Animation& animation, const std::vector<KeyValues>& st
 
 namespace {
 
-// Of each node, whether something reads or moves its transform beyond what it draws: an animation's channel, a skin
-// that takes it for a joint.
-std::vector<char> nodesWithAnimatedTransforms(const Scene& scene) {
-    std::vector<char> animated(scene.nodes.size(), 0);
-    auto mark = [&](int node) {
-        if (node >= 0 && std::size_t(node) < animated.size()) animated[std::size_t(node)] = 1;
-    };
-    for (const Animation& animation : scene.animations)
-        for (const AnimationChannel& channel : animation.channels) mark(channel.node);
-    for (const Skin& skin : scene.skins)
-        for (int joint : skin.joints) mark(joint);
-    return animated;
-}
-
 // Undoes `grid` (of the mesh `node` draws, written as `writtenMesh`) in `node`'s transform where that moves nothing
 // else: no children, camera or light, not `animated`; else in a child of its own that takes the mesh, appended to
 // `extra` (its index: firstExtra + its position there).
@@ -681,7 +667,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     // A node's translation moves all it draws: it takes a small share of the budget for positions.
     const double translationPrecision = options.maxPositionError / 16;
     std::vector<Json> extraNodes;
-    const std::vector<char> animated = nodesWithAnimatedTransforms(scene);
+    const std::vector<bool> animated = nodesAnimationsAndSkinsMove(scene);
     for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
         if (gpu.batchOf[n] >= 0) continue;
         Node node = scene.nodes[n];

@@ -5,12 +5,17 @@
 
 namespace symcompress {
 
+std::vector<bool> nodesAnimationsAndSkinsMove(const Scene& scene) {
+    std::vector<bool> moved(scene.nodes.size(), false);
+    for (const Animation& animation : scene.animations)
+        for (const AnimationChannel& channel : animation.channels) moved[std::size_t(channel.node)] = true;
+    for (const Skin& skin : scene.skins)
+        for (int joint : skin.joints) moved[std::size_t(joint)] = true;
+    return moved;
+}
+
 std::vector<bool> markAnimatedSubtrees(const Scene& input, std::vector<int>& tops) {
-    std::vector<bool> animated(input.nodes.size(), false), inSubtree(input.nodes.size(), false);
-    for (const Animation& animation : input.animations)
-        for (const AnimationChannel& channel : animation.channels) animated[std::size_t(channel.node)] = true;
-    for (const Skin& skin : input.skins)
-        for (int joint : skin.joints) animated[std::size_t(joint)] = true;
+    std::vector<bool> animated = nodesAnimationsAndSkinsMove(input), inSubtree(input.nodes.size(), false);
     for (std::size_t n = 0; n < input.nodes.size(); ++n) {
         const Node& node = input.nodes[n];
         if (node.skin >= 0 || (node.mesh >= 0 && morphTargetCount(input.meshes[std::size_t(node.mesh)]) > 0))
