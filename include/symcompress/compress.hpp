@@ -36,6 +36,10 @@ struct CompressOptions {
     bool instancing = true;            // false: every tile stored as it is (Draco alone)
     bool geometryOnly = false;         // instance members whose normals, texture coordinates or colours differ
     bool regions = true;               // store symmetric tiles as their fundamental regions where that pays
+    // Let a region cut the triangles its planes cross, where the group does not map the tile's triangles onto
+    // one another (an asymmetric tessellation of a symmetric surface): smaller, but the copies draw other
+    // triangles than the input's. Off: a region keeps the tile's triangles whole, or is not made.
+    bool cutTriangles = false;
     bool assemblies = true;            // store tiles that recur together once per group, drawn by one node per copy
     bool keepInputInstances = true;    // meshes the input draws from several nodes, scaled, stay shared
     OptimizeOptions optimize;          // pruning and deduplication before the scene is split into tiles

@@ -242,7 +242,7 @@ void planClass(const PlanContext& context, std::size_t k, const CongruenceClass&
         if (group.size() > 1)
             std::tie(region, regional) = cheapestRegion(
                 {prototype, group, center, context.tolerance(), options.costs.seamGridBits, gridError,
-                 options.costs.seamGridRelativeError},
+                 options.costs.seamGridRelativeError, options.cutTriangles},
                 costs, alone, perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
     }
     const bool single = placed.size() == 1 && !region;

@@ -115,6 +115,7 @@ PlanOptions planOptionsOf(const CompressOptions& options) {
     plan.instancing = options.instancing;
     plan.geometryOnly = options.geometryOnly;
     plan.regions = options.regions;
+    plan.cutTriangles = options.cutTriangles;
     plan.assemblies = options.assemblies;
     plan.maxError = options.fixedPositionBits ? 0 : options.maxError;
     plan.progress = options.progress;

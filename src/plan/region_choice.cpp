@@ -8,14 +8,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 
 namespace symcompress {
 namespace {
 
 // The fundamental region of a tile under a group, if its copies rebuild the tile within the tolerance.
 std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vector<Eigen::Matrix3d>& group,
-                                          const Eigen::Vector3d& center, double tolerance) {
+                                          const Eigen::Vector3d& center, double tolerance, RegionTriangles triangles) {
     try {
         RegionOptions regionOptions;
         // Instances that are signed permutations in the region's frame map Draco's grid onto itself, so
@@ -26,6 +25,18 @@ std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vect
         // cut points that close to a vertex become zero-area triangles once quantized, which Draco's
         // edgebreaker cannot keep (the coffee cup's region tripled in size).
         regionOptions.snapTolerance = 1e-6;
+        regionOptions.triangles = triangles;
+        // A vertex's image is the vertex within the tolerance (a torus knot's turns agree only to 7e-6 of its
+        // diagonal), but within a quarter of the shortest edge, so that no two vertices of a small tile are one.
+        double radius = 0, shortestEdge = std::numeric_limits<double>::infinity();
+        for (const Eigen::Vector3d& p : tile.positions) radius = std::max(radius, (p - center).norm());
+        for (const Triangle& t : tile.triangles)
+            for (int k = 0; k < 3; ++k)
+                if (const double edge = (tile.positions[t[k]] - tile.positions[t[(k + 1) % 3]]).norm(); edge > 0)
+                    shortestEdge = std::min(shortestEdge, edge);
+        if (radius > 0)
+            regionOptions.vertexTolerance =
+                std::max(std::min(tolerance, shortestEdge / 4) / radius, regionOptions.snapTolerance);
         FundamentalRegion region = computeFundamentalRegion(tile, group, center, regionOptions);
         const Primitive rebuilt = rebuildFromRegion(region);
         TriangleMesh a{rebuilt.positions, rebuilt.triangles}, b{tile.positions, tile.triangles};
@@ -35,15 +46,18 @@ std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vect
         region.deviation = check.maxDeviation * diagonal;
         return region;
     } catch (const std::invalid_argument&) {
-        return std::nullopt;  // a group the region code does not take (e.g. not closed within its tolerance)
+        // A group the region code does not take (e.g. not closed within its tolerance), or one that cannot
+        // keep the triangles whole.
+        return std::nullopt;
     }
 }
 
 // The fundamental region of a tile under `group`, on the grid that keeps its seams closed where its frame
 // allows: as it would be stored.
 std::optional<FundamentalRegion> storableRegion(const RegionCandidate& candidate,
-                                                const std::vector<Eigen::Matrix3d>& group) {
-    std::optional<FundamentalRegion> region = regionOf(candidate.tile, group, candidate.center, candidate.tolerance);
+                                                const std::vector<Eigen::Matrix3d>& group, RegionTriangles triangles) {
+    std::optional<FundamentalRegion> region =
+        regionOf(candidate.tile, group, candidate.center, candidate.tolerance, triangles);
     if (region && candidate.seamGridBits > 0 && region->signedPermutationFrame) {
         double left = candidate.seamGridError - region->deviation;  // for the grid, of the budget
         if (candidate.seamGridError > 0 && !(left > 0)) return std::nullopt;
@@ -67,14 +81,15 @@ std::pair<std::optional<FundamentalRegion>, double> cheapestRegion(
     const std::function<double(const FundamentalRegion&)>& nodes) {
     const std::vector<Eigen::Matrix3d>& group = candidate.group;
     auto cost = [&](const FundamentalRegion& r) { return costs.asMesh(r.region) + nodes(r); };
-    std::optional<FundamentalRegion> best = storableRegion(candidate, group);
+    const RegionTriangles whole = candidate.cutTriangles ? RegionTriangles::WholeWherePossible : RegionTriangles::Whole;
+    std::optional<FundamentalRegion> best = storableRegion(candidate, group, whole);
     // Mirrors that hold only within the tolerance (a bolt's helical thread is near a mirror of itself) may
     // leave no region of the whole group; its rotations alone may still rebuild the tile.
     std::vector<Eigen::Matrix3d> rotations;
     for (const Eigen::Matrix3d& g : group)
         if (g.determinant() > 0) rotations.push_back(g);
     if (!best && rotations.size() > 1 && rotations.size() < group.size())
-        best = storableRegion(candidate, rotations);
+        best = storableRegion(candidate, rotations, whole);
     double bestCost = best ? cost(*best) : std::numeric_limits<double>::infinity();
     auto estimate = [&](std::size_t order) { return tileBytes / double(order) + double(order) * nodeBytes; };
     std::vector<std::vector<std::size_t>> subgroups;
@@ -83,24 +98,26 @@ std::pair<std::optional<FundamentalRegion>, double> cheapestRegion(
     } catch (const std::invalid_argument&) {
         return {std::move(best), bestCost};  // not closed within the tolerance: the region code refuses it too
     }
-    std::map<std::size_t, std::vector<std::vector<Eigen::Matrix3d>>> byOrder;
-    for (const auto& h : subgroups) {
-        if (h.size() == 1 || h.size() == group.size() || estimate(h.size()) >= std::min(bestCost, toBeat)) continue;
+    std::stable_sort(subgroups.begin(), subgroups.end(),
+                     [&](const auto& a, const auto& b) { return estimate(a.size()) < estimate(b.size()); });
+    // Most subgroups of a large group fix some triangle and fail at once; a region is made for the first few
+    // that do not.
+    constexpr std::size_t kRegionsTried = 4;
+    std::size_t tried = 0;
+    for (const std::vector<std::size_t>& h : subgroups) {
+        if (tried == kRegionsTried || estimate(h.size()) >= std::min(bestCost, toBeat)) break;
+        if (h.size() == 1 || h.size() == group.size()) continue;
         std::vector<Eigen::Matrix3d> subgroup;
         for (std::size_t e : h) subgroup.push_back(group[e]);
-        if (generatedByMirrors(subgroup)) byOrder[h.size()].push_back(std::move(subgroup));
+        // Where the copies do not draw the tile's own triangles, a rotation's seam can meet its copy at
+        // T-junctions, which quantization opens; a mirror's seam meets its image vertex for vertex.
+        std::optional<FundamentalRegion> region =
+            storableRegion(candidate, subgroup,
+                           generatedByMirrors(subgroup) ? RegionTriangles::Whole : RegionTriangles::OneOfEachOrbit);
+        if (!region) continue;
+        ++tried;
+        if (cost(*region) < bestCost) bestCost = cost(*region), best = std::move(region);
     }
-    std::vector<std::size_t> orders;
-    for (const auto& entry : byOrder) orders.push_back(entry.first);
-    std::sort(orders.begin(), orders.end(), [&](std::size_t a, std::size_t b) { return estimate(a) < estimate(b); });
-    for (std::size_t o = 0; o < std::min<std::size_t>(orders.size(), 2); ++o)
-        for (std::size_t c = 0; c < std::min<std::size_t>(byOrder[orders[o]].size(), 2); ++c) {
-            std::optional<FundamentalRegion> region = storableRegion(candidate, byOrder[orders[o]][c]);
-            // A cut splits triangles and puts new vertices mid-edge (decoders comparing vertices see them
-            // as deviations): the whole group may cut, a subgroup is chosen only where it cuts nothing.
-            if (region && region->trianglesCut == 0 && cost(*region) < bestCost)
-                bestCost = cost(*region), best = std::move(region);
-        }
     return {std::move(best), bestCost};
 }
 

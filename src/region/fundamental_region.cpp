@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -137,6 +138,28 @@ Primitive toFrame(const Primitive& tile, const Eigen::Matrix3d& rotation, const 
     return local;
 }
 
+// R of whole triangles where the tessellation allows it (`orbits`), else S ∩ F clipped, which in
+// RegionTriangles::Whole may cut no triangle.
+void cutOrKeepWhole(FundamentalRegion& result, const Primitive& tile, const std::vector<Eigen::Matrix3d>& nonIdentity,
+                    const Eigen::Vector3d& centre, const Eigen::Vector3d& seed, const DirichletCone& cone,
+                    double snapTolerance, const std::optional<region_detail::TriangleOrbits>& orbits,
+                    RegionTriangles triangles) {
+    if (orbits) {
+        result.region = region_detail::wholeTriangleRegion(tile, *orbits, nonIdentity, centre, seed);
+        result.wholeTriangles = true;
+        return;
+    }
+    region_detail::ClippedRegion clipped = region_detail::clipToCone(tile, cone, snapTolerance);
+    if (triangles == RegionTriangles::Whole &&
+        (clipped.trianglesCut > 0 ||
+         clipped.region.triangles.size() * (nonIdentity.size() + 1) != tile.triangles.size()))
+        fail(
+            "the group does not map the tile's triangles onto one another without fixing one, and its planes "
+            "cut triangles or leave more on one side: they cannot be kept whole");
+    result.region = std::move(clipped.region);
+    result.trianglesCut = clipped.trianglesCut;
+}
+
 }  // namespace
 
 FundamentalRegion computeFundamentalRegion(const Primitive& tile, const std::vector<Eigen::Matrix3d>& group,
@@ -152,6 +175,7 @@ FundamentalRegion computeFundamentalRegion(const Primitive& tile, const std::vec
         result.region = tile;
         result.instances = group;
         result.seed = Eigen::Vector3d::UnitX();
+        result.wholeTriangles = true;
         return result;
     }
 
@@ -166,17 +190,23 @@ FundamentalRegion computeFundamentalRegion(const Primitive& tile, const std::vec
     if (nonIdentity.empty()) {
         result.region = tile;
         result.seed = Eigen::Vector3d::UnitX();
+        result.wholeTriangles = true;
         return result;
     }
+
+    std::optional<region_detail::TriangleOrbits> orbits;
+    if (options.triangles != RegionTriangles::Cut)
+        orbits = region_detail::triangleOrbits(tile, nonIdentity, centre, options.vertexTolerance * radius);
+    if (!orbits && options.triangles == RegionTriangles::OneOfEachOrbit)  // before the seed, which takes longer
+        fail("the group does not map the tile's triangles onto one another without fixing one");
 
     const region_detail::SeedChoice choice = region_detail::chooseSeed(tile, nonIdentity, centre, tolerance, options);
     if (!(choice.seed.norm() > 0)) fail("no seed point is free of the group's fixed sets");
     result.seed = choice.seed;
 
     if (options.frame == RegionFrame::Tile) {
-        region_detail::ClippedRegion clipped = region_detail::clipToCone(tile, choice.cone, tolerance);
-        result.region = std::move(clipped.region);
-        result.trianglesCut = clipped.trianglesCut;
+        cutOrKeepWhole(result, tile, nonIdentity, centre, choice.seed, choice.cone, tolerance, orbits,
+                       options.triangles);
         result.facetNormals = choice.cone.normals;
         return result;
     }
@@ -193,10 +223,8 @@ FundamentalRegion computeFundamentalRegion(const Primitive& tile, const std::vec
     DirichletCone localCone =
         region_detail::dirichletCone(localGroup, rotation.transpose() * choice.seed, Eigen::Vector3d::Zero());
     roundAxisNormals(localCone);
-    region_detail::ClippedRegion clipped =
-        region_detail::clipToCone(toFrame(tile, rotation, centre), localCone, tolerance);
-    result.region = std::move(clipped.region);
-    result.trianglesCut = clipped.trianglesCut;
+    cutOrKeepWhole(result, toFrame(tile, rotation, centre), localGroup, Eigen::Vector3d::Zero(),
+                   rotation.transpose() * choice.seed, localCone, tolerance, orbits, options.triangles);
     for (const Eigen::Vector3d& n : localCone.normals) result.facetNormals.push_back(rotation * n);
     result.regionToTile.topLeftCorner<3, 3>() = rotation;
     result.regionToTile.topRightCorner<3, 1>() = centre;

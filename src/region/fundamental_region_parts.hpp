@@ -46,6 +46,24 @@ struct ClippedRegion {
 // triangles crossing planes clipped (Sutherland-Hodgman) and fanned, triangles outside dropped.
 ClippedRegion clipToCone(const Primitive& tile, const DirichletCone& cone, double tolerance);
 
+// The orbits of the tile's triangles under the group, where the group maps the tile's vertices (welded
+// within `tolerance`, absolute) and triangles onto one another and no element other than the identity maps a
+// triangle onto itself; none where it does not. The same in any frame the group is conjugated to.
+struct TriangleOrbits {
+    std::vector<std::uint32_t> positionOf;           // a vertex's welded position
+    std::vector<std::vector<std::uint32_t>> images;  // [e][r]: the position element e of nonIdentity takes r to
+    std::vector<std::vector<std::uint32_t>> orbits;  // triangles, |G| each
+};
+std::optional<TriangleOrbits> triangleOrbits(const Primitive& tile, const std::vector<Eigen::Matrix3d>& nonIdentity,
+                                             const Eigen::Vector3d& centre, double tolerance);
+
+// One whole triangle of each orbit (the one whose centroid is nearest the seed), compacted, with the tile's
+// positions made symmetric: each the mean of its orbit brought back by the group, moved by the group.
+// `nonIdentity` in the tile's frame, in the order the orbits were found with.
+Primitive wholeTriangleRegion(const Primitive& tile, const TriangleOrbits& orbits,
+                              const std::vector<Eigen::Matrix3d>& nonIdentity, const Eigen::Vector3d& centre,
+                              const Eigen::Vector3d& seed);
+
 struct AlignedFrame {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // columns: the frame's axes, det +1
     bool signedPermutation = false;                          // every element is a signed permutation in this frame

@@ -422,6 +422,9 @@ int main(int argc, char** argv) {
     compress->add_flag(
         "--no-symmetry", [&](std::int64_t) { compressRequest.options.regions = false; },
         "instancing only: no fundamental regions");
+    compress->add_flag("--cut-triangles", compressRequest.options.cutTriangles,
+                       "let fundamental regions cut the triangles their planes cross where the tessellation is not "
+                       "itself symmetric (smaller; the copies then draw other triangles than the input's)");
     compress->add_flag("--geometry-only", compressRequest.options.geometryOnly,
                        "instance congruent tiles even when their normals, texture coordinates or colours differ");
     compress->add_flag("--keep-unused-attributes", [&](std::int64_t) { compressRequest.options.optimize.pruneAttributes = false; },

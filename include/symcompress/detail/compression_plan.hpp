@@ -113,6 +113,7 @@ struct PlanOptions {
     bool instancing = true;     // false: every tile stored as it is (Draco alone)
     bool geometryOnly = false;  // instance members whose normals, texture coordinates or colours differ
     bool regions = true;        // fundamental regions where they pay
+    bool cutTriangles = false;  // CompressOptions::cutTriangles
     bool assemblies = true;     // the scene's symmetry and repeated assemblies
     // > 0: the error budget (relative to the diagonal) that each stored mesh's quantization shares with the
     // deviation of the copies it rebuilds (CompressOptions::maxError); 0: the writer's fixed bits.

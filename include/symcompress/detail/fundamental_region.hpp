@@ -59,8 +59,32 @@ enum class RegionFrame {
     Aligned,
 };
 
+// How R = S ∩ F treats the triangles that cross a plane of F.
+enum class RegionTriangles {
+    // Clipped at the planes (any tessellation): the copies rebuild the surface, with the crossing triangles
+    // in pieces.
+    Cut,
+    // No triangle cut, and the copies draw as many triangles as the tile has. Where the group maps the
+    // tile's triangles onto one another and no element other than the identity maps a triangle onto itself,
+    // R is one triangle of each orbit (the one whose centroid lies in F): the copies draw the tile's own
+    // triangles, each once (FundamentalRegion::wholeTriangles). Else R = S ∩ F where F's planes cut no
+    // triangle and split the triangles evenly (a mirror whose halves are tessellated each its own way, along
+    // edges on the plane): the copies draw the stored part's triangles in the others' place. Else
+    // std::invalid_argument.
+    Whole,
+    // Whole where it can be, else Cut.
+    WholeWherePossible,
+    // One triangle of each orbit, or std::invalid_argument.
+    OneOfEachOrbit,
+};
+
 struct RegionOptions {
     RegionFrame frame = RegionFrame::Tile;
+    RegionTriangles triangles = RegionTriangles::Cut;
+    // Whole triangles: a vertex's image under an element is the vertex within this distance of it, relative
+    // to the tile's radius about its centre (vertices closer than this are one). The tile's positions are
+    // made symmetric (each an orbit's mean moved by the group), so they move by up to this much.
+    double vertexTolerance = 1e-6;
     // Vertices closer than this to a plane of F, relative to the tile's radius about its centre, are
     // on the plane and are snapped onto it.
     double snapTolerance = 1e-9;
@@ -94,6 +118,9 @@ struct FundamentalRegion {
     bool signedPermutationFrame = false;
     // Triangles of the tile that crossed a plane of F and were clipped.
     std::size_t trianglesCut = 0;
+    // Whether R is one triangle of each orbit of the tile's (RegionTriangles::Whole): the copies draw the
+    // tile's own triangles.
+    bool wholeTriangles = false;
     // The largest distance of the rebuilt tile from the tile, where the plan measured it (else 0).
     double deviation = 0;
 };
