@@ -100,13 +100,16 @@ std::pair<std::optional<FundamentalRegion>, double> cheapestRegion(
     }
     std::stable_sort(subgroups.begin(), subgroups.end(),
                      [&](const auto& a, const auto& b) { return estimate(a.size()) < estimate(b.size()); });
-    // Most subgroups of a large group fix some triangle and fail at once; a region is made for the first few
-    // that do not.
-    constexpr std::size_t kRegionsTried = 4;
-    std::size_t tried = 0;
+    // Most subgroups of a large group fix some triangle and fail at once (in time linear in |H| and the
+    // tile's vertices); a region is made for the first few that do not.
+    constexpr std::size_t kRegionsTried = 4, kSubgroupsExamined = 64;
+    std::size_t tried = 0, examined = 0;
     for (const std::vector<std::size_t>& h : subgroups) {
-        if (tried == kRegionsTried || estimate(h.size()) >= std::min(bestCost, toBeat)) break;
+        if (tried == kRegionsTried || examined == kSubgroupsExamined ||
+            estimate(h.size()) >= std::min(bestCost, toBeat))
+            break;
         if (h.size() == 1 || h.size() == group.size()) continue;
+        ++examined;
         std::vector<Eigen::Matrix3d> subgroup;
         for (std::size_t e : h) subgroup.push_back(group[e]);
         // Where the copies do not draw the tile's own triangles, a rotation's seam can meet its copy at
