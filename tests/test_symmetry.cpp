@@ -284,6 +284,23 @@ TEST_CASE("A shape near a surface of revolution is given only elements that fit 
     }
 }
 
+TEST_CASE("A lathe of 96 sectors is C96v, its directions across the axis near the mirrors taken as those mirrors",
+          "[symmetry]") {
+    // The moments point across the axis near each of the 96 mirrors: once a mirror and the fold are known, each
+    // such direction would be refined onto a known mirror and verified in full, to add nothing (176 of them in a
+    // 76608-triangle vase, 0.3 s each).
+    std::vector<Eigen::Vector2d> profile;
+    for (int k = 0; k <= 16; ++k) {
+        const double angle = 3.14159265358979323846 * k / 16;
+        profile.push_back({std::sin(angle) * (1 + 0.2 * std::cos(3 * angle)), -std::cos(angle)});
+    }
+    const TriangleMesh mesh = samples::latheMesh(profile, 96, Eigen::Vector3d::Zero());
+    const SymmetryGroup group = detectSymmetries(mesh);
+    CHECK(group.name == "C96v");
+    REQUIRE(group.order() == 192);
+    for (const Symmetry& g : group.elements) CHECK(g.deviation <= 1e-6);
+}
+
 TEST_CASE("Shared models: the symmetries the manifest describes, and none in the negatives", "[symmetry][models]") {
     using symcompress::testing::modelPath;
     auto detect = [](const std::string& model, double tolerance) {
