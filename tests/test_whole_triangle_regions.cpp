@@ -11,6 +11,7 @@
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "symcompress/symmetry.hpp"
+#include "symcompress/verify.hpp"
 
 #include <Eigen/Geometry>
 
@@ -205,6 +206,24 @@ std::vector<Eigen::Matrix3d> groupOh() {
     return group;  // the identity first
 }
 
+// The geodesic sphere with each (flat) face fanned from a random point inside it: symmetric as a surface (Ih), not
+// as a tessellation.
+Primitive randomlyFannedGeodesicSphere(int levels, std::uint64_t seed) {
+    const Primitive sphere = geodesicSphere(levels);
+    std::mt19937_64 generator(seed);
+    std::uniform_real_distribution<double> weight(0.2, 1.0);
+    Primitive fanned;
+    fanned.positions = sphere.positions;
+    for (const Triangle& t : sphere.triangles) {
+        const double a = weight(generator), b = weight(generator), c = weight(generator);
+        const auto inner = static_cast<std::uint32_t>(fanned.positions.size());
+        fanned.positions.push_back(
+            (a * sphere.positions[t[0]] + b * sphere.positions[t[1]] + c * sphere.positions[t[2]]) / (a + b + c));
+        for (int k = 0; k < 3; ++k) fanned.triangles.push_back({inner, t[k], t[(k + 1) % 3]});
+    }
+    return fanned;
+}
+
 }  // namespace
 
 TEST_CASE("A geodesic sphere keeps its triangles whole under every subgroup of Ih that fixes none of them",
@@ -359,6 +378,31 @@ TEST_CASE(
     const FundamentalRegion region = computeFundamentalRegion(rounded, rotations, Eigen::Vector3d::Zero(), options);
     CHECK(region.region.triangles.size() == 32);
     for (const Eigen::Vector3d& p : region.region.positions) CHECK(distanceToNearest(p, rounded.positions) <= 1e-5);
+}
+
+TEST_CASE(
+    "A spheroid tessellated at random gets no region by default, and a region of cut triangles with --cut-triangles",
+    "[compress][region]") {
+    TemporaryFolder folder;
+    // Squashed along y and z: D2h (its mirrors are coordinate planes), whose planes halve some faces.
+    Primitive sphere = randomlyFannedGeodesicSphere(3, 4);
+    for (Eigen::Vector3d& p : sphere.positions) p = p.cwiseProduct(Eigen::Vector3d(1, 0.8, 0.6));
+    const std::filesystem::path input = folder / "sphere.glb";
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(sceneOfOneMesh("sphere", sphere), input, plain);
+
+    const CompressionReport whole = compressFile(input, folder / "whole.glb");
+    CHECK(whole.stats.regionClasses == 0);
+    CHECK(sceneStatistics(readScene(folder / "whole.glb")).trianglesDrawn == sphere.triangles.size());
+
+    CompressOptions cutting;
+    cutting.cutTriangles = true;
+    const CompressionReport cut = compressFile(input, folder / "cut.glb", cutting);
+    CHECK(cut.stats.regionClasses == 1);
+    CHECK(cut.outputBytes < whole.outputBytes);
+    CHECK(sceneStatistics(readScene(folder / "cut.glb")).trianglesDrawn > sphere.triangles.size());
+    CHECK(decompressFile(folder / "cut.glb", folder / "flat.glb", input).verified);
 }
 
 TEST_CASE(
