@@ -42,9 +42,6 @@ constexpr double kDeviationSearch = 10;
 // Maps closer than this (Frobenius norm) to an element found already are that element: far below the
 // distance between distinct elements, far above the error of a candidate from the moments.
 constexpr double kKnownElement = 2e-3;
-// A map closer than this share of the distance between the nearest two elements found already, to one of them
-// other than the identity, refines onto that element: Gauss-Newton descends to the nearest symmetry.
-constexpr double kNearKnownShare = 0.25;
 // Sample points a candidate map is screened on before it is refined.
 constexpr std::size_t kScreeningPoints = 2000;
 // The sample points whose largest distance bounds from below the d_A of a fold the moments cannot tell.
@@ -407,21 +404,6 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     auto inKnown = [&](const Eigen::Matrix3d& map) {
         return std::any_of(known.begin(), known.end(), [&](const Eigen::Matrix3d& g) { return (g - map).norm() < kKnownElement; });
     };
-    // How near an element other than the identity a map refines onto it (kNearKnownShare), for the group so far.
-    double nearKnown = 0;
-    auto separateKnown = [&] {
-        double nearest = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < known.size(); ++i)
-            for (std::size_t j = i + 1; j < known.size(); ++j)
-                nearest = std::min(nearest, (known[i] - known[j]).norm());
-        nearKnown = known.size() > 1 ? kNearKnownShare * nearest : 0;
-    };
-    // A map near an element found already would be refined onto it and verified in full, to add nothing (a vase
-    // of 96 sectors: 176 directions across its axis near its mirrors, 0.3 s each).
-    auto refinesOntoKnown = [&](const Eigen::Matrix3d& map) {
-        return std::any_of(known.begin() + 1, known.end(),
-                           [&](const Eigen::Matrix3d& g) { return (g - map).norm() < nearKnown; });
-    };
     // A map already in the group found so far needs no test (several axes lead to the same elements); a
     // new one is screened on a few sample points, refined, and verified on all of them.
     const std::size_t limit = 4 * std::size_t(options.maxFold) + 8;
@@ -433,14 +415,17 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     // failing only once refined (an unevenly tessellated roller: 1600 refinements, 15 s).
     auto tryAccept = [&](const Eigen::Matrix3d& map, RejectingPoints* hints, int* refinementsLeft = nullptr) {
         if (overflow) return false;
-        if (inKnown(map) || refinesOntoKnown(map)) return true;
+        if (inKnown(map)) return true;
         if (verifier.deviation(map, preliminary, kScreeningPoints, hints) > preliminary) return false;
         bool refine = !refinementsLeft || *refinementsLeft > 0;
+        const Eigen::Matrix3d rough = refine ? refined(map, kRoughRefinementPoints) : map;
+        // Refined on a few sample points onto an element found already, it is that element: refined and verified in
+        // full, it would add nothing.
+        if (refine && inKnown(rough)) return true;
         // A near miss fails as well refined on a few sample points as on all of them: one that fails that way by a
         // margin is not refined in full (a roller near a surface of revolution spent half its time on those).
-        const bool failsRoughly =
-            refine && verifier.deviation(refined(map, kRoughRefinementPoints), kRoughMargin * tolerance,
-                                         kScreeningPoints, hints) > kRoughMargin * tolerance;
+        const bool failsRoughly = refine && verifier.deviation(rough, kRoughMargin * tolerance, kScreeningPoints,
+                                                               hints) > kRoughMargin * tolerance;
         if (failsRoughly) refine = false;
         Eigen::Matrix3d best = refine ? refined(map) : map;
         double deviation = verifier.deviation(best, tolerance, SIZE_MAX, hints);
@@ -454,10 +439,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         generatorDeviations.push_back(deviation);
         // A map refined onto an element the group already has adds nothing to it (a nearly round shape's
         // directions across its axis: dozens of them, each closing a group of hundreds again).
-        if (!inKnown(best)) {
-            known = closeGroup(generators, limit);
-            separateKnown();
-        }
+        if (!inKnown(best)) known = closeGroup(generators, limit);
         if (known.size() > limit) overflow = true;
         return true;
     };
