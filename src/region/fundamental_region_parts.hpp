@@ -59,7 +59,8 @@ std::optional<TriangleOrbits> triangleOrbits(const Primitive& tile, const std::v
 
 // One whole triangle of each orbit (the one whose centroid is nearest the seed), compacted, with the tile's
 // positions made symmetric: each the mean of its orbit brought back by the group, moved by the group.
-// `nonIdentity` in the tile's frame, in the order the orbits were found with.
+// `tile`, `nonIdentity` and `centre` in one frame (the orbits may have been found in another), the elements in
+// the order the orbits were found with.
 Primitive wholeTriangleRegion(const Primitive& tile, const TriangleOrbits& orbits,
                               const std::vector<Eigen::Matrix3d>& nonIdentity, const Eigen::Vector3d& centre,
                               const Eigen::Vector3d& seed);

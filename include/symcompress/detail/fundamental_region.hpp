@@ -65,7 +65,8 @@ enum class RegionTriangles {
     // in pieces.
     Cut,
     // No triangle cut, and the copies draw as many triangles as the tile has. Where the group maps the
-    // tile's triangles onto one another and no element other than the identity maps a triangle onto itself,
+    // tile's triangles onto one another, wound alike, and no element other than the identity maps a triangle
+    // onto itself,
     // R is one triangle of each orbit (the one whose centroid lies in F): the copies draw the tile's own
     // triangles, each once (FundamentalRegion::wholeTriangles). Else R = S ∩ F where F's planes cut no
     // triangle and split the triangles evenly (a mirror whose halves are tessellated each its own way, along
