@@ -33,28 +33,60 @@ bool sameWinding(const Corners& a, const Corners& b) {
     return false;
 }
 
-// images[e][r]: the position that element e takes position r to (positions relative to the centre). Empty
-// when some image is no position of the tile, or two positions go to one.
+// The position that g takes each position to (positions relative to the centre): the point within the tolerance
+// of its image, if any. Empty when some image is no position of the tile, or two positions go to one.
+std::vector<std::uint32_t> imagesUnder(const Eigen::Matrix3d& g, const std::vector<Eigen::Vector3d>& points,
+                                       double tolerance) {
+    const std::size_t n = points.size();
+    std::vector<Eigen::Vector3d> both(points);
+    both.reserve(2 * n);
+    for (const Eigen::Vector3d& p : points) both.push_back(g * p);
+    // The points come first, so each image takes the index of a point within the tolerance, if any.
+    const std::vector<std::uint32_t> welded = weldPositions(both, tolerance);
+    std::vector<std::uint32_t> image(n);
+    std::vector<char> hit(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t r = welded[n + i];
+        if (r >= n || hit[r]) return {};
+        hit[r] = 1;
+        image[i] = r;
+    }
+    return image;
+}
+
+// images[e][r]: the position that element e takes position r to; empty where some element has no images. Only
+// elements that no product of earlier ones reaches are matched against the points: a product's images are its
+// factors' composed (computeFundamentalRegion checked that the group is closed), so a 96-sector lathe's C96v
+// takes three matchings, not 191.
 std::vector<std::vector<std::uint32_t>> positionImages(const std::vector<Eigen::Vector3d>& points,
                                                        const std::vector<Eigen::Matrix3d>& nonIdentity,
                                                        double tolerance) {
-    const std::size_t n = points.size();
-    std::vector<Eigen::Vector3d> both(points);
-    both.resize(2 * n);
-    std::vector<std::vector<std::uint32_t>> images;
-    for (const Eigen::Matrix3d& g : nonIdentity) {
-        for (std::size_t i = 0; i < n; ++i) both[n + i] = g * points[i];
-        // The points come first, so each image takes the index of a point within the tolerance, if any.
-        const std::vector<std::uint32_t> welded = weldPositions(both, tolerance);
-        std::vector<std::uint32_t> image(n);
-        std::vector<char> hit(n, 0);
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::uint32_t r = welded[n + i];
-            if (r >= n || hit[r]) return {};
-            hit[r] = 1;
-            image[i] = r;
-        }
-        images.push_back(std::move(image));
+    const std::size_t count = nonIdentity.size();
+    auto indexOf = [&](const Eigen::Matrix3d& m) {  // count for the identity (or no element)
+        for (std::size_t e = 0; e < count; ++e)
+            if ((nonIdentity[e] - m).cwiseAbs().maxCoeff() < 1e-3) return e;
+        return count;
+    };
+    std::vector<std::vector<std::uint32_t>> images(count);
+    std::vector<std::size_t> generators, reached;
+    for (std::size_t e = 0; e < count; ++e) {
+        if (!images[e].empty()) continue;
+        images[e] = imagesUnder(nonIdentity[e], points, tolerance);
+        if (images[e].empty()) return {};
+        generators.push_back(e);
+        // Every product of a generator and an element reached from here on, until none is new (an element left
+        // out is matched itself, later).
+        const std::size_t first = reached.size();
+        reached.push_back(e);
+        for (std::size_t k = first; k < reached.size(); ++k)
+            for (std::size_t s : generators) {
+                const std::size_t product = indexOf(nonIdentity[s] * nonIdentity[reached[k]]);
+                if (product == count || !images[product].empty()) continue;
+                std::vector<std::uint32_t>& composed = images[product];
+                composed.resize(points.size());
+                for (std::size_t r = 0; r < points.size(); ++r) composed[r] = images[s][images[reached[k]][r]];
+                reached.push_back(product);
+            }
     }
     return images;
 }
