@@ -3,6 +3,7 @@
 // survive quantization where the frame makes that possible.
 #include "symcompress/detail/fundamental_region.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "signed_permutation_groups.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -20,6 +21,7 @@
 #include <stdexcept>
 
 using namespace symcompress;
+using namespace symcompress::testing;
 
 namespace {
 
@@ -136,43 +138,6 @@ Primitive weldedPrimitive(const Solid& solid) {
     for (const std::vector<std::uint32_t>& face : solid.faces)
         for (std::size_t i = 1; i + 1 < face.size(); ++i) primitive.triangles.push_back({face[0], face[i], face[i + 1]});
     return primitive;
-}
-
-// ---- Groups as signed permutation matrices. ----
-
-std::vector<Eigen::Matrix3d> signedPermutations(const std::function<bool(const Eigen::Matrix3d&)>& keep) {
-    std::vector<Eigen::Matrix3d> group;
-    std::array<int, 3> order{0, 1, 2};
-    do {
-        for (int signs = 0; signs < 8; ++signs) {
-            Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-            for (int row = 0; row < 3; ++row) m(row, order[row]) = (signs >> row) & 1 ? -1.0 : 1.0;
-            if (keep(m)) group.push_back(m);
-        }
-    } while (std::next_permutation(order.begin(), order.end()));
-    return group;
-}
-
-std::vector<Eigen::Matrix3d> groupOh() {
-    return signedPermutations([](const Eigen::Matrix3d&) { return true; });
-}
-std::vector<Eigen::Matrix3d> groupD4h() {
-    return signedPermutations([](const Eigen::Matrix3d& m) { return std::abs(m(2, 2)) == 1; });
-}
-std::vector<Eigen::Matrix3d> groupTd() {  // keeps the product of the coordinates, +1 on the tetrahedron
-    return signedPermutations([](const Eigen::Matrix3d& m) { return m.rowwise().sum().prod() > 0; });
-}
-std::vector<Eigen::Matrix3d> groupC4v() {
-    return signedPermutations([](const Eigen::Matrix3d& m) { return m(2, 2) == 1; });
-}
-std::vector<Eigen::Matrix3d> groupC4() {
-    return signedPermutations([](const Eigen::Matrix3d& m) { return m(2, 2) == 1 && m.determinant() > 0; });
-}
-std::vector<Eigen::Matrix3d> groupMirrorX() {
-    return {Eigen::Matrix3d::Identity(), Eigen::Vector3d(-1, 1, 1).asDiagonal().toDenseMatrix()};
-}
-std::vector<Eigen::Matrix3d> groupC2z() {
-    return {Eigen::Matrix3d::Identity(), Eigen::Vector3d(-1, -1, 1).asDiagonal().toDenseMatrix()};
 }
 
 // Dnh about z: rotations by 2 pi k / n, the mirrors through the z axis, and all of them times z -> -z.

@@ -2,6 +2,7 @@
 // orbit, so that the copies draw the tile's own triangles. Ground truth from tessellations whose symmetries are
 // known by construction: a geodesic sphere and its icosahedral group built from the icosahedron's vertices, a
 // cube cut into the triangles of its mirrors, and the same cube fanned from random points.
+#include "signed_permutation_groups.hpp"
 #include "test_support.hpp"
 
 #include "symcompress/compress.hpp"
@@ -191,19 +192,6 @@ Primitive kaleidoscopeCube() {
     for (Triangle& t : cube.triangles)
         for (std::uint32_t& corner : t) corner = welded[corner];
     return cube;
-}
-
-std::vector<Eigen::Matrix3d> groupOh() {
-    std::vector<Eigen::Matrix3d> group;
-    std::array<int, 3> order{0, 1, 2};
-    do {
-        for (int signs = 0; signs < 8; ++signs) {
-            Eigen::Matrix3d g = Eigen::Matrix3d::Zero();
-            for (int row = 0; row < 3; ++row) g(row, order[row]) = signs & (1 << row) ? -1 : 1;
-            group.push_back(g);
-        }
-    } while (std::next_permutation(order.begin(), order.end()));
-    return group;  // the identity first
 }
 
 // The geodesic sphere with each (flat) face fanned from a random point inside it: symmetric as a surface (Ih), not
