@@ -12,31 +12,36 @@
 namespace symcompress {
 namespace {
 
+// The options the plan computes its regions with, for a tile: the same for every group it tries.
+RegionOptions regionOptionsFor(const Primitive& tile, const Eigen::Vector3d& center, double tolerance) {
+    RegionOptions options;
+    // Instances that are signed permutations in the region's frame map Draco's grid onto itself, so
+    // seams on coordinate planes stay closed after quantization.
+    options.frame = RegionFrame::Aligned;
+    options.groupTolerance = 1e-5;
+    // Float32 coordinates put a symmetric model's vertices on its planes only to about 1e-7 of its size;
+    // cut points that close to a vertex become zero-area triangles once quantized, which Draco's
+    // edgebreaker cannot keep (the coffee cup's region tripled in size).
+    options.snapTolerance = 1e-6;
+    // A vertex's image is the vertex within the tolerance (a torus knot's turns agree only to 7e-6 of its
+    // diagonal), but within a quarter of the shortest edge, so that no two vertices of a small tile are one.
+    double radius = 0, shortestEdge = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& p : tile.positions) radius = std::max(radius, (p - center).norm());
+    for (const Triangle& t : tile.triangles)
+        for (int k = 0; k < 3; ++k)
+            if (const double edge = (tile.positions[t[k]] - tile.positions[t[(k + 1) % 3]]).norm(); edge > 0)
+                shortestEdge = std::min(shortestEdge, edge);
+    if (radius > 0)
+        options.vertexTolerance = std::max(std::min(tolerance, shortestEdge / 4) / radius, options.snapTolerance);
+    return options;
+}
+
 // The fundamental region of a tile under a group, if its copies rebuild the tile within the tolerance.
 std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vector<Eigen::Matrix3d>& group,
-                                          const Eigen::Vector3d& center, double tolerance, RegionTriangles triangles) {
+                                          const Eigen::Vector3d& center, double tolerance, RegionOptions regionOptions,
+                                          RegionTriangles triangles) {
     try {
-        RegionOptions regionOptions;
-        // Instances that are signed permutations in the region's frame map Draco's grid onto itself, so
-        // seams on coordinate planes stay closed after quantization.
-        regionOptions.frame = RegionFrame::Aligned;
-        regionOptions.groupTolerance = 1e-5;
-        // Float32 coordinates put a symmetric model's vertices on its planes only to about 1e-7 of its size;
-        // cut points that close to a vertex become zero-area triangles once quantized, which Draco's
-        // edgebreaker cannot keep (the coffee cup's region tripled in size).
-        regionOptions.snapTolerance = 1e-6;
         regionOptions.triangles = triangles;
-        // A vertex's image is the vertex within the tolerance (a torus knot's turns agree only to 7e-6 of its
-        // diagonal), but within a quarter of the shortest edge, so that no two vertices of a small tile are one.
-        double radius = 0, shortestEdge = std::numeric_limits<double>::infinity();
-        for (const Eigen::Vector3d& p : tile.positions) radius = std::max(radius, (p - center).norm());
-        for (const Triangle& t : tile.triangles)
-            for (int k = 0; k < 3; ++k)
-                if (const double edge = (tile.positions[t[k]] - tile.positions[t[(k + 1) % 3]]).norm(); edge > 0)
-                    shortestEdge = std::min(shortestEdge, edge);
-        if (radius > 0)
-            regionOptions.vertexTolerance =
-                std::max(std::min(tolerance, shortestEdge / 4) / radius, regionOptions.snapTolerance);
         FundamentalRegion region = computeFundamentalRegion(tile, group, center, regionOptions);
         const Primitive rebuilt = rebuildFromRegion(region);
         TriangleMesh a{rebuilt.positions, rebuilt.triangles}, b{tile.positions, tile.triangles};
@@ -54,10 +59,10 @@ std::optional<FundamentalRegion> regionOf(const Primitive& tile, const std::vect
 
 // The fundamental region of a tile under `group`, on the grid that keeps its seams closed where its frame
 // allows: as it would be stored.
-std::optional<FundamentalRegion> storableRegion(const RegionCandidate& candidate,
+std::optional<FundamentalRegion> storableRegion(const RegionCandidate& candidate, const RegionOptions& options,
                                                 const std::vector<Eigen::Matrix3d>& group, RegionTriangles triangles) {
     std::optional<FundamentalRegion> region =
-        regionOf(candidate.tile, group, candidate.center, candidate.tolerance, triangles);
+        regionOf(candidate.tile, group, candidate.center, candidate.tolerance, options, triangles);
     if (region && candidate.seamGridBits > 0 && region->signedPermutationFrame) {
         double left = candidate.seamGridError - region->deviation;  // for the grid, of the budget
         if (candidate.seamGridError > 0 && !(left > 0)) return std::nullopt;
@@ -81,15 +86,16 @@ std::pair<std::optional<FundamentalRegion>, double> cheapestRegion(
     const std::function<double(const FundamentalRegion&)>& nodes) {
     const std::vector<Eigen::Matrix3d>& group = candidate.group;
     auto cost = [&](const FundamentalRegion& r) { return costs.asMesh(r.region) + nodes(r); };
+    const RegionOptions options = regionOptionsFor(candidate.tile, candidate.center, candidate.tolerance);
     const RegionTriangles whole = candidate.cutTriangles ? RegionTriangles::WholeWherePossible : RegionTriangles::Whole;
-    std::optional<FundamentalRegion> best = storableRegion(candidate, group, whole);
+    std::optional<FundamentalRegion> best = storableRegion(candidate, options, group, whole);
     // Mirrors that hold only within the tolerance (a bolt's helical thread is near a mirror of itself) may
     // leave no region of the whole group; its rotations alone may still rebuild the tile.
     std::vector<Eigen::Matrix3d> rotations;
     for (const Eigen::Matrix3d& g : group)
         if (g.determinant() > 0) rotations.push_back(g);
     if (!best && rotations.size() > 1 && rotations.size() < group.size())
-        best = storableRegion(candidate, rotations, whole);
+        best = storableRegion(candidate, options, rotations, whole);
     double bestCost = best ? cost(*best) : std::numeric_limits<double>::infinity();
     auto estimate = [&](std::size_t order) { return tileBytes / double(order) + double(order) * nodeBytes; };
     std::vector<std::vector<std::size_t>> subgroups;
@@ -115,7 +121,7 @@ std::pair<std::optional<FundamentalRegion>, double> cheapestRegion(
         // Where the copies do not draw the tile's own triangles, a rotation's seam can meet its copy at
         // T-junctions, which quantization opens; a mirror's seam meets its image vertex for vertex.
         std::optional<FundamentalRegion> region =
-            storableRegion(candidate, subgroup,
+            storableRegion(candidate, options, subgroup,
                            generatedByMirrors(subgroup) ? RegionTriangles::Whole : RegionTriangles::OneOfEachOrbit);
         if (!region) continue;
         ++tried;
