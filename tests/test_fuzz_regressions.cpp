@@ -123,6 +123,29 @@ TEST_CASE("glTF: a huge count without a buffer view is refused before anything i
     CHECK_THAT(error, Catch::Contains("NORMAL (accessor 1): a count of 2305843009213693952 without a buffer view"));
 }
 
+TEST_CASE("glTF: indices without a buffer view are zeros, as the specification says, and not too many of them",
+          "[io][fuzz]") {
+    // How symcompress writes triangles of zero area; tinygltf alone refuses such indices.
+    auto file = [](std::size_t count, int componentType) {
+        return R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+            "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+            "buffers":[{"byteLength":12,"uri":"data:application/octet-stream;base64,AACAPwAAAEAAAEBA"}],
+            "bufferViews":[{"buffer":0,"byteLength":12}],
+            "accessors":[{"bufferView":0,"componentType":5126,"count":1,"type":"VEC3","min":[1,2,3],"max":[1,2,3]},
+                         {"componentType":)" +
+               std::to_string(componentType) + R"(,"count":)" + std::to_string(count) + R"(,"type":"SCALAR"}]})";
+    };
+    TemporaryFolder folder;
+    writeTextFile(folder / "zeros.gltf", file(3000, 5121));
+    const Scene scene = readScene(folder / "zeros.gltf");
+    const std::vector<Triangle>& triangles = scene.meshes.at(0).primitives.at(0).triangles;
+    CHECK(triangles.size() == 1000);
+    CHECK(std::all_of(triangles.begin(), triangles.end(), [](const Triangle& t) { return t == Triangle{0, 0, 0}; }));
+    writeTextFile(folder / "huge.gltf", file(std::size_t(1) << 30, 5125));
+    CHECK_THAT(readError(folder / "huge.gltf"),
+               Catch::Contains("huge.gltf: accessor 1: 1073741824 indices without a buffer view, more than"));
+}
+
 TEST_CASE("glTF: a COLOR_0 accessor that does not exist is a clear error and not std::out_of_range", "[io][fuzz]") {
     const std::string error = readError(regressionInput("gltf_color_accessor_missing.gltf"));
     CHECK_THAT(error, Catch::Contains("gltf_color_accessor_missing.gltf: COLOR_0: accessor 7 does not exist"));

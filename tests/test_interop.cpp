@@ -96,8 +96,6 @@ void checkDrawnByOthers(const std::vector<std::filesystem::path>& inputs) {
         return;
     }
     TemporaryFolder folder;
-    // symcompress leaves out triangles with two corners at one point (they draw nothing, and it says so):
-    // the subpass scene's 4168, so its GLB has fewer triangles than the reference, the same surface.
     for (const auto& model : inputs) {
         INFO(model);
         const std::filesystem::path input = withStandInImages(model, folder.path());

@@ -554,3 +554,67 @@ TEST_CASE(
     }
     CHECK(dracoSpeedsWorthTrying(large, options) == std::vector<int>{0});
 }
+
+TEST_CASE(
+    "Triangles of zero area are kept as many, drawing nothing: at one point under Draco and in X3D, as they are "
+    "in plain glTF",
+    "[io]") {
+    // A cube's 12 triangles and 4 of zero area: two corners at one vertex index, two vertices at one point, all
+    // three at one point, and one whose vertices no other triangle uses. Draco's edgebreaker would drop the 4, and
+    // viewers count them (render_compare.sh: the triangles drawn).
+    Primitive cube;
+    for (int i = 0; i < 8; ++i) cube.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    cube.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                      {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    cube.positions.push_back(cube.positions[3]);  // 8: at 3's point
+    cube.positions.push_back({0.5, 0.5, 0.5});    // 9 and 10: used by zero-area triangles alone
+    cube.positions.push_back({0.5, 0.5, 0.5});
+    for (const Eigen::Vector3d& p : cube.positions) cube.texcoords.push_back({p.x(), p.y()});
+    cube.normals.assign(cube.positions.size(), Eigen::Vector3d::UnitZ());
+    cube.triangles.insert(cube.triangles.end(), {{0, 0, 5}, {3, 8, 6}, {8, 3, 3}, {9, 10, 9}});
+    const Scene scene = sceneOfOneMesh("cube", cube);
+    auto zeroArea = [](const TriangleMesh& mesh) {
+        return std::count_if(mesh.triangles.begin(), mesh.triangles.end(), [&](const Triangle& t) {
+            const auto& p = mesh.positions;
+            return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).norm() == 0;
+        });
+    };
+    TemporaryFolder folder;
+    for (const bool draco : {true, false}) {
+        INFO("draco " << draco);
+        WriteOptions options;
+        options.draco = draco;
+        const auto file = folder / (draco ? "draco.glb" : "plain.glb");
+        writeScene(scene, file, options);
+        const TriangleMesh drawn = worldMesh(readScene(file));
+        CHECK(drawn.triangles.size() == 16);
+        CHECK(zeroArea(drawn) == 4);
+        const nlohmann::json json = glbJson(file);
+        const auto& primitives = json["meshes"][0]["primitives"];
+        if (draco) {
+            // The Draco primitive, and one of a vertex of the cube with its texture coordinates (not its normal),
+            // indices without a buffer view: 12 zeros.
+            REQUIRE(primitives.size() == 2);
+            const auto& indices = json["accessors"][primitives[1]["indices"].get<std::size_t>()];
+            CHECK_FALSE(indices.contains("bufferView"));
+            CHECK(indices["count"] == 12);
+            CHECK(primitives[1]["attributes"].contains("TEXCOORD_0"));
+            CHECK_FALSE(primitives[1]["attributes"].contains("NORMAL"));
+            CHECK(json["accessors"][primitives[1]["attributes"]["POSITION"].get<std::size_t>()]["max"] ==
+                  nlohmann::json::array({0, 0, 0}));
+        } else {
+            CHECK(primitives.size() == 1);  // the triangles as they are
+        }
+        if (interopAvailable()) CHECK(validatorErrors(file).empty());
+    }
+    // X3D: a face of 6 corners at one point, a fan of 4 triangles; X_ITE draws 16, and so does our reader.
+    const auto x3d = folder / "cube.x3d";
+    writeScene(scene, x3d, {});
+    CHECK(readTextFile(x3d).find("<IndexedFaceSet coordIndex='0 0 0 0 0 0'><Coordinate point='0 0 0'/>") !=
+          std::string::npos);
+    CHECK(worldMesh(readScene(x3d)).triangles.size() == 16);
+    if (x3dInteropAvailable())
+        CHECK(runJson("node " + quoted(sharedDir() / "bench/x3d_count.js") + " " + quoted(x3d) + " --json")["tris"] ==
+              16);
+    if (renderAvailable()) checkRendersSame(folder / "plain.glb", folder / "draco.glb", "a");
+}

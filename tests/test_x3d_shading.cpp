@@ -2,6 +2,7 @@
 // the normals an X3D browser makes (creaseAngle, normalPerVertex), and a mesh without normals is written
 // to X3D flat, as glTF draws it.
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -120,10 +121,20 @@ TEST_CASE("X3D output leaves a mesh's normals to the browser where a creaseAngle
         const std::string text = readTextFile(folder / "teapot.x3d");
         CHECK_THAT(text, Catch::Contains("creaseAngle='0.5'"));
         CHECK_THAT(text, !Catch::Contains("<Normal"));
-        const Scene again = readScene(folder / "teapot.x3d");
-        REQUIRE(again.meshes.size() == teapot.meshes.size());
-        for (std::size_t m = 0; m < teapot.meshes.size(); ++m)
-            CHECK(normalsAgree(teapot.meshes[m].primitives[0], again.meshes[m].primitives[0]) < 3.5e-3);
+        // Its triangles of zero area (32, at its poles) are written in shapes of their own, without normals.
+        auto drawing = [](const Scene& scene) {
+            std::vector<Primitive> primitives;
+            for (const Mesh& mesh : scene.meshes)
+                for (const Primitive& primitive : mesh.primitives) {
+                    const auto split = withoutZeroAreaTriangles(primitive);
+                    if (!split || !split->first.triangles.empty())
+                        primitives.push_back(split ? split->first : primitive);
+                }
+            return primitives;
+        };
+        const std::vector<Primitive> before = drawing(teapot), after = drawing(readScene(folder / "teapot.x3d"));
+        REQUIRE(after.size() == before.size());
+        for (std::size_t p = 0; p < before.size(); ++p) CHECK(normalsAgree(before[p], after[p]) < 3.5e-3);
     }
     SECTION("normals no creaseAngle gives: written") {
         // The smooth prism's normals are the means of its quads', which its triangles would weight otherwise.

@@ -5,8 +5,11 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace symcompress {
@@ -92,6 +95,18 @@ std::size_t splitLinesAndPoints(Scene& scene);
 // The primitive's vertices `kept` (indices into its arrays, in their new order; one may come twice), every
 // attribute and morph target with them. Triangles and lines are left to the caller to renumber.
 void keepVertices(Primitive& primitive, const std::vector<std::uint32_t>& kept);
+
+// The triangles of zero area of a primitive, those with two corners at one point: they draw nothing, but viewers
+// count them, and Draco's edgebreaker cannot hold them. The writers keep them as as many triangles at `vertex`,
+// the first corner of the first of them.
+struct ZeroAreaTriangles {
+    std::size_t count = 0;
+    std::uint32_t vertex = 0;
+};
+// The primitive without them (its vertices that only they used left out too), and them; nothing where it has none.
+std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(const Primitive& primitive);
+// Them as a primitive of their one vertex (every attribute with it) and as many triangles at it.
+Primitive zeroAreaPrimitive(const Primitive& primitive, const ZeroAreaTriangles& zeroArea);
 
 // The names and sizes of the primitive's other attributes (Primitive::attributes), as one key ("TANGENT:4;"):
 // primitives or tiles with different keys are never merged into one.

@@ -185,11 +185,8 @@ std::vector<Triangle> trianglesFromIndices(const std::vector<std::uint32_t>& ind
         for (std::size_t i = 1; i + 1 < indices.size(); ++i)
             triangles.push_back({indices[0], indices[i], indices[i + 1]});
     }
-    // Degenerate strip/fan joints carry no area: drop triangles with repeated corners.
-    if (mode != TINYGLTF_MODE_TRIANGLES)
-        triangles.erase(std::remove_if(triangles.begin(), triangles.end(),
-                                       [](const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; }),
-                        triangles.end());
+    // A strip's or fan's joints with repeated corners stay: they draw nothing, but viewers count them (three.js
+    // turns a strip of n indices into n - 2 triangles), and the writers keep triangles of zero area.
     return triangles;
 }
 

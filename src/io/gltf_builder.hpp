@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -242,12 +243,22 @@ struct DracoPart {
     Json indices;
 };
 
+// A Draco-coded primitive's triangles with two corners at one point, which edgebreaker drops (its corner table
+// joins equal positions): zero area, they draw nothing. Kept as as many triangles of zero area at one corner
+// of theirs, `vertex` (a primitive of that one vertex, every attribute with it, no triangles), in a glTF
+// primitive whose indices are zeros, an accessor without a buffer view: viewers draw and count them as before.
+struct ZeroAreaPart {
+    Primitive vertex;
+    std::size_t triangles = 0;
+};
+
 // What stores a primitive, made without the builder (so that a scene's primitives can be encoded in
 // parallel): plain accessors (written when added), or one Draco part, or two when edgebreaker would drop
-// some triangles.
+// some triangles, and a ZeroAreaPart where the primitive has triangles of zero area.
 struct EncodedPrimitive {
     bool plain = false;
     std::vector<DracoPart> parts;
+    std::optional<ZeroAreaPart> zeroArea;
     // A plain primitive's vertices rounded (roundedPlainVertices), used where the builder codes data by meshopt.
     RoundedVertices rounded;
 };

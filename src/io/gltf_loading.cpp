@@ -1,6 +1,6 @@
 // A glTF file to a tinygltf model: the bytes checked and mended before tinygltf parses them (JSON depth,
-// integers beyond an int, a GLB's BIN chunk, Draco's index accessors, meshopt's fallback buffer), the images
-// kept as bytes, EXT_meshopt_compression decoded.
+// integers beyond an int, a GLB's BIN chunk, Draco's index accessors, indices without a buffer view, meshopt's fallback
+// buffer), the images kept as bytes, EXT_meshopt_compression decoded.
 #include "gltf_reader.hpp"
 
 #include "symcompress/detail/atomic_file.hpp"
@@ -178,9 +178,40 @@ void refuseIntegersBeyondInt(const nlohmann::json& value, const std::string& key
     }
 }
 
+// Indices without a buffer view are zeros (glTF 2.0, 3.6.2.1; symcompress writes triangles of zero area so),
+// which tinygltf refuses: they get a view of a buffer of zeros. False where there are none. At most 64 MiB of
+// them, so that a few bytes of JSON cannot ask for any memory at all.
+bool giveZerosABufferView(nlohmann::json& json, const std::vector<std::size_t>& accessors, const fs::path& file) {
+    constexpr std::uint64_t kMostZeroBytes = std::uint64_t(1) << 26;
+    std::uint64_t bytes = 0;
+    for (std::size_t a : accessors) {
+        const nlohmann::json& accessor = json["accessors"][a];
+        const int size = accessor.value("componentType", 0) == 5121   ? 1
+                         : accessor.value("componentType", 0) == 5123 ? 2
+                         : accessor.value("componentType", 0) == 5125 ? 4
+                                                                      : 0;
+        if (!size || !accessor.contains("count") || !accessor["count"].is_number_unsigned()) continue;  // tinygltf says
+        const std::uint64_t count = accessor["count"].get<std::uint64_t>();
+        if (count > kMostZeroBytes / std::uint64_t(size))
+            throw FileError(file, "accessor " + std::to_string(a) + ": " + std::to_string(count) +
+                                      " indices without a buffer view, more than symcompress reads (64 MiB)");
+        bytes = std::max(bytes, count * std::uint64_t(size));
+    }
+    if (accessors.empty() || bytes == 0) return false;
+    if (!json.contains("buffers") || !json["buffers"].is_array()) json["buffers"] = nlohmann::json::array();
+    if (!json.contains("bufferViews") || !json["bufferViews"].is_array()) json["bufferViews"] = nlohmann::json::array();
+    std::string base64((bytes + 2) / 3 * 4, 'A');  // zero bytes are "A"s, padded
+    if (bytes % 3) base64.replace(base64.size() - (3 - bytes % 3), 3 - bytes % 3, 3 - bytes % 3, '=');
+    json["buffers"].push_back({{"byteLength", bytes}, {"uri", "data:application/octet-stream;base64," + base64}});
+    json["bufferViews"].push_back({{"buffer", json["buffers"].size() - 1}, {"byteLength", bytes}});
+    for (std::size_t a : accessors) json["accessors"][a]["bufferView"] = json["bufferViews"].size() - 1;
+    return true;
+}
+
 // What tinygltf (as packaged) would refuse in a valid file, mended in the JSON before it sees it:
 // - a primitive whose indices accessor has no bufferView, which is how KHR_draco_mesh_compression files
-//   are written: the indices come from the Draco data anyway, so they are removed;
+//   are written: the indices come from the Draco data anyway, so they are removed; any other primitive's
+//   indices without a buffer view are zeros, given a buffer of them;
 // - EXT_meshopt_compression's fallback buffer, which has no data (no uri, or more bytes than a GLB's binary
 //   chunk): it gets one byte of its own; decodeMeshopt gives its buffer views their data.
 // It also refuses (FileError) what tinygltf would take badly: JSON nested too deep, integers beyond an int.
@@ -219,17 +250,26 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
             changed = true;
         }
     nlohmann::json noMeshes = nlohmann::json::array();
+    std::vector<std::size_t> zeroIndices;  // accessors of indices without a buffer view
     for (auto& mesh : json.contains("meshes") && json["meshes"].is_array() ? json["meshes"] : noMeshes) {
         if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
         for (auto& primitive : mesh["primitives"]) {
-            if (!primitive.is_object() || !primitive.contains("extensions") || !primitive.contains("indices")) continue;
-            const auto& extensions = primitive["extensions"];
-            if (extensions.is_object() && extensions.contains("KHR_draco_mesh_compression")) {
+            if (!primitive.is_object() || !primitive.contains("indices")) continue;
+            const auto extensions = primitive.find("extensions");
+            if (extensions != primitive.end() && extensions->is_object() &&
+                extensions->contains("KHR_draco_mesh_compression")) {
                 primitive.erase("indices");
                 changed = true;
+            } else if (primitive["indices"].is_number_unsigned() && json.contains("accessors") &&
+                       json["accessors"].is_array() &&
+                       primitive["indices"].get<std::size_t>() < json["accessors"].size()) {
+                const std::size_t accessor = primitive["indices"].get<std::size_t>();
+                if (json["accessors"][accessor].is_object() && !json["accessors"][accessor].contains("bufferView"))
+                    zeroIndices.push_back(accessor);
             }
         }
     }
+    changed = giveZerosABufferView(json, zeroIndices, file) || changed;
     if (!changed) return bytes;
     std::string text = json.dump();
     if (!binary) return std::vector<unsigned char>(text.begin(), text.end());

@@ -1,10 +1,11 @@
 // glTF primitives: Draco-compressed (KHR_draco_mesh_compression; the triangles edgebreaker would drop in a
-// sequential primitive of their own) or plain accessors.
+// sequential primitive of their own, those of zero area at one point) or plain accessors.
 #include "draco_grid.hpp"
 #include "gltf_builder.hpp"
 #include "primitive_encodings.hpp"
 
 #include "geometry/bounds.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
@@ -383,12 +384,19 @@ int addIndices(GltfBuilder& builder, const std::vector<std::uint32_t>& indices, 
     return builder.addAccessor(accessor);
 }
 
-Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const RoundedVertices& rounded) {
+// Attribute `name` of target `target` as `rounded` holds it, else as read (added by `asRead`).
+template <typename AsRead>
+int addRoundedElse(GltfBuilder& builder, const RoundedVertices& rounded, int target, const std::string& name,
+                   AsRead asRead) {
+    const int accessor = addRoundedAttribute(builder, rounded, target, name);
+    return accessor >= 0 ? accessor : asRead();
+}
+
+// A plain primitive's vertex attributes, each rounded where `rounded` has it, else as read.
+Json plainAttributes(GltfBuilder& builder, const Primitive& primitive, const RoundedVertices& rounded) {
     Json attributes = Json::object();
-    // Each attribute rounded where `rounded` has it, else as read.
     auto add = [&](const std::string& name, int target, auto asRead) {
-        const int accessor = addRoundedAttribute(builder, rounded, target, name);
-        return accessor >= 0 ? accessor : asRead();
+        return addRoundedElse(builder, rounded, target, name, asRead);
     };
     attributes["POSITION"] =
         add("POSITION", -1, [&] { return builder.addFloatAccessor(primitive.positions, 3, "VEC3", true); });
@@ -403,7 +411,11 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const
             add("COLOR_0", -1, [&] { return builder.addFloatAccessor(primitive.colors, 4, "VEC4", false); });
     for (const VertexAttribute& attribute : primitive.attributes)
         attributes[attribute.name] = add(attribute.name, -1, [&] { return addAttribute(builder, attribute); });
-    Json out = {{"attributes", attributes}};
+    return attributes;
+}
+
+Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const RoundedVertices& rounded) {
+    Json out = {{"attributes", plainAttributes(builder, primitive, rounded)}};
     // Points draw every vertex, in order: no indices. TRIANGLES is the default mode.
     if (primitive.topology == Topology::Points) out["mode"] = kModePoints;
     std::vector<std::uint32_t> flat;
@@ -418,10 +430,37 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const
     for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
         Json displaced = Json::object();
         for (const VertexAttribute& attribute : primitive.targets[t])
-            displaced[attribute.name] = add(attribute.name, int(t), [&] { return addAttribute(builder, attribute); });
+            displaced[attribute.name] = addRoundedElse(builder, rounded, int(t), attribute.name,
+                                                       [&] { return addAttribute(builder, attribute); });
         out["targets"].push_back(std::move(displaced));
     }
     return out;
+}
+
+// Its one vertex, and indices that are zeros: an accessor without a buffer view is zeros (glTF 2.0, 3.6.2.1),
+// so that the triangles cost their JSON alone.
+Json writeZeroAreaPrimitive(GltfBuilder& builder, const ZeroAreaPart& part) {
+    return {{"attributes", plainAttributes(builder, part.vertex, {})},
+            {"indices", builder.addAccessor(
+                            {{"componentType", kUnsignedByte}, {"count", 3 * part.triangles}, {"type", "SCALAR"}})}};
+}
+
+// A primitive's triangles of zero area at one vertex (zeroAreaPrimitive). What shades a triangle shades none of
+// them: texture coordinates stay for the validator (a material's textures need their sets), joints and weights
+// for a skinned node, the rest goes.
+ZeroAreaPart zeroAreaPart(const Primitive& primitive, const ZeroAreaTriangles& zeroArea) {
+    ZeroAreaPart part{zeroAreaPrimitive(primitive, zeroArea), zeroArea.count};
+    Primitive& vertex = part.vertex;
+    vertex.triangles.clear();
+    vertex.normals.clear();
+    vertex.colors.clear();
+    vertex.attributes.erase(std::remove_if(vertex.attributes.begin(), vertex.attributes.end(),
+                                           [](const VertexAttribute& a) {
+                                               return a.name.rfind("TEXCOORD_", 0) != 0 && !a.isJoints() &&
+                                                      a.name.rfind("WEIGHTS_", 0) != 0;
+                                           }),
+                            vertex.attributes.end());
+    return part;
 }
 
 }  // namespace
@@ -446,11 +485,16 @@ EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions&
         key = fingerprintOf(primitive, options);
         if (std::optional<EncodedPrimitive> found = options.encodings->find(*key)) return std::move(*found);
     }
-    if (auto whole = encodeDracoPrimitive(primitive, options, file, DracoMethod::EdgebreakerOrNothing)) {
+    const std::optional<std::pair<Primitive, ZeroAreaTriangles>> split = withoutZeroAreaTriangles(primitive);
+    const Primitive& drawing = split ? split->first : primitive;
+    if (split) encoded.zeroArea = zeroAreaPart(primitive, split->second);
+    if (drawing.triangles.empty()) {
+    } else if (auto whole = encodeDracoPrimitive(drawing, options, file, DracoMethod::EdgebreakerOrNothing)) {
         encoded.parts.push_back(std::move(*whole));
     } else {
-        // Edgebreaker would drop some triangles: they go to a sequential primitive of their own.
-        const auto [kept, collapsing] = splitCollapsingTriangles(primitive, positionBitsFor(primitive, options));
+        // Edgebreaker would drop some triangles (whose corners its quantization merges): they go to a sequential
+        // primitive of their own.
+        const auto [kept, collapsing] = splitCollapsingTriangles(drawing, positionBitsFor(drawing, options));
         for (const auto& [part, method] : {std::pair{&kept, DracoMethod::EdgebreakerElseSequential},
                                            std::pair{&collapsing, DracoMethod::Sequential}})
             if (!part->triangles.empty()) encoded.parts.push_back(*encodeDracoPrimitive(*part, options, file, method));
@@ -469,6 +513,7 @@ void addPrimitive(GltfBuilder& builder, const Primitive& primitive, const Encode
         return;
     }
     for (const DracoPart& part : encoded.parts) add(addDracoPart(builder, part), part.material);
+    if (encoded.zeroArea) add(writeZeroAreaPrimitive(builder, *encoded.zeroArea), primitive.material);
 }
 
 void writePrimitive(GltfBuilder& builder, const Primitive& primitive, const WriteOptions& options, const fs::path& file,

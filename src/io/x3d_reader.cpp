@@ -234,7 +234,7 @@ std::vector<int> X3dReader::read() {
     for (const std::string& note : notes_) scene_.warnings.push_back(name + ": " + note);
     if (degenerateFaces_)
         scene_.warnings.push_back(name + ": " + std::to_string(degenerateFaces_) +
-                                  " faces with fewer than 3 distinct corners or no area skipped");
+                                  " faces with fewer than 3 corners or no area skipped");
     return roots;
 }
 

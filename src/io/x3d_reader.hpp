@@ -109,7 +109,7 @@ private:
     std::map<std::string, int> notKept_;  // other nodes with nothing to carry them in the scene model
     std::set<std::string> useStack_;
     std::set<std::string> notes_;
-    std::size_t degenerateFaces_ = 0;  // faces with fewer than 3 distinct corners or no area
+    std::size_t degenerateFaces_ = 0;  // faces with fewer than 3 corners, or cut by triangulatePolygon and of no area
 };
 
 }  // namespace symcompress

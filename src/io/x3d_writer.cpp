@@ -459,10 +459,18 @@ private:
         out_ += "<Group DEF='" + def + "'>\n";
         for (const Primitive& primitive : scene_.meshes[mesh].primitives) {
             if (primitive.drawsNothing()) continue;
-            if (primitive.topology == Topology::Triangles)
-                writeShape(primitive, depth + 1);
-            else
+            if (primitive.topology != Topology::Triangles) {
                 writeUnlitShape(primitive, depth + 1);
+                continue;
+            }
+            // Triangles of zero area apart: the browser would make their normals of nothing.
+            const std::optional<std::pair<Primitive, ZeroAreaTriangles>> split = withoutZeroAreaTriangles(primitive);
+            if (!split) {
+                writeShape(primitive, depth + 1);
+                continue;
+            }
+            if (!split->first.triangles.empty()) writeShape(split->first, depth + 1);
+            writeZeroAreaShape(primitive.positions[split->second.vertex], split->second.count, depth + 1);
         }
         indent(depth);
         out_ += "</Group>\n";
@@ -786,6 +794,24 @@ private:
         indent(depth + 1);
         out_ += faceSet ? "</IndexedFaceSet>\n" : "</IndexedTriangleSet>\n";
         shareGeometry(geometryStart, faceSet ? "IndexedFaceSet" : "IndexedTriangleSet");
+        indent(depth);
+        out_ += "</Shape>\n";
+    }
+
+    // `count` triangles of zero area at one point, in a shape of their own: they draw nothing, and browsers count
+    // them as they counted those of the input (withoutZeroAreaTriangles). One convex face of count + 2 corners,
+    // which the browser cuts into a fan of `count` triangles: 2 bytes a triangle.
+    void writeZeroAreaShape(const Eigen::Vector3d& at, std::size_t count, int depth) {
+        indent(depth);
+        out_ += "<Shape>\n";
+        indent(depth + 1);
+        const std::size_t geometryStart = out_.size();
+        out_ += "<IndexedFaceSet coordIndex='0";
+        for (std::size_t i = 1; i < count + 2; ++i) out_ += " 0";
+        out_ += "'><Coordinate point='";
+        appendVector(out_, at, 3);
+        out_ += "'/></IndexedFaceSet>\n";
+        shareGeometry(geometryStart, "IndexedFaceSet");
         indent(depth);
         out_ += "</Shape>\n";
     }

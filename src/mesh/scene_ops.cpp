@@ -150,6 +150,34 @@ void keepVertices(Primitive& primitive, const std::vector<std::uint32_t>& kept) 
         for (VertexAttribute& attribute : target) keepAttribute(attribute);
 }
 
+std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(const Primitive& primitive) {
+    const std::vector<Eigen::Vector3d>& p = primitive.positions;
+    auto zeroArea = [&](const Triangle& t) { return p[t[0]] == p[t[1]] || p[t[1]] == p[t[2]] || p[t[0]] == p[t[2]]; };
+    const auto first = std::find_if(primitive.triangles.begin(), primitive.triangles.end(), zeroArea);
+    if (first == primitive.triangles.end()) return std::nullopt;
+    std::pair<Primitive, ZeroAreaTriangles> split{primitive, {0, (*first)[0]}};
+    std::vector<Triangle>& drawing = split.first.triangles;
+    const auto end = std::remove_if(drawing.begin(), drawing.end(), zeroArea);
+    split.second.count = std::size_t(drawing.end() - end);
+    drawing.erase(end, drawing.end());
+    std::vector<std::uint32_t> newIndex(p.size(), 0), kept;
+    for (const Triangle& t : drawing)
+        for (std::uint32_t v : t) newIndex[v] = 1;
+    for (std::uint32_t v = 0; v < p.size(); ++v)
+        if (newIndex[v]) newIndex[v] = std::uint32_t(kept.size()), kept.push_back(v);
+    keepVertices(split.first, kept);
+    for (Triangle& t : drawing)
+        for (std::uint32_t& v : t) v = newIndex[v];
+    return split;
+}
+
+Primitive zeroAreaPrimitive(const Primitive& primitive, const ZeroAreaTriangles& zeroArea) {
+    Primitive vertex = primitive;
+    vertex.triangles.assign(zeroArea.count, Triangle{0, 0, 0});
+    keepVertices(vertex, {zeroArea.vertex});
+    return vertex;
+}
+
 std::string attributeSignature(const Primitive& primitive) {
     std::string signature;
     for (const VertexAttribute& attribute : primitive.attributes)

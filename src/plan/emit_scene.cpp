@@ -72,40 +72,16 @@ void count(const SharedPart& part, CompressionStats& stats) {
     }
 }
 
-// Triangles with two corners at one point draw nothing; kept, they would cost Draco's edgebreaker (which
-// drops them) a sequential primitive (the subpass scene has 4100 of them). Morphed and skinned primitives
-// keep theirs: their corners may part once they move.
-// A mesh of `variants` (another material over a stored geometry, emitScene) is dropped from alike, and counted
-// once with its geometry.
-void dropPointLikeTriangles(Scene& out, const std::vector<std::vector<int>>& variants, CompressionStats& stats) {
+// The triangles stored, a mesh of `variants` (another material over a stored geometry, emitScene) counted once
+// with its geometry. Those with two corners at one point (zero area) stay: they draw nothing, and viewers count
+// them (the glTF writer keeps them at one point, where Draco's edgebreaker would drop them).
+void countStoredTriangles(const Scene& out, const std::vector<std::vector<int>>& variants, CompressionStats& stats) {
     std::vector<char> counted(out.meshes.size(), 1);
     for (const std::vector<int>& meshes : variants)
         for (std::size_t i = 1; i < meshes.size(); ++i) counted[std::size_t(meshes[i])] = 0;
-    std::size_t pointLike = 0;
     for (std::size_t m = 0; m < out.meshes.size(); ++m)
-        for (Primitive& p : out.meshes[m].primitives) {
-            const std::size_t before = p.triangles.size();
-            const bool moves = !p.targets.empty() || std::any_of(p.attributes.begin(), p.attributes.end(),
-                                                                 [](const VertexAttribute& a) { return a.isJoints(); });
-            if (moves) {
-                stats.trianglesStored += counted[m] ? before : 0;
-                continue;
-            }
-            p.triangles.erase(std::remove_if(p.triangles.begin(), p.triangles.end(),
-                                             [&](const Triangle& t) {
-                                                 return p.positions[t[0]] == p.positions[t[1]] ||
-                                                        p.positions[t[1]] == p.positions[t[2]] ||
-                                                        p.positions[t[0]] == p.positions[t[2]];
-                                             }),
-                              p.triangles.end());
-            if (!counted[m]) continue;
-            pointLike += before - p.triangles.size();
-            stats.trianglesStored += p.triangles.size();
-        }
-    if (pointLike)
-        out.warnings.push_back(
-            std::to_string(pointLike) +
-            " stored triangles with two corners at one point (zero area, they draw nothing) left out");
+        if (counted[m])
+            for (const Primitive& p : out.meshes[m].primitives) stats.trianglesStored += p.triangles.size();
 }
 
 // A mesh far from the origin for its size (georeferenced coordinates; the lantern moved 10 km away) loses in
@@ -247,6 +223,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     std::vector<char> framed(analysis.tiles.size(), 0);
     for (const FramedTiles& group : plan.framedTiles)
         for (std::size_t t : group.tiles) framed[t] = group.node >= 0 ? 1 : 2;
+    for (const WorldPrimitive& placed : analysis.zeroArea) unique.add(placed.primitive);
     for (std::size_t t : plan.tilesAsTheyAre) {
         if (framed[t] == 1) continue;
         if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())
@@ -284,7 +261,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     if (plan.maxError > 0)
         shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceShare * analysis.diagonal, deviation,
                          variantsOf);
-    dropPointLikeTriangles(out, variantsOf, stats);
+    countStoredTriangles(out, variantsOf, stats);
     for (const Mesh& mesh : out.meshes)
         for (const Primitive& primitive : mesh.primitives) {
             stats.lineSegmentsKept += primitive.lines.size();

@@ -92,6 +92,14 @@ SceneAnalysis analyzeSoup(const Scene& input, std::vector<WorldPrimitive> soup, 
         analysis.soup.end());
     setAsideMeshesTilesCannotCarry(input, analysis);
     if (options.keepInputInstances) setAsideScaledInstances(input, analysis);
+    // Triangles of zero area stay out of the tiles: a region keeps one triangle of each orbit, and one fixed by a
+    // turn (at a lathe's pole) would deny it. They draw nothing but viewers count them: each primitive's are
+    // stored as they are, at one point.
+    for (WorldPrimitive& placed : analysis.soup)
+        if (auto split = withoutZeroAreaTriangles(placed.primitive)) {
+            analysis.zeroArea.push_back({zeroAreaPrimitive(placed.primitive, split->second), placed.node, placed.mesh});
+            placed.primitive = std::move(split->first);
+        }
     std::size_t triangles = 0;
     for (const WorldPrimitive& placed : analysis.soup) triangles += placed.primitive.triangles.size();
     if (options.progress) options.progress("splitting into tiles", triangles, "triangles");

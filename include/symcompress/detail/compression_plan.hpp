@@ -86,6 +86,9 @@ struct SceneAnalysis {
     // drawing a skinned mesh or one with morph targets.
     std::vector<int> animatedSubtrees;
     std::vector<WorldPrimitive> soup;
+    // The soup's triangles of zero area, taken out of it: each primitive's as many at one of its vertices
+    // (zeroAreaPrimitive), stored as they are.
+    std::vector<WorldPrimitive> zeroArea;
     std::vector<Tile> tiles;
     TileClassification classification;  // empty unless options.classify
     SurfaceDigest digest;
