@@ -97,3 +97,32 @@ TEST_CASE("triangulatePolygon skips repeated corners and degenerate polygons", "
     for (const Triangle& t : withRun) area += (run[t[1]] - run[t[0]]).cross(run[t[2]] - run[t[0]]).norm() / 2;
     CHECK(area == Approx(2));
 }
+
+TEST_CASE(
+    "triangulateFace cuts a convex face as viewers do, zero-area triangles and all, and others by "
+    "triangulatePolygon",
+    "[triangulate]") {
+    // The square with repeated corners: a fan of n - 2 = 4 triangles, two of them of zero area, as three.js's
+    // OBJLoader and X_ITE draw and count it; the area is the square's.
+    const std::vector<Eigen::Vector3d> squareWithRepeats = {{0, 0, 0}, {0, 0, 0}, {1, 0, 0},
+                                                            {1, 1, 0}, {0, 1, 0}, {0, 0, 0}};
+    const auto fan = triangulateFace(squareWithRepeats);
+    REQUIRE(fan.size() == 4);
+    double area = 0;
+    for (const Triangle& t : fan) {
+        CHECK(t[0] == 0);
+        area += (squareWithRepeats[t[1]] - squareWithRepeats[t[0]])
+                    .cross(squareWithRepeats[t[2]] - squareWithRepeats[t[0]])
+                    .z() /
+                2;
+    }
+    CHECK(area == Approx(1));
+    // A triangle of zero area stays, a collinear quad is two, fewer than 3 corners none.
+    CHECK(triangulateFace({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}}).size() == 1);
+    CHECK(triangulateFace({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}).size() == 2);
+    CHECK(triangulateFace({{0, 0, 0}, {1, 0, 0}}).empty());
+    // A concave L, whose fan from the corner (2, 0) would cover its notch: cut by ear clipping.
+    const std::vector<Eigen::Vector3d> l = {{2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {0, 0, 0}};
+    CHECK(triangulateFace(l) == triangulatePolygon(l));
+    CHECK(triangulateFace(l).size() == 4);
+}

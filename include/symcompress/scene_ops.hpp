@@ -99,10 +99,16 @@ void keepVertices(Primitive& primitive, const std::vector<std::uint32_t>& kept);
 // The triangles of zero area of a primitive, those with two corners at one point: they draw nothing, but viewers
 // count them, and Draco's edgebreaker cannot hold them. The writers keep them as as many triangles at `vertex`,
 // the first corner of the first of them.
+inline bool hasTwoCornersAtOnePoint(const std::vector<Eigen::Vector3d>& positions, const Triangle& t) {
+    return positions[t[0]] == positions[t[1]] || positions[t[1]] == positions[t[2]] ||
+           positions[t[0]] == positions[t[2]];
+}
 struct ZeroAreaTriangles {
     std::size_t count = 0;
     std::uint32_t vertex = 0;
 };
+// Them; nothing where the primitive has none.
+std::optional<ZeroAreaTriangles> zeroAreaTrianglesOf(const Primitive& primitive);
 // The primitive without them (its vertices that only they used left out too), and them; nothing where it has none.
 std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(const Primitive& primitive);
 // Them as a primitive of their one vertex (every attribute with it) and as many triangles at it.

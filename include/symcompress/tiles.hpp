@@ -29,6 +29,8 @@ struct TileOptions {
 
 // Welds positions within the tolerance, then groups triangles that share an edge (two welded vertices),
 // never across materials or sets of attributes (attributeSignature). Tiles come in order of their first triangle.
+// A triangle with two corners at one point (zero area: it draws nothing) belongs to no tile; the compression
+// keeps those apart (SceneAnalysis::zeroArea).
 std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const TileOptions& options = {});
 
 // The tile's triangles with their original (unwelded) vertices and attributes, taken from the soup:

@@ -235,7 +235,7 @@ Scene readObj(const fs::path& file) {
             if (topology == Topology::Lines)
                 for (std::size_t k = 0; k + 1 < local.size(); ++k) primitive.lines.push_back({local[k], local[k + 1]});
             if (topology != Topology::Triangles) continue;  // a point is its vertex
-            const auto triangles = triangulatePolygon(polygon);
+            const auto triangles = triangulateFace(polygon);
             if (triangles.empty()) ++degenerateFaces;
             for (const Triangle& t : triangles) primitive.triangles.push_back({local[t[0]], local[t[1]], local[t[2]]});
         } else if (keyword == "o" || keyword == "g") {
@@ -300,7 +300,8 @@ Scene readObj(const fs::path& file) {
     if (clampedColors) scene.warnings.push_back(name + ": vertex colour components outside [0, 1] clamped");
     if (curves) scene.warnings.push_back(name + ": " + std::to_string(curves) + " curve and surface statements skipped");
     if (degenerateFaces)
-        scene.warnings.push_back(name + ": " + std::to_string(degenerateFaces) + " faces with no area skipped");
+        scene.warnings.push_back(name + ": " + std::to_string(degenerateFaces) +
+                                 " faces with fewer than 3 corners or no area skipped");
     return scene;
 }
 

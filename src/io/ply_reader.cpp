@@ -251,7 +251,7 @@ Scene readPly(const fs::path& file) {
         }
         std::vector<Eigen::Vector3d> corners;
         for (std::uint32_t index : face) corners.push_back(primitive.positions[index]);
-        const auto triangles = triangulatePolygon(corners);
+        const auto triangles = triangulateFace(corners);
         if (triangles.empty()) ++skippedPolygons;
         for (const Triangle& local : triangles) primitive.triangles.push_back({face[local[0]], face[local[1]], face[local[2]]});
     }
@@ -269,7 +269,7 @@ Scene readPly(const fs::path& file) {
     dropIfNotFinite(primitive.colors, "colours");
     if (skippedPolygons)
         warnings.push_back(file.filename().string() + ": " + std::to_string(skippedPolygons) +
-                                 " faces with fewer than 3 distinct corners or no area skipped");
+                           " faces with fewer than 3 corners or no area skipped");
     if (otherElements)
         warnings.push_back(file.filename().string() + ": " + std::to_string(otherElements) +
                            " elements other than vertex and face ignored");

@@ -4,6 +4,7 @@
 #include "draco_grid.hpp"
 #include "geometry/bounds.hpp"
 #include "symcompress/io.hpp"
+#include "symcompress/scene_ops.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,12 +40,12 @@ double largestQuantizationError(const Primitive& primitive, int bits) {
 
 // Whether some triangle with three distinct corners has two in one cell at `bits`: edgebreaker drops it, and
 // the writer stores it in a sequential primitive of its own, which costs more than the bits saved. (Triangles
-// with two corners at one point collapse at any bits; the plan leaves them out.)
+// with two corners at one point collapse at any bits; the writer keeps those apart, at one point.)
 bool collapsesTriangles(const Primitive& primitive, int bits) {
     const DracoGrid grid(primitive, bits);
     const auto& p = primitive.positions;
     return std::any_of(primitive.triangles.begin(), primitive.triangles.end(), [&](const Triangle& t) {
-        return p[t[0]] != p[t[1]] && p[t[1]] != p[t[2]] && p[t[0]] != p[t[2]] && grid.collapses(primitive, t);
+        return !hasTwoCornersAtOnePoint(p, t) && grid.collapses(primitive, t);
     });
 }
 

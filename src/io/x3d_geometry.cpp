@@ -23,24 +23,6 @@ constexpr std::size_t kMaxTexcoordSets = 8;
 // A colour index where the line set's index lists hold none (a short colorIndex): not a colour of its Color node.
 constexpr std::int64_t kMissingColor = std::numeric_limits<std::int64_t>::max();
 
-// A face of an IndexedFaceSet whose `convex` is TRUE (the default), or of a triangle set, as the browser cuts it:
-// a fan from its first corner (X_ITE's triangulateConvexPolygon). Where a diagonal lies matters: a non-planar quad
-// bends along it, and the texture of a small alpha-blended card is sampled otherwise along it (the grass's cards:
-// 1.5% of their pixels). Triangles of zero area stay, as the browser draws and counts them (the writers keep
-// them so). None where the face is not convex after all (a fan triangle turns against the face's Newell normal),
-// which triangulatePolygon then cuts correctly.
-std::optional<std::vector<Triangle>> convexFan(const std::vector<Eigen::Vector3d>& polygon) {
-    Eigen::Vector3d newell = Eigen::Vector3d::Zero();
-    for (std::size_t k = 0; k < polygon.size(); ++k) newell += polygon[k].cross(polygon[(k + 1) % polygon.size()]);
-    std::vector<Triangle> fan;
-    for (std::uint32_t k = 1; k + 1 < polygon.size(); ++k) {
-        const Eigen::Vector3d normal = (polygon[k] - polygon[0]).cross(polygon[k + 1] - polygon[0]);
-        if (normal.dot(newell) < -1e-12 * normal.norm() * newell.norm()) return std::nullopt;
-        fan.push_back({0, k, k + 1});
-    }
-    return fan;
-}
-
 // One corner of a polyline: a point of the Coordinate node and the index of its colour (-1: none).
 struct LineCorner {
     std::int64_t point, color;
@@ -404,9 +386,12 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
             polygon.push_back(out.positions[entry->second]);
         }
         ++cornerInCoordIndex;  // the -1 that ended the face
-        std::optional<std::vector<Triangle>> fan;
-        if ((convex || !indexedFaces) && polygon.size() >= 3) fan = convexFan(polygon);
-        const std::vector<Triangle> triangles = fan ? *fan : triangulatePolygon(polygon);
+        // A face of an IndexedFaceSet whose `convex` is TRUE (the default), or of a triangle set, as the browser
+        // cuts it: a fan from its first corner (X_ITE's triangulateConvexPolygon), triangles of zero area too.
+        // Where a diagonal lies matters: a non-planar quad bends along it, and the texture of a small
+        // alpha-blended card is sampled otherwise along it (the grass's cards: 1.5% of their pixels).
+        const std::vector<Triangle> triangles =
+            convex || !indexedFaces ? triangulateFace(polygon) : triangulatePolygon(polygon);
         if (triangles.empty()) ++degenerateFaces_;
         for (const Triangle& t : triangles)
             out.triangles.push_back(ccw ? Triangle{local[t[0]], local[t[1]], local[t[2]]}

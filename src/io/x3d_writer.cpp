@@ -46,15 +46,15 @@ void appendVector(std::string& out, const Vector& v, int components, Round round
     }
 }
 
-// Whether rounding to `decimals` puts two corners of a triangle with three distinct corners at one point: a
-// reader would drop the triangle (symcompress's does) where a browser draws it.
+// Whether rounding to `decimals` puts two corners of a triangle with three distinct corners at one point: it
+// would shade nothing, and the browser would make its normal of nothing.
 bool roundingCollapses(const Primitive& primitive, int decimals) {
     auto round = [&](std::uint32_t v) {
         return primitive.positions[v].unaryExpr([&](double x) { return roundedDecimals(x, decimals); }).eval();
     };
     const auto& p = primitive.positions;
     return std::any_of(primitive.triangles.begin(), primitive.triangles.end(), [&](const Triangle& t) {
-        if (p[t[0]] == p[t[1]] || p[t[1]] == p[t[2]] || p[t[0]] == p[t[2]]) return false;
+        if (hasTwoCornersAtOnePoint(p, t)) return false;
         const Eigen::Vector3d a = round(t[0]), b = round(t[1]), c = round(t[2]);
         return a == b || b == c || a == c;
     });

@@ -150,16 +150,25 @@ void keepVertices(Primitive& primitive, const std::vector<std::uint32_t>& kept) 
         for (VertexAttribute& attribute : target) keepAttribute(attribute);
 }
 
+std::optional<ZeroAreaTriangles> zeroAreaTrianglesOf(const Primitive& primitive) {
+    std::optional<ZeroAreaTriangles> zeroArea;
+    for (const Triangle& t : primitive.triangles)
+        if (hasTwoCornersAtOnePoint(primitive.positions, t)) {
+            if (!zeroArea) zeroArea = ZeroAreaTriangles{0, t[0]};
+            ++zeroArea->count;
+        }
+    return zeroArea;
+}
+
 std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(const Primitive& primitive) {
     const std::vector<Eigen::Vector3d>& p = primitive.positions;
-    auto zeroArea = [&](const Triangle& t) { return p[t[0]] == p[t[1]] || p[t[1]] == p[t[2]] || p[t[0]] == p[t[2]]; };
-    const auto first = std::find_if(primitive.triangles.begin(), primitive.triangles.end(), zeroArea);
-    if (first == primitive.triangles.end()) return std::nullopt;
-    std::pair<Primitive, ZeroAreaTriangles> split{primitive, {0, (*first)[0]}};
+    const std::optional<ZeroAreaTriangles> zeroArea = zeroAreaTrianglesOf(primitive);
+    if (!zeroArea) return std::nullopt;
+    std::pair<Primitive, ZeroAreaTriangles> split{primitive, *zeroArea};
     std::vector<Triangle>& drawing = split.first.triangles;
-    const auto end = std::remove_if(drawing.begin(), drawing.end(), zeroArea);
-    split.second.count = std::size_t(drawing.end() - end);
-    drawing.erase(end, drawing.end());
+    drawing.erase(std::remove_if(drawing.begin(), drawing.end(),
+                                 [&](const Triangle& t) { return hasTwoCornersAtOnePoint(p, t); }),
+                  drawing.end());
     std::vector<std::uint32_t> newIndex(p.size(), 0), kept;
     for (const Triangle& t : drawing)
         for (std::uint32_t v : t) newIndex[v] = 1;

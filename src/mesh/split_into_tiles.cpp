@@ -48,15 +48,21 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
     const double diagonal = bounds.isEmpty() ? 0.0 : bounds.diagonal().norm();
     const std::vector<std::uint32_t> welded = weldPositions(positions, options.weldTolerance * diagonal);
 
-    // Every triangle's welded corners, in the soup's order.
+    // Every triangle's welded corners, in the soup's order, and whether it has two corners at one point (zero
+    // area: it belongs to no tile).
     std::vector<Triangle> weldedTriangles;
     weldedTriangles.reserve(triangleCount);
+    std::vector<char> zeroArea;
+    zeroArea.reserve(triangleCount);
     {
         std::uint32_t first = 0;
         for (const WorldPrimitive& world : soup) {
-            for (const Triangle& triangle : world.primitive.triangles)
-                weldedTriangles.push_back({welded[first + triangle[0]], welded[first + triangle[1]], welded[first + triangle[2]]});
-            first += static_cast<std::uint32_t>(world.primitive.positions.size());
+            const std::vector<Eigen::Vector3d>& p = world.primitive.positions;
+            for (const Triangle& t : world.primitive.triangles) {
+                weldedTriangles.push_back({welded[first + t[0]], welded[first + t[1]], welded[first + t[2]]});
+                zeroArea.push_back(hasTwoCornersAtOnePoint(p, t));
+            }
+            first += static_cast<std::uint32_t>(p.size());
         }
     }
     // Each triangle's kind: its material and the names of its other attributes (attributeSignature), which a tile
@@ -85,6 +91,7 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
         for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t)
             for (std::uint32_t v : weldedTriangles[t]) incident[fill[v]++] = t;
         for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t) {
+            if (zeroArea[t]) continue;
             const Triangle& triangle = weldedTriangles[t];
             for (int corner = 0; corner < 3; ++corner) {
                 const std::uint32_t a = triangle[corner], b = triangle[(corner + 1) % 3];
@@ -93,7 +100,8 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
                     const std::uint32_t u = incident[i];
                     if (u >= t) continue;  // each pair once; a triangle listed twice at a (a collapsed corner) is harmless
                     const Triangle& other = weldedTriangles[u];
-                    if ((other[0] == b || other[1] == b || other[2] == b) && kinds[u] == kinds[t]) sets.unite(u, t);
+                    if ((other[0] == b || other[1] == b || other[2] == b) && kinds[u] == kinds[t] && !zeroArea[u])
+                        sets.unite(u, t);
                 }
             }
         }
@@ -106,6 +114,7 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
         std::uint32_t p = 0, local = 0;  // the triangle's source: primitive p, its triangle `local`
         for (std::uint32_t t = 0; t < weldedTriangles.size(); ++t, ++local) {
             while (local == soup[p].primitive.triangles.size()) ++p, local = 0;
+            if (zeroArea[t]) continue;
             const std::uint32_t root = sets.find(t);
             if (tileOfRoot[root] == kNone) {
                 tileOfRoot[root] = static_cast<std::uint32_t>(tiles.size());

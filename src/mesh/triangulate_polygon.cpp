@@ -102,4 +102,16 @@ std::vector<Triangle> triangulatePolygon(const std::vector<Eigen::Vector3d>& cor
     return triangles;
 }
 
+std::vector<Triangle> triangulateFace(const std::vector<Eigen::Vector3d>& corners) {
+    Eigen::Vector3d newell = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < corners.size(); ++k) newell += corners[k].cross(corners[(k + 1) % corners.size()]);
+    std::vector<Triangle> fan;
+    for (std::uint32_t k = 1; k + 1 < corners.size(); ++k) {
+        const Eigen::Vector3d normal = (corners[k] - corners[0]).cross(corners[k + 1] - corners[0]);
+        if (normal.dot(newell) < -1e-12 * normal.norm() * newell.norm()) return triangulatePolygon(corners);
+        fan.push_back({0, k, k + 1});
+    }
+    return fan;
+}
+
 }  // namespace symcompress

@@ -86,8 +86,8 @@ struct SceneAnalysis {
     // drawing a skinned mesh or one with morph targets.
     std::vector<int> animatedSubtrees;
     std::vector<WorldPrimitive> soup;
-    // The soup's triangles of zero area, taken out of it: each primitive's as many at one of its vertices
-    // (zeroAreaPrimitive), stored as they are.
+    // The soup's triangles of zero area, which no tile holds: each primitive's as many at one of its vertices,
+    // without a material or other attributes, stored as they are.
     std::vector<WorldPrimitive> zeroArea;
     std::vector<Tile> tiles;
     TileClassification classification;  // empty unless options.classify
