@@ -617,4 +617,26 @@ TEST_CASE(
         CHECK(runJson("node " + quoted(sharedDir() / "bench/x3d_count.js") + " " + quoted(x3d) + " --json")["tris"] ==
               16);
     if (renderAvailable()) checkRendersSame(folder / "plain.glb", folder / "draco.glb", "a");
+    // Skinned, two corners at one point may part once the joints move them: the triangles stay as they are.
+    Primitive skinned = cube;
+    skinned.attributes.push_back({"JOINTS_0", 4, {}});
+    skinned.attributes.push_back({"WEIGHTS_0", 4, {}});
+    for (std::size_t v = 0; v < skinned.positions.size(); ++v) {
+        skinned.attributes[0].values.insert(skinned.attributes[0].values.end(), {double(v == 8), 0, 0, 0});
+        skinned.attributes[1].values.insert(skinned.attributes[1].values.end(), {1, 0, 0, 0});
+    }
+    writeScene(sceneOfOneMesh("skinned", skinned), folder / "skinned.glb", {});
+    const Scene back = readScene(folder / "skinned.glb");
+    CHECK(glbJson(folder / "skinned.glb")["meshes"][0]["primitives"].size() == 2);  // edgebreaker's and sequential
+    CHECK(worldMesh(back).triangles.size() == 16);
+    // The triangles {3, 8, 6} and {8, 3, 3}: corners at one point that keep their own joints.
+    std::size_t parted = 0;
+    for (const Primitive& p : back.meshes.at(0).primitives)
+        for (const Triangle& t : p.triangles)
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+                parted += p.positions[a] == p.positions[b] &&
+                          p.attributes.at(0).values[4 * a] != p.attributes.at(0).values[4 * b];
+            }
+    CHECK(parted == 3);
 }

@@ -485,7 +485,12 @@ EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions&
         key = fingerprintOf(primitive, options);
         if (std::optional<EncodedPrimitive> found = options.encodings->find(*key)) return std::move(*found);
     }
-    const std::optional<std::pair<Primitive, ZeroAreaTriangles>> split = withoutZeroAreaTriangles(primitive);
+    // A skinned primitive's corners at one point may part once it moves: its triangles stay as they are (those
+    // edgebreaker would drop in a sequential part, below).
+    const bool skinned = std::any_of(primitive.attributes.begin(), primitive.attributes.end(),
+                                     [](const VertexAttribute& a) { return a.isJoints(); });
+    const std::optional<std::pair<Primitive, ZeroAreaTriangles>> split =
+        skinned ? std::nullopt : withoutZeroAreaTriangles(primitive);
     const Primitive& drawing = split ? split->first : primitive;
     if (split) encoded.zeroArea = zeroAreaPart(primitive, split->second);
     if (drawing.triangles.empty()) {
