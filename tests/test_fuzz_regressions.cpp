@@ -144,6 +144,11 @@ TEST_CASE("glTF: indices without a buffer view are zeros, as the specification s
     writeTextFile(folder / "huge.gltf", file(std::size_t(1) << 30, 5125));
     CHECK_THAT(readError(folder / "huge.gltf"),
                Catch::Contains("huge.gltf: accessor 1: 1073741824 indices without a buffer view, more than"));
+    // A component type that is no number is tinygltf's to refuse, not a JSON exception.
+    std::string typeless = file(3, 5121);
+    typeless.replace(typeless.rfind("5121"), 4, "\"byte\"");
+    writeTextFile(folder / "typeless.gltf", typeless);
+    CHECK_THAT(readError(folder / "typeless.gltf"), Catch::Contains("typeless.gltf"));
 }
 
 TEST_CASE("glTF: a COLOR_0 accessor that does not exist is a clear error and not std::out_of_range", "[io][fuzz]") {

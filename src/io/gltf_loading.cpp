@@ -186,10 +186,9 @@ bool giveZerosABufferView(nlohmann::json& json, const std::vector<std::size_t>& 
     std::uint64_t bytes = 0;
     for (std::size_t a : accessors) {
         const nlohmann::json& accessor = json["accessors"][a];
-        const int size = accessor.value("componentType", 0) == 5121   ? 1
-                         : accessor.value("componentType", 0) == 5123 ? 2
-                         : accessor.value("componentType", 0) == 5125 ? 4
-                                                                      : 0;
+        const auto type = accessor.find("componentType");
+        const int componentType = type != accessor.end() && type->is_number_integer() ? type->get<int>() : 0;
+        const int size = componentType == 5121 ? 1 : componentType == 5123 ? 2 : componentType == 5125 ? 4 : 0;
         if (!size || !accessor.contains("count") || !accessor["count"].is_number_unsigned()) continue;  // tinygltf says
         const std::uint64_t count = accessor["count"].get<std::uint64_t>();
         if (count > kMostZeroBytes / std::uint64_t(size))
