@@ -96,13 +96,15 @@ std::size_t splitLinesAndPoints(Scene& scene);
 // attribute and morph target with them. Triangles and lines are left to the caller to renumber.
 void keepVertices(Primitive& primitive, const std::vector<std::uint32_t>& kept);
 
-// The triangles of zero area of a primitive, those with two corners at one point: they draw nothing, but viewers
-// count them, and Draco's edgebreaker cannot hold them. The writers keep them as as many triangles at `vertex`,
-// the first corner of the first of them.
+// Whether triangle t has two corners at one point: zero area, it draws nothing, but viewers count it, and Draco's
+// edgebreaker cannot hold it.
 inline bool hasTwoCornersAtOnePoint(const std::vector<Eigen::Vector3d>& positions, const Triangle& t) {
     return positions[t[0]] == positions[t[1]] || positions[t[1]] == positions[t[2]] ||
            positions[t[0]] == positions[t[2]];
 }
+
+// A primitive's triangles of zero area: how many, and the first corner of the first of them, at which the writers
+// keep them all.
 struct ZeroAreaTriangles {
     std::size_t count = 0;
     std::uint32_t vertex = 0;
@@ -111,8 +113,6 @@ struct ZeroAreaTriangles {
 std::optional<ZeroAreaTriangles> zeroAreaTrianglesOf(const Primitive& primitive);
 // The primitive without them (its vertices that only they used left out too), and them; nothing where it has none.
 std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(const Primitive& primitive);
-// Them as a primitive of their one vertex (every attribute with it) and as many triangles at it.
-Primitive zeroAreaPrimitive(const Primitive& primitive, const ZeroAreaTriangles& zeroArea);
 
 // The names and sizes of the primitive's other attributes (Primitive::attributes), as one key ("TANGENT:4;"):
 // primitives or tiles with different keys are never merged into one.

@@ -245,9 +245,9 @@ struct DracoPart {
 
 // A Draco-coded primitive's triangles with two corners at one point, which edgebreaker drops (its corner table
 // joins equal positions): zero area, they draw nothing (unless skinned: those stay as they are). Kept as as many
-// triangles of zero area at one corner of theirs, `vertex` (a primitive of that one vertex, every attribute with it, no
-// triangles), in a glTF primitive whose indices are zeros, an accessor without a buffer view: viewers draw and count
-// them as before.
+// triangles of zero area at one corner of theirs, `vertex` (a primitive of that one vertex, its position and
+// texture coordinates, no triangles), in a glTF primitive whose indices are zeros, an accessor without a buffer
+// view: viewers draw and count them as before.
 struct ZeroAreaPart {
     Primitive vertex;
     std::size_t triangles = 0;

@@ -445,20 +445,18 @@ Json writeZeroAreaPrimitive(GltfBuilder& builder, const ZeroAreaPart& part) {
                             {{"componentType", kUnsignedByte}, {"count", 3 * part.triangles}, {"type", "SCALAR"}})}};
 }
 
-// A primitive's triangles of zero area at one vertex (zeroAreaPrimitive). What shades a triangle shades none of
-// them: texture coordinates stay for the validator (a material's textures need their sets), joints and weights
-// for a skinned node, the rest goes.
+// A primitive's triangles of zero area at one vertex, that vertex alone. What shades a triangle shades none of
+// them: its texture coordinates stay for the validator (a material's textures need their sets), the rest goes.
+// (A skinned primitive keeps its triangles of zero area as they are: encodePrimitive.)
 ZeroAreaPart zeroAreaPart(const Primitive& primitive, const ZeroAreaTriangles& zeroArea) {
-    ZeroAreaPart part{zeroAreaPrimitive(primitive, zeroArea), zeroArea.count};
+    ZeroAreaPart part{primitive, zeroArea.count};
     Primitive& vertex = part.vertex;
     vertex.triangles.clear();
+    keepVertices(vertex, {zeroArea.vertex});
     vertex.normals.clear();
     vertex.colors.clear();
     vertex.attributes.erase(std::remove_if(vertex.attributes.begin(), vertex.attributes.end(),
-                                           [](const VertexAttribute& a) {
-                                               return a.name.rfind("TEXCOORD_", 0) != 0 && !a.isJoints() &&
-                                                      a.name.rfind("WEIGHTS_", 0) != 0;
-                                           }),
+                                           [](const VertexAttribute& a) { return a.name.rfind("TEXCOORD_", 0) != 0; }),
                             vertex.attributes.end());
     return part;
 }

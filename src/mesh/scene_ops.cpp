@@ -180,13 +180,6 @@ std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(
     return split;
 }
 
-Primitive zeroAreaPrimitive(const Primitive& primitive, const ZeroAreaTriangles& zeroArea) {
-    Primitive vertex = primitive;
-    vertex.triangles.assign(zeroArea.count, Triangle{0, 0, 0});
-    keepVertices(vertex, {zeroArea.vertex});
-    return vertex;
-}
-
 std::string attributeSignature(const Primitive& primitive) {
     std::string signature;
     for (const VertexAttribute& attribute : primitive.attributes)
