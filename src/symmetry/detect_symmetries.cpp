@@ -46,8 +46,11 @@ constexpr double kKnownElement = 2e-3;
 constexpr std::size_t kScreeningPoints = 2000;
 // The sample points whose largest distance bounds from below the d_A of a fold the moments cannot tell.
 constexpr std::size_t kFitLowerBoundPoints = 64;
-// Folds whose rotation fits within this factor of the best-fitting fold's are preferred (see below).
+// Folds whose rotation fits within this factor of the best-fitting fold's are preferred (see below), and
+// folds within this share of the tolerance fit as well as any: a 96-sector lathe in float32 is 4-fold to the
+// last bit but 96-fold only to 3e-8 of its diagonal.
 constexpr double kGoodFitFactor = 10;
+constexpr double kExactFitShare = 1e-2;
 // Beyond this many folds passing the preliminary bound about one axis, none is refined (see below).
 constexpr std::size_t kMaxRefinedFolds = 8;
 // A turn (in turns) that is no multiple of 1/n for any small n: 1 - 1/golden ratio.
@@ -401,20 +404,44 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     std::vector<double> generatorDeviations;  // generators[i]'s d_A, as measured when it was accepted
     std::vector<Eigen::Vector3d> revolutionAxes;
     std::vector<Eigen::Matrix3d> known{Eigen::Matrix3d::Identity()};  // the group the generators so far make
+    // Whether `closed` turns by a smaller angle than `known` does about some rotation axis of `known`.
+    auto refinesAFold = [&](const std::vector<Eigen::Matrix3d>& closed) {
+        auto rotationsOf = [](const std::vector<Eigen::Matrix3d>& elements) {
+            std::vector<Symmetry> rotations;
+            for (const Eigen::Matrix3d& g : elements)
+                if (Symmetry r = describeOrthogonal(g); r.kind == Symmetry::Kind::Rotation) rotations.push_back(r);
+            return rotations;
+        };
+        auto about = [](const Symmetry& r, const Eigen::Vector3d& axis) {
+            return std::abs(r.axis.dot(axis)) > 1 - 1e-6;
+        };
+        std::vector<Symmetry> smallestTurns;  // of `known`, one for each axis
+        for (const Symmetry& r : rotationsOf(known)) {
+            const auto same = std::find_if(smallestTurns.begin(), smallestTurns.end(),
+                                           [&](const Symmetry& t) { return about(t, r.axis); });
+            if (same == smallestTurns.end())
+                smallestTurns.push_back(r);
+            else if (r.angle < same->angle)
+                *same = r;
+        }
+        const std::vector<Symmetry> closedRotations = rotationsOf(closed);
+        for (const Symmetry& smallest : smallestTurns)
+            for (const Symmetry& r : closedRotations)
+                if (about(r, smallest.axis) && r.angle < smallest.angle - 1e-3) return true;
+        return false;
+    };
     auto inKnown = [&](const Eigen::Matrix3d& map) {
         return std::any_of(known.begin(), known.end(), [&](const Eigen::Matrix3d& g) { return (g - map).norm() < kKnownElement; });
     };
     // A map already in the group found so far needs no test (several axes lead to the same elements); a
     // new one is screened on a few sample points, refined, and verified on all of them.
     const std::size_t limit = 4 * std::size_t(options.maxFold) + 8;
-    bool overflow = false;  // the accepted maps make no finite group: stop looking
     // Near misses tend to fail at the same sample points: each axis's work remembers them (`hints`).
     // `refinementsLeft`, where given, counts down the refinements that may still fail about one axis: once
     // none is left, maps pass only as they are. A shape within the tolerance of a surface of revolution takes
     // a fold of hundreds, and with it hundreds of directions across the axis, each passing the screening and
     // failing only once refined (an unevenly tessellated roller: 1600 refinements, 15 s).
     auto tryAccept = [&](const Eigen::Matrix3d& map, RejectingPoints* hints, int* refinementsLeft = nullptr) {
-        if (overflow) return false;
         if (inKnown(map)) return true;
         if (verifier.deviation(map, preliminary, kScreeningPoints, hints) > preliminary) return false;
         bool refine = !refinementsLeft || *refinementsLeft > 0;
@@ -422,45 +449,90 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         // Refined on a few sample points onto an element found already, it is that element: refined and verified in
         // full, it would add nothing.
         if (refine && inKnown(rough)) return true;
+        // A map that would make a finer fold about an axis of the group so far must fit exactly, not only within the
+        // tolerance (see below): a near miss fails that at its first sample points.
+        auto withRough = generators;
+        withRough.push_back(rough);
+        const double bound = refinesAFold(closeGroup(withRough, limit)) ? kExactFitShare * tolerance : tolerance;
         // A near miss fails as well refined on a few sample points as on all of them: one that fails that way by a
         // margin is not refined in full (a roller near a surface of revolution spent half its time on those).
-        const bool failsRoughly = refine && verifier.deviation(rough, kRoughMargin * tolerance, kScreeningPoints,
-                                                               hints) > kRoughMargin * tolerance;
+        const bool failsRoughly =
+            refine && verifier.deviation(rough, kRoughMargin * bound, kScreeningPoints, hints) > kRoughMargin * bound;
         if (failsRoughly) refine = false;
         Eigen::Matrix3d best = refine ? refined(map) : map;
-        double deviation = verifier.deviation(best, tolerance, SIZE_MAX, hints);
-        if (deviation > tolerance && refine) {
-            deviation = verifier.deviation(map, tolerance, SIZE_MAX, hints);
+        double deviation = verifier.deviation(best, bound, SIZE_MAX, hints);
+        if (deviation > bound && refine) {
+            deviation = verifier.deviation(map, bound, SIZE_MAX, hints);
             best = map;
         }
-        if (deviation > tolerance && (refine || failsRoughly) && refinementsLeft) --*refinementsLeft;
-        if (deviation > tolerance) return false;
-        generators.push_back(best);
-        generatorDeviations.push_back(deviation);
+        auto rejected = [&] {
+            if ((refine || failsRoughly) && refinementsLeft) --*refinementsLeft;
+            return false;
+        };
+        if (deviation > bound) return rejected();
         // A map refined onto an element the group already has adds nothing to it (a nearly round shape's
         // directions across its axis: dozens of them, each closing a group of hundreds again).
-        if (!inKnown(best)) known = closeGroup(generators, limit);
-        if (known.size() > limit) overflow = true;
+        if (inKnown(best)) return true;
+        generators.push_back(best);
+        std::vector<Eigen::Matrix3d> closed = closeGroup(generators, limit);
+        // The symmetries of a bounded shape make a finite group: a map that, with those verified before it, makes
+        // none is a near miss, not a symmetry. So is one that only fits loosely and makes a finer fold about an axis
+        // of the group so far: on a shape near a surface of revolution, a mirror 0.09 degrees off one of a
+        // 128-sector lathe's fits within 2.5e-5 of its diagonal, and so does one halfway between two of a
+        // 256-sector lathe's mirrors, which with them makes a turn by half a sector.
+        if (closed.size() > limit || closed.size() % known.size() != 0 ||
+            (deviation > kExactFitShare * tolerance && refinesAFold(closed))) {
+            generators.pop_back();
+            return rejected();
+        }
+        generatorDeviations.push_back(deviation);
+        known = std::move(closed);
         return true;
     };
 
     // Every map the moments allow about each axis, tested on the shape; the largest fold per axis.
     const RingLayout layout(2 * maxOrder + 2);
     withThreads(options.threads, [&] {
+        // The largest fold up to maxFold whose rotation about the axis, and its power nearest a generic turn,
+        // fit within `bound`, or 1. Near a surface of revolution a turn close to the fold's fits nearly as well
+        // as the fold's (a 256-sector lathe turned by 1/260 moves its points along its surface), its powers do not.
+        // A fold's largest distance over the first sample points bounds its d_A from below.
+        auto largestFoldWithin = [&](const Eigen::Vector3d& axis, double bound, RejectingPoints& hints) {
+            auto fits = [&](double turn) {
+                const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi * turn);
+                return verifier.deviation(rotation, bound, kFitLowerBoundPoints, &hints) <= bound &&
+                       verifier.deviation(rotation, bound, SIZE_MAX, &hints) <= bound;
+            };
+            for (int n = options.maxFold; n >= 2; --n)
+                if (const int power = int(std::lround(n * kGenericTurn));
+                    fits(1.0 / n) && (power % n == 0 || fits(double(power) / n)))
+                    return n;
+            return 1;
+        };
         auto examineAxis = [&](const Eigen::Vector3d& axis, FunctionOrder& order) {
             const AxisView view(tests, momentTolerances, axis, layout, order);
             RejectingPoints hints;                  // decisions only: never for a distance that is reported
             const int modes = view.presentModes();  // the moments allow n-fold rotations for n dividing it
             std::vector<int> folds;
+            bool nearRevolution = false;
             if (modes == 0) {  // invariant under every rotation about the axis: find n on the shape
                 // Unless the shape itself is, within the tolerance, invariant under a rotation by an angle
-                // that belongs to no small fold: a surface of revolution has no finite fold to report.
-                if (verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), tolerance, SIZE_MAX, &hints) <=
-                    tolerance) {
-                    revolutionAxes.push_back(axis);
-                    return;
+                // that belongs to no small fold. Its tessellation's fold, if any, is the largest that fits far
+                // better than such a turn (a 256-sector lathe in float32: 3e-8 of its diagonal against 2e-5);
+                // a surface of revolution has none to report.
+                if (const double generic =
+                        verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), tolerance, SIZE_MAX, &hints);
+                    generic <= tolerance) {
+                    const int n = largestFoldWithin(axis, generic / kGoodFitFactor, hints);
+                    if (n == 1) {
+                        revolutionAxes.push_back(axis);
+                        return;
+                    }
+                    folds = {n};
+                    nearRevolution = true;
+                } else {
+                    for (int n = options.maxFold; n >= 2; --n) folds.push_back(n);
                 }
-                for (int n = options.maxFold; n >= 2; --n) folds.push_back(n);
             } else {
                 folds = divisorsDescending(modes);
             }
@@ -472,7 +544,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 return fullFit[n] = verifier.deviation(rotationAbout(axis, 2 * kPi / n), tolerance, SIZE_MAX, &hints);
             };
             bool measureWhenTried = false;  // `folds` holds folds not yet measured in full
-            if (modes == 0) {
+            if (modes == 0 && !nearRevolution) {
                 // Folds the moments cannot tell. A fold's largest distance over the first sample points is a lower
                 // bound of its d_A: a fold above the bound it is measured against fails without more.
                 std::vector<std::pair<double, int>> lowerBounds;  // (lower bound, n), up to the preliminary bound
@@ -509,7 +581,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 if (!strict) {
                     double bestFit = std::numeric_limits<double>::infinity();
                     for (const auto& [n, d] : preliminaryFit) bestFit = std::min(bestFit, d);
-                    const double good = std::max(kGoodFitFactor * bestFit, 1e-12 * group.diagonal);
+                    const double good = std::max(kGoodFitFactor * bestFit, kExactFitShare * tolerance);
                     for (const auto& [n, d] : preliminaryFit) (d <= good ? best : others).push_back(n);
                     bestFirst(best, others);
                 } else {
@@ -530,7 +602,8 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                             if (const double d = measuredFit(n); d <= tolerance) bestFit = std::min(bestFit, d);
                         }
                     }
-                    const double good = std::min(std::max(kGoodFitFactor * bestFit, 1e-12 * group.diagonal), tolerance);
+                    const double good =
+                        std::min(std::max(kGoodFitFactor * bestFit, kExactFitShare * tolerance), tolerance);
                     for (const auto& [lower, n] : lowerBounds)
                         (good == tolerance || (lower <= good && measuredFit(n) <= good) ? best : others).push_back(n);
                     bestFirst(best, others);
@@ -592,11 +665,8 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     });
 
     std::vector<Eigen::Matrix3d> elements = closeGroup(generators, limit);
-    if (elements.size() > limit) {
-        group.warnings.push_back("the maps accepted at this tolerance do not form a finite group; only the identity is reported "
-                                 "(try a tighter --tolerance)");
-        elements.resize(1);
-    }
+    if (elements.size() > limit) elements = known;  // the same group, within the rounding of its products
+    elements = averagedOverGroup(elements);
     group.name = pointGroupName(elements);
 
     // Every element with its deviation, and the fold of each rotation axis.

@@ -4,6 +4,7 @@
 #include "point_group_closure.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
@@ -92,40 +93,67 @@ Symmetry describeOrthogonal(const Eigen::Matrix3d& linear) {
     return s;
 }
 
+namespace {
+
+double projection(const Eigen::Matrix3d& m) {
+    static const Eigen::Matrix3d weights =
+        (Eigen::Matrix3d() << 0.31, -0.47, 0.12, 0.58, 0.23, -0.19, -0.36, 0.27, 0.21).finished().normalized();
+    return weights.cwiseProduct(m).sum();
+}
+
+}  // namespace
+
+ElementIndex::ElementIndex(const std::vector<Eigen::Matrix3d>& elements, double window)
+    : elements_(elements), window_(window) {
+    for (std::size_t i = 0; i < elements.size(); ++i) added(i);
+}
+
+std::size_t ElementIndex::find(const Eigen::Matrix3d& m) const {
+    const double at = projection(m);
+    const auto last = byProjection_.upper_bound(at + window_);
+    for (auto it = byProjection_.lower_bound(at - window_); it != last; ++it)
+        if ((elements_[it->second] - m).norm() < window_) return it->second;
+    return SIZE_MAX;
+}
+
+void ElementIndex::added(std::size_t i) { byProjection_.emplace(projection(elements_[i]), i); }
+
 std::vector<Eigen::Matrix3d> closeGroup(std::vector<Eigen::Matrix3d> generators, std::size_t limit) {
     std::vector<Eigen::Matrix3d> group;
-    // The elements by one projection of their entries (weights of unit length): two within kSameElement of
-    // each other project within kSameElement (Cauchy-Schwarz), so only those need comparing. The detector
-    // closes the group again at every map it accepts, and a linear search made that quadratic in the group's
-    // order (the house's round parts: a fifth of its time).
-    std::multimap<double, std::size_t> byProjection;
-    auto projection = [](const Eigen::Matrix3d& m) {
-        static const Eigen::Matrix3d weights =
-            (Eigen::Matrix3d() << 0.31, -0.47, 0.12, 0.58, 0.23, -0.19, -0.36, 0.27, 0.21).finished().normalized();
-        return weights.cwiseProduct(m).sum();
-    };
-    auto contains = [&](const Eigen::Matrix3d& m) {
-        const double at = projection(m);
-        const auto last = byProjection.upper_bound(at + kSameElement);
-        for (auto it = byProjection.lower_bound(at - kSameElement); it != last; ++it)
-            if ((group[it->second] - m).norm() < kSameElement) return true;
-        return false;
-    };
+    ElementIndex index(group, kSameElement);
     auto add = [&](const Eigen::Matrix3d& m) {
-        byProjection.emplace(projection(m), group.size());
+        if (index.find(m) != SIZE_MAX) return;
         group.push_back(m);
+        index.added(group.size() - 1);
     };
     add(Eigen::Matrix3d::Identity());
-    for (const auto& g : generators)
-        if (!contains(g)) add(g);
+    for (const auto& g : generators) add(g);
     // Products of everything with the generators until nothing new appears.
     for (std::size_t i = 0; i < group.size() && group.size() <= limit; ++i)
         for (const auto& g : generators) {
-            const Eigen::Matrix3d product = group[i] * g;
-            if (!contains(product)) add(product);
+            add(group[i] * g);
             if (group.size() > limit) break;
         }
     return group;
+}
+
+std::vector<Eigen::Matrix3d> averagedOverGroup(const std::vector<Eigen::Matrix3d>& group) {
+    // Each g_k becomes the orthogonal factor of the mean over j of g_(kj) g_j^T, where g_(kj) is the element
+    // nearest g_k g_j: for elements about one axis whose angles drifted by e_k, the mean angle is
+    // k theta + mean(e_(k+j) - e_j) = k theta, exactly where the table is right.
+    std::vector<Eigen::Matrix3d> averaged(group.size());
+    const ElementIndex index(group, kSameElement);
+    for (std::size_t k = 0; k < group.size(); ++k) {
+        Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+        for (const Eigen::Matrix3d& g : group) {
+            const std::size_t product = index.find(group[k] * g);
+            if (product == SIZE_MAX) return group;  // not a group within kSameElement: left as it is
+            sum += group[product] * g.transpose();
+        }
+        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        averaged[k] = svd.matrixU() * svd.matrixV().transpose();
+    }
+    return averaged;
 }
 
 std::string pointGroupName(const std::vector<Eigen::Matrix3d>& group) {

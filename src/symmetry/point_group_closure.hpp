@@ -3,12 +3,39 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
+#include <map>
 #include <vector>
 
 namespace symcompress {
 
+// Orthogonal matrices found by their distance to a given one, in logarithmic time: each is filed under one
+// projection of its entries (weights of unit length), and two within `window` (Frobenius) of each other project
+// within `window` (Cauchy-Schwarz), so only those are compared. The detector closes the group again at every
+// map it accepts, and a linear search made that quadratic in the group's order (the house's round parts: a
+// fifth of its time).
+class ElementIndex {
+public:
+    // `elements` must outlive the index; elements appended to it later are filed by `added`.
+    ElementIndex(const std::vector<Eigen::Matrix3d>& elements, double window);
+    // The index of the first element filed within `window` of m, or SIZE_MAX.
+    std::size_t find(const Eigen::Matrix3d& m) const;
+    void added(std::size_t i);  // files elements[i]
+
+private:
+    const std::vector<Eigen::Matrix3d>& elements_;
+    double window_;
+    std::multimap<double, std::size_t> byProjection_;
+};
+
 // Identity first, then the generators, then their products; stops growing past `limit` elements (a set of
 // maps that is not a finite group, which verified symmetries of a bounded shape always are).
 std::vector<Eigen::Matrix3d> closeGroup(std::vector<Eigen::Matrix3d> generators, std::size_t limit);
+
+// The same elements, made a group to rounding: products of refined maps drift with their depth (a 200-fold
+// axis closed from two mirrors 0.9 degrees apart: its half turn is a product of 100), until the products of
+// two elements lie farther than the region code's 1e-5 from every element. Averaging each element over the
+// group removes the drift. A set that is not a group within closeGroup's tolerance comes back as it is.
+std::vector<Eigen::Matrix3d> averagedOverGroup(const std::vector<Eigen::Matrix3d>& group);
 
 }  // namespace symcompress
