@@ -98,8 +98,13 @@ Json batchNode(int mesh, const Json& attributes, bool mirrored, const Eigen::Vec
     Json node = {{"mesh", mesh}, {"extensions", {{kExtension, {{"attributes", attributes}}}}}};
     if (!origin.isZero(0)) node["translation"] = {origin.x(), origin.y(), origin.z()};
     if (mirrored) node["scale"] = {-1, 1, 1};
-    if (std::any_of(names.begin(), names.end(), [](const std::string& name) { return !name.empty(); }))
-        node["extras"]["instanceNames"] = names;  // parallel to the instances; the reader gives them back
+    // Parallel to the instances, or one name for all of them (a lathe's 256 sectors, each named after its
+    // node); the reader gives them back.
+    if (std::all_of(names.begin(), names.end(), [&](const std::string& name) { return name == names.front(); })) {
+        if (!names.empty() && !names.front().empty()) node["extras"]["instanceNames"] = names.front();
+    } else {
+        node["extras"]["instanceNames"] = names;
+    }
     return node;
 }
 

@@ -419,15 +419,20 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
 namespace {
 
 // The names symcompress keeps for a batch's instances (extras {"instanceNames": [...]}, one string per
-// instance), taken out of the batch node's extras; none where the extras hold no such list of `count` strings.
+// instance, or one string for every instance), taken out of the batch node's extras; none where the extras
+// hold no such string or list of `count` strings.
 std::vector<std::string> takeInstanceNames(Node& batch, std::size_t count) {
     nlohmann::json extras = nlohmann::json::parse(batch.extrasJson, nullptr, false);
     if (!extras.is_object() || !extras.contains("instanceNames")) return {};
     const nlohmann::json& list = extras["instanceNames"];
-    if (!list.is_array() || list.size() != count ||
-        !std::all_of(list.begin(), list.end(), [](const nlohmann::json& name) { return name.is_string(); }))
+    std::vector<std::string> names;
+    if (list.is_string())
+        names.assign(count, list.get<std::string>());
+    else if (list.is_array() && list.size() == count &&
+             std::all_of(list.begin(), list.end(), [](const nlohmann::json& name) { return name.is_string(); }))
+        names = list.get<std::vector<std::string>>();
+    else
         return {};
-    std::vector<std::string> names = list.get<std::vector<std::string>>();
     extras.erase("instanceNames");
     batch.extrasJson = extras.empty() ? std::string() : extras.dump();
     return names;
