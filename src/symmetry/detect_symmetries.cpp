@@ -498,15 +498,16 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         // as the fold's (a 256-sector lathe turned by 1/260 moves its points along its surface), its powers do not.
         // A fold's largest distance over the first sample points bounds its d_A from below.
         auto largestFoldWithin = [&](const Eigen::Vector3d& axis, double bound, RejectingPoints& hints) {
-            auto fits = [&](double turn) {
-                const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi * turn);
-                return verifier.deviation(rotation, bound, kFitLowerBoundPoints, &hints) <= bound &&
-                       verifier.deviation(rotation, bound, SIZE_MAX, &hints) <= bound;
+            auto fits = [&](double turn, std::size_t points) {
+                return verifier.deviation(rotationAbout(axis, 2 * kPi * turn), bound, points, &hints) <= bound;
             };
-            for (int n = options.maxFold; n >= 2; --n)
-                if (const int power = int(std::lround(n * kGenericTurn));
-                    fits(1.0 / n) && (power % n == 0 || fits(double(power) / n)))
+            for (int n = options.maxFold; n >= 2; --n) {
+                const int power = int(std::lround(n * kGenericTurn));
+                const double powerTurn = power % n == 0 ? 1.0 / n : double(power) / n;
+                if (fits(1.0 / n, kFitLowerBoundPoints) && fits(powerTurn, kFitLowerBoundPoints) &&
+                    fits(1.0 / n, SIZE_MAX) && fits(powerTurn, SIZE_MAX))
                     return n;
+            }
             return 1;
         };
         auto examineAxis = [&](const Eigen::Vector3d& axis, FunctionOrder& order) {
