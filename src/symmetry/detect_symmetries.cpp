@@ -53,6 +53,8 @@ constexpr double kGoodFitFactor = 10;
 constexpr double kExactFitShare = 1e-2;
 // Beyond this many folds passing the preliminary bound about one axis, none is refined (see below).
 constexpr std::size_t kMaxRefinedFolds = 8;
+// Beyond this many near misses that would make a finer fold, such maps are refused untested (see below).
+constexpr std::size_t kMaxNearMisses = 16;
 // A turn (in turns) that is no multiple of 1/n for any small n: 1 - 1/golden ratio.
 constexpr double kGenericTurn = 0.3819660112501051;
 // A candidate is first refined on this many sample points; beyond this many tolerances from the shape that way
@@ -441,8 +443,18 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     // none is left, maps pass only as they are. A shape within the tolerance of a surface of revolution takes
     // a fold of hundreds, and with it hundreds of directions across the axis, each passing the screening and
     // failing only once refined (an unevenly tessellated roller: 1600 refinements, 15 s).
+    // A map that would make a finer fold about an axis of the group so far must fit exactly (see below). Near a
+    // surface of revolution hundreds of maps do, each a near miss screened and refined in vain (the house's round
+    // parts: 270 in one), so once this many have failed, such maps are refused as they come.
+    int nearMissesLeft = int(kMaxNearMisses);
+    auto refinesWith = [&](const Eigen::Matrix3d& map) {
+        std::vector<Eigen::Matrix3d> with = generators;
+        with.push_back(map);
+        return refinesAFold(closeGroup(std::move(with), limit));
+    };
     auto tryAccept = [&](const Eigen::Matrix3d& map, RejectingPoints* hints, int* refinementsLeft = nullptr) {
         if (inKnown(map)) return true;
+        if (nearMissesLeft == 0 && refinesWith(map)) return false;
         if (verifier.deviation(map, preliminary, kScreeningPoints, hints) > preliminary) return false;
         bool refine = !refinementsLeft || *refinementsLeft > 0;
         const Eigen::Matrix3d rough = refine ? refined(map, kRoughRefinementPoints) : map;
@@ -451,9 +463,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         if (refine && inKnown(rough)) return true;
         // A map that would make a finer fold about an axis of the group so far must fit exactly, not only within the
         // tolerance (see below): a near miss fails that at its first sample points.
-        auto withRough = generators;
-        withRough.push_back(rough);
-        const double bound = refinesAFold(closeGroup(withRough, limit)) ? kExactFitShare * tolerance : tolerance;
+        const double bound = refinesWith(rough) ? kExactFitShare * tolerance : tolerance;
         // A near miss fails as well refined on a few sample points as on all of them: one that fails that way by a
         // margin is not refined in full (a roller near a surface of revolution spent half its time on those).
         const bool failsRoughly =
@@ -467,6 +477,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         }
         auto rejected = [&] {
             if ((refine || failsRoughly) && refinementsLeft) --*refinementsLeft;
+            if (bound < tolerance && nearMissesLeft > 0) --nearMissesLeft;
             return false;
         };
         if (deviation > bound) return rejected();
