@@ -607,6 +607,24 @@ TEST_CASE(
         }
         if (interopAvailable()) CHECK(validatorErrors(file).empty());
     }
+    // Without texture coordinates, the point is a vertex at the origin where the primitive has one, and its
+    // position then an accessor without a buffer view too (zeros); elsewhere it is written.
+    for (const double offset : {0.0, 0.25}) {
+        INFO("offset " << offset);
+        Primitive bare = cube;
+        bare.texcoords.clear();
+        for (Eigen::Vector3d& p : bare.positions) p -= Eigen::Vector3d::Constant(offset);
+        const auto file = folder / "bare.glb";
+        writeScene(sceneOfOneMesh("cube", bare), file, {});
+        const nlohmann::json json = glbJson(file);
+        const auto& position =
+            json["accessors"][json["meshes"][0]["primitives"][1]["attributes"]["POSITION"].get<std::size_t>()];
+        CHECK(position.contains("bufferView") == (offset != 0));
+        const TriangleMesh drawn = worldMesh(readScene(file));
+        CHECK(drawn.triangles.size() == 16);
+        CHECK(zeroArea(drawn) == 4);
+        if (interopAvailable()) CHECK(validatorErrors(file).empty());
+    }
     // X3D: a face of 6 corners at one point, a fan of 4 triangles; X_ITE draws 16, and so does our reader.
     const auto x3d = folder / "cube.x3d";
     writeScene(scene, x3d, {});

@@ -438,9 +438,17 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const
 }
 
 // Its one vertex, and indices that are zeros: an accessor without a buffer view is zeros (glTF 2.0, 3.6.2.1),
-// so that the triangles cost their JSON alone.
+// so that the triangles cost their JSON alone; so is a vertex at the origin with nothing but its position.
 Json writeZeroAreaPrimitive(GltfBuilder& builder, const ZeroAreaPart& part) {
-    return {{"attributes", plainAttributes(builder, part.vertex, {})},
+    const Primitive& vertex = part.vertex;
+    const bool atOrigin = vertex.positions.front().isZero(0) && vertex.texcoords.empty() && vertex.attributes.empty();
+    const Json attributes = atOrigin ? Json{{"POSITION", builder.addAccessor({{"componentType", kFloat},
+                                                                              {"count", 1},
+                                                                              {"type", "VEC3"},
+                                                                              {"min", {0, 0, 0}},
+                                                                              {"max", {0, 0, 0}}})}}
+                                     : plainAttributes(builder, vertex, {});
+    return {{"attributes", attributes},
             {"indices", builder.addAccessor(
                             {{"componentType", kUnsignedByte}, {"count", 3 * part.triangles}, {"type", "SCALAR"}})}};
 }
@@ -458,6 +466,12 @@ ZeroAreaPart zeroAreaPart(const Primitive& primitive, const ZeroAreaTriangles& z
     vertex.attributes.erase(std::remove_if(vertex.attributes.begin(), vertex.attributes.end(),
                                            [](const VertexAttribute& a) { return a.name.rfind("TEXCOORD_", 0) != 0; }),
                             vertex.attributes.end());
+    // Where the primitive has a vertex at the origin, the point may as well be that one (writeZeroAreaPrimitive):
+    // it must be one of its points, which the verification measures.
+    if (vertex.texcoords.empty() && vertex.attributes.empty() &&
+        std::any_of(primitive.positions.begin(), primitive.positions.end(),
+                    [](const Eigen::Vector3d& p) { return p.isZero(0); }))
+        vertex.positions.front().setZero();
     return part;
 }
 
