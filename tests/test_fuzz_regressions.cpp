@@ -521,3 +521,17 @@ TEST_CASE("Readers: OBJ colours beyond [0, 1] are clamped with a warning, not co
         CHECK(readScene(folder / (std::string("part") + extension)).meshes.size() == 1);
     }
 }
+
+TEST_CASE("glTF: a zero-area point written as zeros reads back from a file whose buffers are smaller than it",
+          "[io][fuzz]") {
+    // Found by fuzz_stl and fuzz_obj: triangles of zero area at the origin and hardly anything else. Their point's
+    // position is an accessor without a buffer view (12 bytes of zeros) in a file of a 6-byte buffer, which the reader
+    // refused as more zeros than the file's buffers could hold.
+    TemporaryFolder folder;
+    for (const std::string name : {"stl_zero_area_only.stl", "obj_zero_area_point.obj"}) {
+        INFO(name);
+        const Scene scene = readScene(regressionInput(name));
+        writeScene(scene, folder / "out.glb");
+        CHECK(worldMesh(readScene(folder / "out.glb")).triangles.size() == worldMesh(scene).triangles.size());
+    }
+}

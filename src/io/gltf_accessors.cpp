@@ -1,6 +1,7 @@
 // Vertex data of glTF primitives: accessors (every byte range checked, with no sum or product of the file's
 // numbers that could wrap), sparse accessors, index topologies, and Draco-compressed primitives.
 #include "draco_stream_checks.hpp"
+#include "gltf_constants.hpp"
 #include "gltf_reader.hpp"
 
 #include <draco/compression/decode.h>
@@ -121,7 +122,8 @@ std::vector<double> GltfReader::readAccessor(int accessorIndex, int expectedComp
     };
 
     // The count is checked against the bytes before anything is allocated for it. Without a buffer view the
-    // elements are zeros (and sparse values): at most as many as the file's buffers could hold.
+    // elements are zeros (and sparse values): at most as many as kMostZeroBytes or the file's buffers could hold
+    // (symcompress writes the one point of a primitive's triangles of zero area so, in files of a few bytes).
     Elements dense{nullptr, 0};
     if (accessor.bufferView >= 0) {
         dense =
@@ -129,9 +131,10 @@ std::vector<double> GltfReader::readAccessor(int accessorIndex, int expectedComp
     } else {
         std::size_t bufferBytes = 0;
         for (const tinygltf::Buffer& buffer : model_.buffers) bufferBytes += buffer.data.size();
-        if (accessor.count > bufferBytes / (static_cast<std::size_t>(size) * components))
-            fail(where + ": a count of " + std::to_string(accessor.count) + " without a buffer view, more than the " +
-                 "file's buffers (" + std::to_string(bufferBytes) + " bytes) could hold");
+        const std::size_t allowed = std::max<std::size_t>(bufferBytes, kMostZeroBytes);
+        if (accessor.count > allowed / (static_cast<std::size_t>(size) * components))
+            fail(where + ": a count of " + std::to_string(accessor.count) + " without a buffer view, more than " +
+                 std::to_string(allowed) + " bytes of zeros");
     }
     std::vector<double> values(accessor.count * components, 0.0);
     if (accessor.bufferView >= 0)

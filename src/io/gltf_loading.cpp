@@ -1,6 +1,7 @@
 // A glTF file to a tinygltf model: the bytes checked and mended before tinygltf parses them (JSON depth,
 // integers beyond an int, a GLB's BIN chunk, Draco's index accessors, indices without a buffer view, meshopt's fallback
 // buffer), the images kept as bytes, EXT_meshopt_compression decoded.
+#include "gltf_constants.hpp"
 #include "gltf_reader.hpp"
 
 #include "symcompress/detail/atomic_file.hpp"
@@ -182,7 +183,6 @@ void refuseIntegersBeyondInt(const nlohmann::json& value, const std::string& key
 // which tinygltf refuses: they get a view of a buffer of zeros. False where there are none. At most 64 MiB of
 // them, so that a few bytes of JSON cannot ask for any memory at all.
 bool giveZerosABufferView(nlohmann::json& json, const std::vector<std::size_t>& accessors, const fs::path& file) {
-    constexpr std::uint64_t kMostZeroBytes = std::uint64_t(1) << 26;
     std::uint64_t bytes = 0;
     for (std::size_t a : accessors) {
         const nlohmann::json& accessor = json["accessors"][a];
