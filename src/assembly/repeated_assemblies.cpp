@@ -147,8 +147,8 @@ private:
     }
 
     // The tile that `map` takes tile t onto, if it is of t's class, placed consistently within the
-    // tolerance, and acceptable; else none (placed_.size()).
-    std::size_t imageOf(std::size_t t, const Isometry& map) const {
+    // tolerance, and acceptable (when `checked`); else none (placed_.size()).
+    std::size_t imageOf(std::size_t t, const Isometry& map, bool checked) const {
         const PlacedTile& from = placed_[t];
         const Eigen::Vector3d at = map.linear * from.centroid + map.translation;
         const Eigen::Vector3i cell = cellOf(at, centroidCell_);
@@ -165,7 +165,8 @@ private:
                         const Eigen::Matrix3d relative = to.placement.linear.transpose() * map.linear * from.placement.linear;
                         for (const Symmetry& g : groupOf(from.classIndex)) {
                             const double bound = (g.linear - relative).norm() * from.radius + (to.centroid - at).norm();
-                            if (bound <= distance_ && (!options_.accept || options_.accept(t, u, map))) return u;
+                            if (bound <= distance_ && (!checked || !options_.accept || options_.accept(t, u, map)))
+                                return u;
                         }
                     }
                 }
@@ -173,8 +174,10 @@ private:
     }
 
     // Copy 0 grown from `seed` through touching tiles, with copy j its image under maps[j] (maps[0] the
-    // identity), every tile of every copy free and in one copy only.
-    RepeatedAssembly grow(std::size_t seed, const std::vector<std::size_t>& seedImages, const std::vector<Isometry>& maps) const {
+    // identity), every tile of every copy free and in one copy only; and acceptable, when `checked` (else the
+    // copies are at least as large as the checked ones).
+    RepeatedAssembly grow(std::size_t seed, const std::vector<std::size_t>& seedImages,
+                          const std::vector<Isometry>& maps, bool checked = true) const {
         RepeatedAssembly assembly;
         assembly.placements = maps;
         assembly.copies.assign(maps.size(), {});
@@ -192,7 +195,7 @@ private:
                 if (!free_[u] || used.count(u)) return;
                 images[0] = u;
                 for (std::size_t j = 1; j < maps.size(); ++j) {
-                    images[j] = imageOf(u, maps[j]);
+                    images[j] = imageOf(u, maps[j], checked);
                     if (images[j] == placed_.size() || !free_[images[j]] || used.count(images[j]) ||
                         std::find(images.begin(), images.begin() + std::ptrdiff_t(j), images[j]) != images.begin() + std::ptrdiff_t(j))
                         return;
@@ -230,18 +233,36 @@ private:
         std::vector<Copy> bestOf(anchors.size(), Copy{0, {}, 0});
         tbb::parallel_for(std::size_t(1), std::max<std::size_t>(1, anchors.size()), [&](std::size_t i) {
             const PlacedTile& to = placed_[anchors[i]];
+            // Each map's growth unchecked first (cheap): it bounds the checked growth (but where tiles are
+            // claimed in another order). Then the maps are checked (each tile's copy accepted, a costly surface
+            // comparison) from the largest bound down, until no bound can beat the best: the map that checking
+            // every map in the group's order would pick, at a few checks where the group has hundreds.
+            struct Trial {
+                std::size_t element, bound;
+                Isometry map;
+            };
+            std::vector<Trial> trialsOf;
+            for (std::size_t e = 0; e < group.size(); ++e) {
+                Isometry map;
+                map.linear = to.placement.linear * group[e].linear * from.placement.linear.transpose();
+                map.translation = to.centroid - map.linear * from.centroid;
+                // A map that grows no tile beyond the anchor makes no assembly.
+                const std::size_t bound = grow(a, {a, anchors[i]}, {Isometry{}, map}, false).copies[0].size();
+                if (bound >= 2) trialsOf.push_back({e, bound, map});
+            }
+            std::stable_sort(trialsOf.begin(), trialsOf.end(),
+                             [](const Trial& x, const Trial& y) { return x.bound > y.bound; });
             Copy& best = bestOf[i];
             best.anchor = anchors[i];
-            for (const Symmetry& g : group) {
-                Isometry map;
-                map.linear = to.placement.linear * g.linear * from.placement.linear.transpose();
-                map.translation = to.centroid - map.linear * from.centroid;
-                // A map that grows no tile beyond the anchor makes no assembly: only the others are worth
-                // the (costly) check that the anchor's copy is acceptable.
-                const std::size_t grown = grow(a, {a, anchors[i]}, {Isometry{}, map}).copies[0].size();
-                if (grown < 2 || grown <= best.tiles) continue;
-                if (options_.accept && !options_.accept(a, anchors[i], map)) continue;
-                best = {anchors[i], map, grown};
+            std::size_t bestElement = group.size();
+            for (const Trial& trial : trialsOf) {
+                if (trial.bound < best.tiles) break;
+                if (trial.bound == best.tiles && trial.element > bestElement) continue;
+                const std::size_t grown = grow(a, {a, anchors[i]}, {Isometry{}, trial.map}).copies[0].size();
+                if (grown < 2 || grown < best.tiles || (grown == best.tiles && trial.element > bestElement)) continue;
+                if (options_.accept && !options_.accept(a, anchors[i], trial.map)) continue;
+                best = {anchors[i], trial.map, grown};
+                bestElement = trial.element;
             }
         });
         std::vector<Copy> copies;
