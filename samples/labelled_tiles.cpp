@@ -8,11 +8,6 @@
 namespace symcompress::samples {
 namespace {
 
-Eigen::Matrix3d randomRotation(std::mt19937_64& random) {
-    std::normal_distribution<double> normal;
-    return Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random)).normalized().toRotationMatrix();
-}
-
 double diagonalOf(const TriangleMesh& mesh) {
     Eigen::AlignedBox3d box;
     for (const auto& p : mesh.positions) box.extend(p);

@@ -57,6 +57,13 @@ TriangleMesh latheMesh(const std::vector<Eigen::Vector2d>& profile, int segments
     return lathe;
 }
 
+Eigen::Matrix3d randomRotation(std::mt19937_64& random) {
+    std::normal_distribution<double> normal;
+    return Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
+        .normalized()
+        .toRotationMatrix();
+}
+
 TriangleMesh randomConvexPart(std::mt19937_64& random) {
     std::normal_distribution<double> normal;
     std::uniform_real_distribution<double> axis(0.4, 1.2);
@@ -97,10 +104,7 @@ TriangleMesh unevenEllipsoid(int azimuths, std::uint64_t seed) {
                 mesh.triangles.insert(mesh.triangles.end(), {{a, b, d}, {b, c, d}});
         }
     }
-    std::normal_distribution<double> normal;
-    const Eigen::Matrix3d turn = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
-                                     .normalized()
-                                     .toRotationMatrix();
+    const Eigen::Matrix3d turn = randomRotation(random);
     for (Eigen::Vector3d& p : mesh.positions) p = (turn * p).cast<float>().cast<double>();
     return mesh;
 }

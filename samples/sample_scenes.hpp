@@ -25,6 +25,8 @@ TriangleMesh unevenEllipsoid(int azimuths, std::uint64_t seed);
 // A convex part of 16 random points on an ellipsoid of random axes (0.4 to 1.2), about 28 triangles: no
 // symmetry. Draws from `random`, so that a caller's sequence of parts is its own.
 TriangleMesh randomConvexPart(std::mt19937_64& random);
+// A rotation uniformly distributed over SO(3) (a normalized Gaussian quaternion), drawn from `random`.
+Eigen::Matrix3d randomRotation(std::mt19937_64& random);
 // x -> linear x + translation; a mirroring map also reverses the triangles, keeping them outward.
 TriangleMesh transformed(TriangleMesh mesh, const Eigen::Matrix3d& linear, const Eigen::Vector3d& translation);
 

@@ -474,6 +474,79 @@ TEST_CASE("Tiles that recur together are stored once per group: the room's books
     CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());
 }
 
+TEST_CASE("Tiles that recur together leave out the parts their class draws for less: five groups of three vases",
+          "[compress]") {
+    // Each group: three lathes of 96 sectors (2880 triangles, C96v) stacked, in a ring of twelve random convex
+    // parts of some 28 triangles that touch them; five groups at random placements, baked into one mesh. The
+    // parts cost less stored once for the five groups than apart; the vases less drawn by their class's mesh,
+    // a node each, than three times in the group's mesh. Before, with the vases the group cost more as one mesh
+    // than its tiles apart, and no group was stored once.
+    std::mt19937_64 random(17);
+    std::vector<TriangleMesh> parts;
+    for (int k = 0; k < 12; ++k) parts.push_back(samples::randomConvexPart(random));
+    std::vector<Eigen::Vector2d> profile;  // (radius, z): a vase of height 2 and radius up to 1
+    for (int k = 0; k <= 16; ++k) {
+        const double z = -1 + k / 8.0;
+        profile.push_back({k == 0 || k == 16 ? 0 : 0.7 + 0.3 * std::sin(3 * z), z});
+    }
+    const TriangleMesh vase = samples::latheMesh(profile, 96, Eigen::Vector3d::Zero());
+    samples::OneMeshBuilder builder("groups");
+    const int material = builder.addMaterial("grey", {0.6, 0.6, 0.6, 1});
+    for (int copy = 0; copy < 5; ++copy) {
+        const Eigen::Matrix3d turn = samples::randomRotation(random);
+        const Eigen::Vector3d at(12.0 * copy, 3.0 * copy, 0);
+        for (double z : {-2.1, 0.0, 2.1})
+            builder.add(material, samples::transformed(vase, turn, turn * Eigen::Vector3d(0, 0, z) + at));
+        for (int k = 0; k < 12; ++k) {
+            const double angle = k * M_PI / 6;
+            builder.add(material,
+                        samples::transformed(parts[k], turn,
+                                             turn * Eigen::Vector3d(2 * std::cos(angle), 2 * std::sin(angle), 0) + at));
+        }
+    }
+    TemporaryFolder folder;
+    const auto input = writePlainGlb(std::move(builder).build(), folder, "groups");
+    const nlohmann::json report = compressAndVerify(input, folder, "groups-compressed");
+    CHECK(report["tiles"] == 5 * 15);
+    CHECK(report["assemblies"] == 1);
+    CHECK(report["assembly_copies"] == 5);
+    CHECK(report["tiles_in_assemblies"] == 5 * 12);
+    CHECK(report["instanced_classes"] == 1);  // the vases, by their class's mesh
+    CHECK(report["triangles_stored"].get<std::size_t>() <= 2880 + 12 * 28 + 12 * 4);
+}
+
+TEST_CASE("A repeated assembly symmetric in itself stores one part of one copy: three rooms of mirrored quadrants",
+          "[compress]") {
+    // The room (C2v as a whole) baked three times at random placements: the scene has no symmetry, each room is
+    // a copy of a repeated assembly, and each copy is C2v about its own centre. Before, the assembly stored a
+    // whole room, three times what the room alone stores.
+    const Scene room = samples::makeRoomScene();
+    Scene rooms = room;
+    std::mt19937_64 random(5);
+    std::vector<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> placements;
+    for (int copy = 0; copy < 3; ++copy)
+        placements.push_back({samples::randomRotation(random), Eigen::Vector3d(20.0 * copy, 7.0 * copy, 0)});
+    for (std::size_t k = 0; k < room.meshes[0].primitives.size(); ++k) {
+        const Primitive& one = room.meshes[0].primitives[k];
+        Primitive& all = rooms.meshes[0].primitives[k];
+        all.positions.clear();
+        all.triangles.clear();
+        for (const auto& [turn, at] : placements)
+            samples::appendMesh(all, samples::transformed(TriangleMesh{one.positions, one.triangles}, turn, at));
+    }
+    TemporaryFolder folder;
+    const nlohmann::json alone = compressAndVerify(writePlainGlb(room, folder, "room"), folder, "room-compressed");
+
+    const nlohmann::json report = compressAndVerify(writePlainGlb(rooms, folder, "rooms"), folder, "rooms-compressed");
+    CHECK(report["scene_group"] == "C1");
+    CHECK(report["assemblies"] == 1);
+    CHECK(report["assembly_copies"] == 3);
+    // Every tile but those on the mirror planes (the floor, two walls, and what stands across a plane).
+    CHECK(report["tiles_in_assemblies"] == alone["tiles_in_scene_symmetry"].get<std::size_t>() * 3);
+    CHECK(report["triangles_stored"].get<std::size_t>() <= alone["triangles_stored"].get<std::size_t>() + 3 * 5 * 12);
+    CHECK(report["output_bytes"].get<double>() < 1.5 * alone["output_bytes"].get<double>());
+}
+
 TEST_CASE("A scene symmetric as a whole is stored as one part of it, drawn once per symmetry: room and chess board",
           "[compress]") {
     TemporaryFolder folder;

@@ -1,6 +1,7 @@
 // The moments engine against ground truth derived independently: brute-force quadrature of
 // |s x w|^(2p) over the triangles, orthonormality of the harmonics on the sphere, the action of
 // rotations and reflections, and the critical points that Theorem 1 of the paper predicts.
+#include "sample_scenes.hpp"
 #include "symcompress/detail/congruence_descriptor.hpp"
 #include "symcompress/detail/moments.hpp"
 #include "symcompress/detail/solids.hpp"
@@ -13,6 +14,7 @@
 #include <random>
 
 using namespace symcompress;
+using samples::randomRotation;
 
 namespace {
 
@@ -24,12 +26,6 @@ Eigen::Vector3d randomDirection(std::mt19937_64& random) {
     do w = Eigen::Vector3d(normal(random), normal(random), normal(random));
     while (w.norm() < 1e-3);
     return w.normalized();
-}
-
-Eigen::Matrix3d randomRotation(std::mt19937_64& random) {
-    std::normal_distribution<double> normal;
-    Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
-    return q.normalized().toRotationMatrix();
 }
 
 // A random rotation, times a reflection when `reflect`.

@@ -2,6 +2,7 @@
 // orbit, so that the copies draw the tile's own triangles. Ground truth from tessellations whose symmetries are
 // known by construction: a geodesic sphere and its icosahedral group built from the icosahedron's vertices, a
 // cube cut into the triangles of its mirrors, and the same cube fanned from random points.
+#include "sample_scenes.hpp"
 #include "signed_permutation_groups.hpp"
 #include "test_support.hpp"
 
@@ -150,10 +151,7 @@ double distanceToNearest(const Eigen::Vector3d& p, const std::vector<Eigen::Vect
 
 Eigen::Matrix3d randomRotation(std::uint64_t seed) {
     std::mt19937_64 generator(seed);
-    std::normal_distribution<double> normal;
-    return Eigen::Quaterniond(normal(generator), normal(generator), normal(generator), normal(generator))
-        .normalized()
-        .toRotationMatrix();
+    return samples::randomRotation(generator);
 }
 
 // A cube cut by its 9 mirror planes into 48 triangles, each split in four: Oh maps the triangles onto one

@@ -16,11 +16,18 @@ namespace symcompress {
 // tile's centroid lands on a tile of its class and the map, seen from the two tiles' placements, is a
 // symmetry of their prototype, within the classification's tolerance.
 SymmetryGroup assemblySymmetries(const TileClassification& classification);
+// The same for an assembly of some of the classification's tiles (a copy of a repeated assembly), about its own
+// centroid.
+SymmetryGroup assemblySymmetries(const TileClassification& classification, const std::vector<std::size_t>& assembly);
 
 // For each element e of an assembly's group (assemblySymmetries), images[e][t] is the tile that e (about
 // the group's centroid) maps tile t onto: one of t's class, where the map is a symmetry of their
 // prototype seen from their placements; the number of tiles when there is none.
 std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group);
+// The same for the tiles of an assembly (those of assemblySymmetries(classification, assembly)); the other tiles'
+// images are none.
+std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group,
+                                                 const std::vector<std::size_t>& assembly);
 
 // Tiles that recur together in one relative placement: the parts of a chair, a table with its legs, a
 // whole copied object. Copy 0 is the assembly as stored; copy j is placement j of it.

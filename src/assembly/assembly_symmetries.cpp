@@ -15,11 +15,14 @@ struct PlacedTile {
     Eigen::Vector3d centroid;
 };
 
-// The tiles of a classification by class and centroid, and the assembly's area-weighted centroid.
+// The tiles of an assembly (some of a classification's) by class and centroid, and the assembly's
+// area-weighted centroid.
 class TileLocator {
 public:
-    TileLocator(const TileClassification& classification, double distance)
-        : classification_(classification), distance_(distance), tiles_(classification.shapes.size()),
+    TileLocator(const TileClassification& classification, const std::vector<bool>& inAssembly, double distance)
+        : classification_(classification),
+          distance_(distance),
+          tiles_(classification.shapes.size()),
           byX_(classification.classes.size()) {
         double area = 0;
         Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
@@ -27,6 +30,7 @@ public:
             const CongruenceClass& c = classification.classes[k];
             for (std::size_t i = 0; i < c.members.size(); ++i) {
                 const std::size_t t = c.members[i];
+                if (!inAssembly[t]) continue;
                 const auto& moments = classification.shapes[t].moments;
                 tiles_[t] = {k, c.placements[i], moments.centroid};
                 byX_[k].emplace_back(moments.centroid.x(), t);
@@ -57,11 +61,18 @@ public:
         return elements.empty() ? identityOnly_ : elements;
     }
 
-    // Whether linear (about the center) maps tile t onto tile u: J_u^-1 A J_t is in the prototype's group.
+    // Whether linear (about the center) maps tile t onto tile u: J_u^-1 A J_t is in the prototype's group, as
+    // one linear map, or within what the two placements' tolerance allows at the tile's size (a small tile's
+    // placements, each within the distance at its corners, are loose as linear maps: a book in a room copied
+    // three times, 1.3e-3 off).
     bool mapsOnto(const Eigen::Matrix3d& linear, std::size_t t, std::size_t u) const {
         const Eigen::Matrix3d relative = tiles_[u].placement.linear.transpose() * linear * tiles_[t].placement.linear;
         const auto& group = groupOf(tiles_[t].classIndex);
-        return std::any_of(group.begin(), group.end(), [&](const Symmetry& g) { return (g.linear - relative).norm() < kSameLinear; });
+        const double size = classification_.shapes[t].diagonal;
+        return std::any_of(group.begin(), group.end(), [&](const Symmetry& g) {
+            const double off = (g.linear - relative).norm();
+            return off < kSameLinear || off * size <= 2 * distance_;
+        });
     }
 
     // The tile that linear (about the center) maps tile t onto, or size() when it maps it onto none.
@@ -79,22 +90,39 @@ private:
     const std::vector<Symmetry> identityOnly_{Symmetry{}};
 };
 
+std::vector<bool> membership(std::size_t tileCount, const std::vector<std::size_t>& tiles) {
+    std::vector<bool> in(tileCount, false);
+    for (std::size_t t : tiles) in[t] = true;
+    return in;
+}
+
+std::vector<std::size_t> allTiles(const TileClassification& classification) {
+    std::vector<std::size_t> tiles(classification.shapes.size());
+    for (std::size_t t = 0; t < tiles.size(); ++t) tiles[t] = t;
+    return tiles;
+}
+
 }  // namespace
 
 SymmetryGroup assemblySymmetries(const TileClassification& classification) {
+    return assemblySymmetries(classification, allTiles(classification));
+}
+
+SymmetryGroup assemblySymmetries(const TileClassification& classification, const std::vector<std::size_t>& assembly) {
     SymmetryGroup result;
     result.elements.push_back(Symmetry{});
     result.diagonal = classification.sceneDiagonal;
     const std::size_t tileCount = classification.shapes.size();
-    if (tileCount == 0) return result;
+    if (assembly.empty()) return result;
     const double distance = classification.absoluteTolerance;
-    const TileLocator tiles(classification, distance);
+    const std::vector<bool> inAssembly = membership(tileCount, assembly);
+    const TileLocator tiles(classification, inAssembly, distance);
     const Eigen::Vector3d center = tiles.center();
     result.centroid = center;
 
     // The anchor: the tile with the fewest candidate maps.
-    std::size_t anchor = 0, fewest = std::numeric_limits<std::size_t>::max();
-    for (std::size_t t = 0; t < tileCount; ++t) {
+    std::size_t anchor = assembly.front(), fewest = std::numeric_limits<std::size_t>::max();
+    for (std::size_t t : assembly) {
         const CongruenceClass& c = classification.classes[tiles[t].classIndex];
         const std::size_t candidates = c.members.size() * std::size_t(std::max(1, classification.shapes[c.prototype].symmetry.order()));
         if (candidates < fewest) fewest = candidates, anchor = t;
@@ -105,6 +133,7 @@ SymmetryGroup assemblySymmetries(const TileClassification& classification) {
 
     std::vector<Eigen::Matrix3d> found;
     for (std::size_t image : anchorClass.members) {
+        if (!inAssembly[image]) continue;
         if (std::abs((tiles[image].centroid - center).norm() - anchorRadius) > distance) continue;  // prune
         for (const Symmetry& g : anchorGroup) {
             // A = J_image g J_anchor^-1, as a linear map; it must fix the assembly's centroid.
@@ -113,7 +142,7 @@ SymmetryGroup assemblySymmetries(const TileClassification& classification) {
             if (std::any_of(found.begin(), found.end(), [&](const Eigen::Matrix3d& f) { return (f - linear).norm() < kSameLinear; }))
                 continue;
             bool all = true;
-            for (std::size_t t = 0; t < tileCount && all; ++t) all = tiles.image(linear, t) < tileCount;
+            for (std::size_t i = 0; i < assembly.size() && all; ++i) all = tiles.image(linear, assembly[i]) < tileCount;
             if (all) found.push_back(linear);
         }
     }
@@ -132,10 +161,17 @@ SymmetryGroup assemblySymmetries(const TileClassification& classification) {
 }
 
 std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group) {
-    const TileLocator tiles(classification, classification.absoluteTolerance);
-    std::vector<std::vector<std::size_t>> images(group.elements.size(), std::vector<std::size_t>(tiles.size()));
+    return tileImages(classification, group, allTiles(classification));
+}
+
+std::vector<std::vector<std::size_t>> tileImages(const TileClassification& classification, const SymmetryGroup& group,
+                                                 const std::vector<std::size_t>& assembly) {
+    const TileLocator tiles(classification, membership(classification.shapes.size(), assembly),
+                            classification.absoluteTolerance);
+    std::vector<std::vector<std::size_t>> images(group.elements.size(),
+                                                 std::vector<std::size_t>(tiles.size(), tiles.size()));
     for (std::size_t e = 0; e < group.elements.size(); ++e)
-        for (std::size_t t = 0; t < tiles.size(); ++t) images[e][t] = tiles.image(group.elements[e].linear, t);
+        for (std::size_t t : assembly) images[e][t] = tiles.image(group.elements[e].linear, t);
     return images;
 }
 

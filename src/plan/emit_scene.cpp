@@ -62,7 +62,7 @@ void count(const SharedPart& part, CompressionStats& stats) {
     case SharedPart::Mechanism::SceneSymmetry: stats.tilesInSceneSymmetry += part.tiles.size(); break;
     case SharedPart::Mechanism::Assembly:
         ++stats.assemblies;
-        stats.assemblyCopies += part.nodes.size();
+        stats.assemblyCopies += part.copies;
         stats.tilesInAssemblies += part.tiles.size();
         break;
     case SharedPart::Mechanism::Region: ++stats.regionClasses; [[fallthrough]];

@@ -89,12 +89,6 @@ Mesh drawnOnce(Mesh mesh, double budget, const Eigen::Matrix4d& frame) {
 }
 
 // Both ways of storing a group measured alike: each primitive encoded once, without the writer's trials.
-double bytesOf(const StorageCosts& costs, const Mesh& mesh) {
-    double bytes = 0;
-    for (const Primitive& primitive : mesh.primitives) bytes += costs.asMeshQuickly(primitive);
-    return bytes;
-}
-
 }  // namespace
 
 std::optional<double> uniformScaleOf(const Eigen::Matrix3d& linear) {
@@ -195,11 +189,12 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
         const Eigen::Matrix4d identity = Eigen::Matrix4d::Identity();
         tbb::parallel_invoke(
             [&] {
-                inWorld = bytesOf(costs, drawnOnce(tilesInFrame(analysis, group.tiles, identity), budget, identity));
+                inWorld =
+                    costs.meshBytesQuickly(drawnOnce(tilesInFrame(analysis, group.tiles, identity), budget, identity));
             },
             [&] {
-                inFrame = bytesOf(
-                    costs, drawnOnce(tilesInFrame(analysis, group.tiles, group.transform), budget, group.transform));
+                inFrame = costs.meshBytesQuickly(
+                    drawnOnce(tilesInFrame(analysis, group.tiles, group.transform), budget, group.transform));
             });
         pays[i] =
             inFrame + costs.node(group.transform, sourceOf(input, group)) < (1 - leastWorth) * (inWorld - overhead);
@@ -221,7 +216,8 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
         turn.topLeftCorner<3, 3>() = *frame;
         // The nodes' turns print about as long either way (and their batches' streams code alike): only the
         // mesh is measured, and the job's world_frame plan measures the whole file.
-        if (bytesOf(costs, meshInFrame(part.mesh, turn)) < (1 - kLeastWorthFraming) * bytesOf(costs, part.mesh))
+        if (costs.meshBytesQuickly(meshInFrame(part.mesh, turn)) <
+            (1 - kLeastWorthFraming) * costs.meshBytesQuickly(part.mesh))
             part.frame = *frame;
     });
 }

@@ -31,6 +31,23 @@ struct PlanContext {
 // the scene's group, where that costs less than storing its copies apart.
 std::optional<SharedPart> planSceneSymmetry(const PlanContext& context);
 
+// The free orbits of an assembly's group (assemblySymmetries) among its tiles: those the group moves onto |G|
+// distinct tiles, each verified (every element's copy of its representative reproduces the tile it lands on).
+// The representatives, the tiles nearest a point no element fixes, are one Dirichlet domain of G: a compact
+// part. Tiles on G's planes and axes are in no free orbit.
+struct FreeOrbits {
+    std::vector<std::size_t> part;        // a representative of each orbit
+    std::vector<std::size_t> orbitTiles;  // every tile of those orbits
+    double deviation = 0;                 // of the verified copies' vertices, relative to the diagonal
+};
+FreeOrbits freeOrbits(const PlanContext& context, const SymmetryGroup& group, const std::vector<std::size_t>& tiles);
+// Element e of the group, about the group's centroid.
+Isometry aboutCentroid(const SymmetryGroup& group, std::size_t e);
+// A node per element of the group, each drawing a mesh stored about the group's centroid.
+std::vector<PlacedCopy> elementNodes(const SymmetryGroup& group);
+// The tiles merged into one mesh (a primitive per material and attributes), about `center`.
+Mesh partAbout(const SceneAnalysis& analysis, const std::vector<std::size_t>& part, const Eigen::Vector3d& center);
+
 // The repeated assemblies worth storing once, none with a tile already `drawn`; marks the tiles they draw.
 std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<bool>& drawn);
 

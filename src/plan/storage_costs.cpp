@@ -35,6 +35,12 @@ double StorageCosts::asMeshQuickly(const Primitive& part) const {
     return model_.quickMeshBytes ? model_.quickMeshBytes(part) : asMesh(part);
 }
 
+double StorageCosts::meshBytesQuickly(const Mesh& mesh) const {
+    double bytes = 0;
+    for (const Primitive& primitive : mesh.primitives) bytes += asMeshQuickly(primitive);
+    return bytes;
+}
+
 double StorageCosts::node(const Node& node) const {
     return model_.nodeBytes ? model_.nodeBytes(node) : model_.bytesPerInstance;
 }

@@ -24,6 +24,8 @@ public:
     double asMesh(const Primitive& part) const;
     // asMesh without the writer's trials of settings (StorageCostModel::quickMeshBytes).
     double asMeshQuickly(const Primitive& part) const;
+    // Every primitive of the mesh, asMeshQuickly.
+    double meshBytesQuickly(const Mesh& mesh) const;
     // A node drawing a shared mesh with this transform and the name and extras of `source` (if any), as the
     // writer measures it.
     double node(const Eigen::Matrix4d& transform, const Node* source) const;
