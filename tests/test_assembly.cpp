@@ -6,6 +6,8 @@
 #include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
 
+#include <cmath>
+#include <random>
 #include <set>
 
 using namespace symcompress;
@@ -89,4 +91,32 @@ TEST_CASE("Repeated assemblies: the room's bookshelves, tables and chairs, each 
                 CHECK(worst <= distance);
             }
         }
+}
+
+TEST_CASE("Repeated assemblies: the copies that spare the most tiles, not only those that reach every one",
+          "[assembly]") {
+    // Five groups of six random convex parts in a ring; the last four have a seventh part. Copies of seven
+    // tiles: 4 x 7, which spare 21 tiles; of the six the five share: 5 x 6, which spare 24.
+    std::mt19937_64 random(11);
+    std::vector<TriangleMesh> parts;
+    for (int k = 0; k < 7; ++k) parts.push_back(samples::randomConvexPart(random));
+    samples::OneMeshBuilder builder("groups");
+    const int material = builder.addMaterial("grey", {0.6, 0.6, 0.6, 1});
+    for (int copy = 0; copy < 5; ++copy) {
+        const Eigen::Matrix3d turn = samples::randomRotation(random);
+        const Eigen::Vector3d at(15.0 * copy, 4.0 * copy, 0);
+        for (int k = 0; k < (copy > 0 ? 7 : 6); ++k) {
+            const double angle = k * M_PI / 3.5;
+            builder.add(material,
+                        samples::transformed(parts[std::size_t(k)], turn,
+                                             turn * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0) + at));
+        }
+    }
+    const auto soup = flattenScene(std::move(builder).build());
+    const auto tiles = splitIntoTiles(soup);
+    REQUIRE(tiles.size() == 4 * 7 + 6);
+    const std::vector<RepeatedAssembly> assemblies = findRepeatedAssemblies(tiles, classifyTiles(tiles));
+    REQUIRE(assemblies.size() == 1);
+    CHECK(assemblies[0].copies.size() == 5);
+    CHECK(assemblies[0].copies[0].size() == 6);
 }

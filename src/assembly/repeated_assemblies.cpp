@@ -268,13 +268,19 @@ private:
         std::vector<Copy> copies;
         for (std::size_t i = 1; i < anchors.size(); ++i)
             if (bestOf[i].tiles > 0) copies.push_back(bestOf[i]);
-        std::size_t most = 0;
-        for (const Copy& c : copies) most = std::max(most, c.tiles);
-        if (most < 2) return std::nullopt;
+        // The copies that reach at least `least` tiles, for the `least` that makes their number times it (the
+        // tiles the copies spare) largest: four rooms of 26 tiles that reach all but one tile beat one of 27.
+        std::vector<std::size_t> counts;
+        for (const Copy& c : copies) counts.push_back(c.tiles);
+        std::sort(counts.begin(), counts.end(), std::greater<>());
+        std::size_t least = 0, spared = 0;
+        for (std::size_t k = 0; k < counts.size(); ++k)
+            if ((k + 1) * counts[k] > spared) spared = (k + 1) * counts[k], least = counts[k];
+        if (least < 2) return std::nullopt;
         std::vector<std::size_t> seedImages{a};
         std::vector<Isometry> maps{Isometry{}};
         for (const Copy& c : copies)
-            if (c.tiles == most) seedImages.push_back(c.anchor), maps.push_back(c.map);
+            if (c.tiles >= least) seedImages.push_back(c.anchor), maps.push_back(c.map);
         RepeatedAssembly assembly = grow(a, seedImages, maps);
         if (assembly.copies[0].size() < 2) return std::nullopt;
         // The deviation bound: the placements' own, plus the classes' for the tiles rebuilt.
