@@ -1144,7 +1144,8 @@ TEST_CASE("The plan weighs parts by the writer's measure: the forest's trees, wi
     // cost per triangle (1.5, right for bare positions) found no copy worth a node.
     TemporaryFolder folder;
     const nlohmann::json report = compressAndVerify(modelPath("kenney_racing_forest/decoration-forest.glb"), folder, "forest");
-    CHECK(report["plan"] == "final");
+    // The full plan's decisions, its meshes in the frames the plan chose or all in the world's.
+    CHECK((report["plan"] == "final" || report["plan"] == "world_frame"));
     CHECK(report["assemblies"].get<std::size_t>() >= 2);
     CHECK(report["tiles_in_assemblies"].get<std::size_t>() >= 20);
     CHECK(report["output_bytes"].get<double>() < 0.8 * report["ablation"]["draco_alone"].get<double>());

@@ -5,6 +5,8 @@
 #include "plan/planners.hpp"
 #include "symcompress/assembly.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <limits>
 #include <map>
@@ -74,6 +76,36 @@ Eigen::Matrix3d frameOfAxes(const SymmetryGroup& group) {
     Eigen::Matrix3d frame;
     frame << x, z.cross(x), z;
     return frame;
+}
+
+// The principal axes of the tiles' surface together (their second moments about their common centroid): a
+// room of boxes has them along its walls, wherever it stands turned.
+Eigen::Matrix3d principalFrame(const TileClassification& classification, const std::vector<std::size_t>& tiles) {
+    double area = 0;
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+    for (std::size_t t : tiles) {
+        area += classification.shapes[t].moments.area;
+        weighted += classification.shapes[t].moments.area * classification.shapes[t].moments.centroid;
+    }
+    if (!(area > 0)) return Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d center = weighted / area;
+    Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+    for (std::size_t t : tiles) {
+        const TileShape& shape = classification.shapes[t];
+        const Eigen::Vector3d offset = shape.moments.centroid - center;
+        second += shape.secondMoments + shape.moments.area * offset * offset.transpose();
+    }
+    Eigen::Matrix3d frame = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(second).eigenvectors();
+    if (frame.determinant() < 0) frame.col(2) = -frame.col(2);
+    return frame;
+}
+
+// The part's mesh written in `frame` where Draco codes it smaller there (the shared mesh's tiles come from one
+// input node or none, as when baked: planSourceFrames tries the nodes' frame, and this the one the geometry gives).
+void useFrameIfSmaller(SharedPart& part, const Eigen::Matrix3d& frame, const StorageCosts& costs) {
+    Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
+    turn.topLeftCorner<3, 3>() = frame;
+    if (costs.meshBytesQuickly(meshInFrame(part.mesh, turn)) < costs.meshBytesQuickly(part.mesh)) part.frame = frame;
 }
 
 }  // namespace
@@ -176,13 +208,7 @@ std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<b
                                std::to_string(first.size()) + " tiles, " + group.name + ")";
             shared.nodes = std::move(symmetricNodes);
             shared.group = group.name;
-            // Its tiles come from one input node or none (baked), whose frame planSourceFrames would try: the
-            // group's axes are the one frame known.
-            Eigen::Matrix4d axes = Eigen::Matrix4d::Identity();
-            axes.topLeftCorner<3, 3>() = frameOfAxes(group);
-            if (context.costs.meshBytesQuickly(meshInFrame(shared.mesh, axes)) <
-                context.costs.meshBytesQuickly(shared.mesh))
-                shared.frame = axes.topLeftCorner<3, 3>();
+            useFrameIfSmaller(shared, frameOfAxes(group), context.costs);
             share(std::move(shared), inOrbit, orbits.deviation);
             if (rest.empty()) continue;
             SharedPart onPlanes;
@@ -198,6 +224,7 @@ std::vector<SharedPart> planAssemblies(const PlanContext& context, std::vector<b
             shared.mesh = partAbout(analysis, first, anchorCenter);
             shared.mesh.name = name + std::to_string(first.size()) + " tiles)";
             shared.nodes = std::move(copyNodes);
+            useFrameIfSmaller(shared, principalFrame(classification, first), context.costs);
             share(std::move(shared), std::vector<bool>(first.size(), true), 0);
         }
     }
