@@ -88,7 +88,6 @@ Mesh drawnOnce(Mesh mesh, double budget, const Eigen::Matrix4d& frame) {
     return mesh;
 }
 
-// Both ways of storing a group measured alike: each primitive encoded once, without the writer's trials.
 }  // namespace
 
 std::optional<double> uniformScaleOf(const Eigen::Matrix3d& linear) {

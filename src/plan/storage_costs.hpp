@@ -24,7 +24,7 @@ public:
     double asMesh(const Primitive& part) const;
     // asMesh without the writer's trials of settings (StorageCostModel::quickMeshBytes).
     double asMeshQuickly(const Primitive& part) const;
-    // Every primitive of the mesh, asMeshQuickly.
+    // Every primitive of the mesh, asMeshQuickly: two ways of storing one mesh (in two frames) measured alike.
     double meshBytesQuickly(const Mesh& mesh) const;
     // A node drawing a shared mesh with this transform and the name and extras of `source` (if any), as the
     // writer measures it.
