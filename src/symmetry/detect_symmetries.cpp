@@ -261,6 +261,16 @@ private:
     mutable std::vector<double> changeScales_;               // per function, its largest magnitude there
 };
 
+bool sameAxis(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::abs(a.dot(b)) > 1 - 1e-6; }
+
+// Whether `r` is a rotation by a smaller angle than the smallest turn about its axis among `smallestTurns`.
+bool turnsFiner(const Symmetry& r, const std::vector<Symmetry>& smallestTurns) {
+    if (r.kind != Symmetry::Kind::Rotation) return false;
+    return std::any_of(smallestTurns.begin(), smallestTurns.end(), [&](const Symmetry& smallest) {
+        return sameAxis(r.axis, smallest.axis) && r.angle < smallest.angle - 1e-3;
+    });
+}
+
 std::vector<int> divisorsDescending(int n) {
     std::vector<int> divisors;
     for (int d = n; d >= 2; --d)
@@ -406,31 +416,26 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     std::vector<double> generatorDeviations;  // generators[i]'s d_A, as measured when it was accepted
     std::vector<Eigen::Vector3d> revolutionAxes;
     std::vector<Eigen::Matrix3d> known{Eigen::Matrix3d::Identity()};  // the group the generators so far make
-    // Whether `closed` turns by a smaller angle than `known` does about some rotation axis of `known`.
-    auto refinesAFold = [&](const std::vector<Eigen::Matrix3d>& closed) {
-        auto rotationsOf = [](const std::vector<Eigen::Matrix3d>& elements) {
-            std::vector<Symmetry> rotations;
-            for (const Eigen::Matrix3d& g : elements)
-                if (Symmetry r = describeOrthogonal(g); r.kind == Symmetry::Kind::Rotation) rotations.push_back(r);
-            return rotations;
-        };
-        auto about = [](const Symmetry& r, const Eigen::Vector3d& axis) {
-            return std::abs(r.axis.dot(axis)) > 1 - 1e-6;
-        };
-        std::vector<Symmetry> smallestTurns;  // of `known`, one for each axis
-        for (const Symmetry& r : rotationsOf(known)) {
-            const auto same = std::find_if(smallestTurns.begin(), smallestTurns.end(),
-                                           [&](const Symmetry& t) { return about(t, r.axis); });
-            if (same == smallestTurns.end())
-                smallestTurns.push_back(r);
+    // The smallest turn of a group about each of its rotation axes, one for each axis.
+    auto smallestTurnsOf = [](const std::vector<Eigen::Matrix3d>& elements) {
+        std::vector<Symmetry> smallest;
+        for (const Eigen::Matrix3d& g : elements) {
+            const Symmetry r = describeOrthogonal(g);
+            if (r.kind != Symmetry::Kind::Rotation) continue;
+            const auto same = std::find_if(smallest.begin(), smallest.end(),
+                                           [&](const Symmetry& t) { return sameAxis(t.axis, r.axis); });
+            if (same == smallest.end())
+                smallest.push_back(r);
             else if (r.angle < same->angle)
                 *same = r;
         }
-        const std::vector<Symmetry> closedRotations = rotationsOf(closed);
-        for (const Symmetry& smallest : smallestTurns)
-            for (const Symmetry& r : closedRotations)
-                if (about(r, smallest.axis) && r.angle < smallest.angle - 1e-3) return true;
-        return false;
+        return smallest;
+    };
+    std::vector<Symmetry> knownTurns;  // smallestTurnsOf(known), kept with it
+    // Whether `closed` turns by a smaller angle than `known` does about some rotation axis of `known`.
+    auto refinesAFold = [&](const std::vector<Eigen::Matrix3d>& closed) {
+        return std::any_of(closed.begin(), closed.end(),
+                           [&](const Eigen::Matrix3d& g) { return turnsFiner(describeOrthogonal(g), knownTurns); });
     };
     auto inKnown = [&](const Eigen::Matrix3d& map) {
         return std::any_of(known.begin(), known.end(), [&](const Eigen::Matrix3d& g) { return (g - map).norm() < kKnownElement; });
@@ -448,13 +453,26 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
     // parts: 270 in one), so once this many have failed, such maps are refused as they come.
     int nearMissesLeft = int(kMaxNearMisses);
     auto refinesWith = [&](const Eigen::Matrix3d& map) {
+        // A finer turn about an axis of the group so far, as the map, its products with the group's elements or
+        // their squares, refines its fold without closing the group anew (a pole near a surface of revolution
+        // tries hundreds of turns and directions across it, each closing a group of hundreds).
+        auto finer = [&](const Eigen::Matrix3d& g) {
+            return turnsFiner(describeOrthogonal(g), knownTurns) || turnsFiner(describeOrthogonal(g * g), knownTurns);
+        };
+        if (finer(map) || std::any_of(known.begin(), known.end(),
+                                      [&](const Eigen::Matrix3d& k) { return finer(map * k) || finer(k * map); }))
+            return true;
         std::vector<Eigen::Matrix3d> with = generators;
         with.push_back(map);
         return refinesAFold(closeGroup(std::move(with), limit));
     };
+    // Whether tryAccept refuses the map without testing it on the shape.
+    auto refusedUntested = [&](const Eigen::Matrix3d& map) {
+        return !inKnown(map) && nearMissesLeft == 0 && refinesWith(map);
+    };
     auto tryAccept = [&](const Eigen::Matrix3d& map, RejectingPoints* hints, int* refinementsLeft = nullptr) {
         if (inKnown(map)) return true;
-        if (nearMissesLeft == 0 && refinesWith(map)) return false;
+        if (refusedUntested(map)) return false;
         if (verifier.deviation(map, preliminary, kScreeningPoints, hints) > preliminary) return false;
         bool refine = !refinementsLeft || *refinementsLeft > 0;
         const Eigen::Matrix3d rough = refine ? refined(map, kRoughRefinementPoints) : map;
@@ -498,6 +516,7 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
         }
         generatorDeviations.push_back(deviation);
         known = std::move(closed);
+        knownTurns = smallestTurnsOf(known);
         return true;
     };
 
@@ -556,6 +575,10 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 return fullFit[n] = verifier.deviation(rotationAbout(axis, 2 * kPi / n), tolerance, SIZE_MAX, &hints);
             };
             bool measureWhenTried = false;  // `folds` holds folds not yet measured in full
+            // The first `mayFitWell` folds are tried first where they fit within `goodFit`; the others, those among
+            // them that do not fit that well included, after them, largest first.
+            std::size_t mayFitWell = 0;
+            double goodFit = tolerance;
             if (modes == 0 && !nearRevolution) {
                 // Folds the moments cannot tell. A fold's largest distance over the first sample points is a lower
                 // bound of its d_A: a fold above the bound it is measured against fails without more.
@@ -599,8 +622,8 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 } else {
                     // Measured in full at the tolerance in the order of their lower bounds, until the best fit is
                     // known (where even the smallest lower bound is within the factor of the tolerance, every
-                    // fold that fits is as good as any), then those that may fit within the factor of it; the
-                    // others only when the loop below reaches them (it stops at the first accepted).
+                    // fold that fits is as good as any); the others only when the loop below reaches them (it
+                    // stops at the first accepted, and refuses near misses untested once enough have failed).
                     lowerBounds.erase(std::remove_if(lowerBounds.begin(), lowerBounds.end(),
                                                      [&](const auto& bound) { return bound.first > tolerance; }),
                                       lowerBounds.end());
@@ -617,9 +640,13 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                     const double good =
                         std::min(std::max(kGoodFitFactor * bestFit, kExactFitShare * tolerance), tolerance);
                     for (const auto& [lower, n] : lowerBounds)
-                        (good == tolerance || (lower <= good && measuredFit(n) <= good) ? best : others).push_back(n);
+                        (good == tolerance || lower <= good ? best : others).push_back(n);
                     bestFirst(best, others);
                     measureWhenTried = true;
+                    if (good < tolerance) {
+                        goodFit = good;
+                        mayFitWell = best.size();
+                    }
                 }
             }
             int fold = 1;
@@ -631,14 +658,24 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                        verifier.deviation(rotationAbout(axis, 2 * kPi * (n / 2) / n), tolerance, SIZE_MAX, &hints) <=
                            tolerance;
             };
-            for (int n : folds) {
-                if (measureWhenTried && measuredFit(n) > tolerance) continue;
+            auto accepted = [&](int n) {
                 const Eigen::Matrix3d rotation = rotationAbout(axis, 2 * kPi / n);
-                if ((modes == 0 || view.allows(rotation)) && powersFit(n) && tryAccept(rotation, &hints)) {
+                if (refusedUntested(rotation) || (measureWhenTried && measuredFit(n) > tolerance)) return false;
+                return (modes == 0 || view.allows(rotation)) && powersFit(n) && tryAccept(rotation, &hints);
+            };
+            // A fold refused untested is not measured: near a surface of revolution, hundreds would be.
+            std::vector<int> later(folds.begin() + std::ptrdiff_t(mayFitWell), folds.end());
+            for (std::size_t i = 0; i < mayFitWell && fold == 1; ++i) {
+                const int n = folds[i];
+                if (refusedUntested(rotationAbout(axis, 2 * kPi / n))) continue;
+                if (measuredFit(n) > goodFit)
+                    later.push_back(n);
+                else if (accepted(n))
                     fold = n;
-                    break;
-                }
             }
+            if (mayFitWell > 0) std::sort(later.begin(), later.end(), std::greater<int>());
+            for (std::size_t i = 0; i < later.size() && fold == 1; ++i)
+                if (accepted(later[i])) fold = later[i];
             const Eigen::Matrix3d mirror = mirrorWithNormal(axis);
             int refinementsLeft = int(kMaxRefinedFolds);  // of the maps below that may fail
             if (view.allows(mirror)) tryAccept(mirror, &hints, &refinementsLeft);
