@@ -595,14 +595,36 @@ SymmetryGroup detectSymmetries(const TriangleMesh& mesh, const SymmetryOptions& 
                 std::map<int, double> preliminaryFit;
                 bool strict = verifier.deviation(rotationAbout(axis, 2 * kPi * kGenericTurn), preliminary, SIZE_MAX,
                                                  &hints) <= preliminary;
-                for (std::size_t i = 0; i < lowerBounds.size() && !strict; ++i) {  // largest n first
+                // Screened first: a fold that fails on the screening points fails in full, and too many passing make
+                // the search strict without a measure in full of any (a 64-sector lathe is within the preliminary
+                // bound of 360-fold to 330-fold: 80 ms each on its 51136 triangles).
+                std::vector<int> screened;  // largest n first
+                for (std::size_t i = 0; i < lowerBounds.size() && !strict; ++i) {
                     const int n = lowerBounds[i].second;
-                    if (const double d =
-                            verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary, SIZE_MAX, &hints);
-                        d <= preliminary) {
-                        preliminaryFit[n] = d;
-                        strict = preliminaryFit.size() > kMaxRefinedFolds;
+                    if (verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary, kScreeningPoints, &hints) <=
+                        preliminary) {
+                        screened.push_back(n);
+                        strict = screened.size() > kMaxRefinedFolds;
                     }
+                }
+                // A fold n measured to fit within d makes its divisor m fit within (n / m) d (the turn's power). Once
+                // some fold fits far within the share of the tolerance below which every fold is as good as any, a
+                // divisor that bound puts well within that share is not measured (a 64-fold lathe's 32, 16, ..., 2).
+                const double asGoodAsAny = kExactFitShare * tolerance;
+                std::map<int, double> measured;
+                auto boundFromMultiple = [&](int m) -> std::optional<double> {
+                    for (const auto& [n, d] : measured)
+                        if (kGoodFitFactor * d <= asGoodAsAny && n % m == 0 && (n / m) * d <= asGoodAsAny / 2)
+                            return (n / m) * d;
+                    return std::nullopt;
+                };
+                for (std::size_t i = 0; i < (strict ? 0 : screened.size()); ++i) {
+                    const int n = screened[i];
+                    std::optional<double> d = boundFromMultiple(n);
+                    if (!d)
+                        d = measured[n] =
+                            verifier.deviation(rotationAbout(axis, 2 * kPi / n), preliminary, SIZE_MAX, &hints);
+                    if (*d <= preliminary) preliminaryFit[n] = *d;
                 }
                 // A 24-sided part is within a loose tolerance of 360-fold too: the folds that fit best (within a
                 // factor of the best fit) come first, the largest of them first, then the others that fit.
