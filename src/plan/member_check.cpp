@@ -324,6 +324,10 @@ std::optional<double> surfaceDeviation(const TileSurface& prototype, const TileS
         return std::nullopt;
     const std::optional<double> there = oneWay(prototype, member, j, tolerance, geometryOnly);
     if (!there) return std::nullopt;
+    // A surface mapped onto itself by an involution (a mirror, a half turn) is the same comparison both ways.
+    if (&prototype == &member && (j.linear * j.linear - Eigen::Matrix3d::Identity()).norm() < 1e-12 &&
+        (j.linear * j.translation + j.translation).norm() <= 1e-12 * (1 + j.translation.norm()))
+        return there;
     const std::optional<double> back = oneWay(member, prototype, j.inverse(), tolerance, geometryOnly);
     if (!back) return std::nullopt;
     return std::max(*there, *back);

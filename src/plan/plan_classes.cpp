@@ -74,6 +74,7 @@ std::vector<Eigen::Matrix3d> attributeGroup(const PlanContext& context, const Ti
     const bool geometryOnly = context.options.geometryOnly;
     const std::vector<Symmetry>& elements = shape.symmetry.elements;
     auto carriesAttributes = [&](std::size_t e) {
+        if (elements[e].kind == Symmetry::Kind::Identity) return true;
         Isometry about;
         about.linear = elements[e].linear;
         about.translation = center - about.linear * center;

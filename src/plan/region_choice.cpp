@@ -98,6 +98,12 @@ std::pair<std::optional<FundamentalRegion>, double> cheapestRegion(
         best = storableRegion(candidate, options, rotations, whole);
     double bestCost = best ? cost(*best) : std::numeric_limits<double>::infinity();
     auto estimate = [&](std::size_t order) { return tileBytes / double(order) + double(order) * nodeBytes; };
+    // A subgroup's order divides the group's: where no divisor's estimate beats the cost to beat, no subgroup's
+    // does, and the subgroups are not sought (C360v's 1194: 0.6 s).
+    double leastEstimate = std::numeric_limits<double>::infinity();
+    for (std::size_t order = 1; order <= group.size(); ++order)
+        if (group.size() % order == 0) leastEstimate = std::min(leastEstimate, estimate(order));
+    if (leastEstimate >= std::min(bestCost, toBeat)) return {std::move(best), bestCost};
     std::vector<std::vector<std::size_t>> subgroups;
     try {
         subgroups = subgroupsOf(group, 1e-5);

@@ -4,6 +4,7 @@
 
 #include "fundamental_region_parts.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "symmetry/point_group_closure.hpp"
 
 #include <Eigen/Geometry>
 
@@ -77,10 +78,16 @@ std::size_t checkGroup(const std::vector<Eigen::Matrix3d>& group, double toleran
     }
     const std::size_t identity = findElement(group, Eigen::Matrix3d::Identity(), tolerance);
     if (identity == group.size()) fail("the group does not contain the identity");
-    // Products of matrices within `tolerance` of orthogonal ones stay within a few tolerances.
+    // Products of matrices within `tolerance` of orthogonal ones stay within a few tolerances. An element within
+    // 4 tolerances in every entry is within 12 in the Frobenius norm: the index finds it among a few (C360v: 518400
+    // products, each compared with every element, took 0.35 s).
+    const ElementIndex index(group, 12 * tolerance);
     for (std::size_t i = 0; i < group.size(); ++i)
         for (std::size_t j = 0; j < group.size(); ++j)
-            if (findElement(group, group[i] * group[j], 4 * tolerance) == group.size())
+            if (const Eigen::Matrix3d product = group[i] * group[j];
+                index.find(product, [&](const Eigen::Matrix3d& element) {
+                    return (element - product).cwiseAbs().maxCoeff() <= 4 * tolerance;
+                }) == SIZE_MAX)
                 fail("the group is not closed: the product of matrices " + std::to_string(i) + " and " +
                      std::to_string(j) + " is not in it");
     return identity;

@@ -93,27 +93,15 @@ Symmetry describeOrthogonal(const Eigen::Matrix3d& linear) {
     return s;
 }
 
-namespace {
-
-double projection(const Eigen::Matrix3d& m) {
+double ElementIndex::projection(const Eigen::Matrix3d& m) {
     static const Eigen::Matrix3d weights =
         (Eigen::Matrix3d() << 0.31, -0.47, 0.12, 0.58, 0.23, -0.19, -0.36, 0.27, 0.21).finished().normalized();
     return weights.cwiseProduct(m).sum();
 }
 
-}  // namespace
-
 ElementIndex::ElementIndex(const std::vector<Eigen::Matrix3d>& elements, double window)
     : elements_(elements), window_(window) {
     for (std::size_t i = 0; i < elements.size(); ++i) added(i);
-}
-
-std::size_t ElementIndex::find(const Eigen::Matrix3d& m) const {
-    const double at = projection(m);
-    const auto last = byProjection_.upper_bound(at + window_);
-    for (auto it = byProjection_.lower_bound(at - window_); it != last; ++it)
-        if ((elements_[it->second] - m).norm() < window_) return it->second;
-    return SIZE_MAX;
 }
 
 void ElementIndex::added(std::size_t i) { byProjection_.emplace(projection(elements_[i]), i); }

@@ -19,10 +19,24 @@ public:
     // `elements` must outlive the index; elements appended to it later are filed by `added`.
     ElementIndex(const std::vector<Eigen::Matrix3d>& elements, double window);
     // The index of the first element filed within `window` of m, or SIZE_MAX.
-    std::size_t find(const Eigen::Matrix3d& m) const;
+    std::size_t find(const Eigen::Matrix3d& m) const {
+        return find(m, [&](const Eigen::Matrix3d& element) { return (element - m).norm() < window_; });
+    }
+    // The index of the first element filed whose projection is within `window` of m's and that `accepted` takes
+    // (an element within `window` of m in any norm no larger than the Frobenius norm), or SIZE_MAX.
+    template <class Accepted>
+    std::size_t find(const Eigen::Matrix3d& m, const Accepted& accepted) const {
+        const double at = projection(m);
+        const auto last = byProjection_.upper_bound(at + window_);
+        for (auto it = byProjection_.lower_bound(at - window_); it != last; ++it)
+            if (accepted(elements_[it->second])) return it->second;
+        return SIZE_MAX;
+    }
     void added(std::size_t i);  // files elements[i]
 
 private:
+    static double projection(const Eigen::Matrix3d& m);
+
     const std::vector<Eigen::Matrix3d>& elements_;
     double window_;
     std::multimap<double, std::size_t> byProjection_;
