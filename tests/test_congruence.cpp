@@ -122,6 +122,35 @@ TEST_CASE("40 baked copies of a model, turned, moved and mirrored, are one class
     }
 }
 
+TEST_CASE("Copies of parts about a lone axis, turned and mirrored at random, are one class each, placed exactly",
+          "[congruence]") {
+    // Parts whose second moments are the same across their axis: the turn about it comes from the Fourier modes of
+    // the higher moments on rings about the axis (a hexagonal bolt, a twisted five-sided part, which is chiral), or,
+    // where no order up to 10 varies about it (24 sides), from the farthest point across it.
+    const std::vector<Eigen::Vector2d> bolt{{0, 0}, {1, 0}, {1, 0.7}, {0.45, 0.7}, {0.45, 3}, {0, 3}};
+    const std::vector<Eigen::Vector2d> column{{0, 0}, {1, 0}, {0.8, 1}, {1.1, 2.5}, {0, 2.5}};
+    TriangleMesh twisted = samples::latheMesh(column, 5, Eigen::Vector3d::Zero());
+    for (Eigen::Vector3d& p : twisted.positions) p = Eigen::AngleAxisd(0.35 * p.z(), Eigen::Vector3d::UnitZ()) * p;
+    const std::vector<TriangleMesh> parts{samples::latheMesh(bolt, 6, Eigen::Vector3d::Zero()), twisted,
+                                          samples::latheMesh(column, 24, Eigen::Vector3d::Zero())};
+    std::mt19937_64 random(5);
+    std::vector<TriangleMesh> copies;
+    for (const TriangleMesh& part : parts)
+        for (int k = 0; k < 6; ++k) {
+            Eigen::Matrix3d linear = samples::randomRotation(random);
+            if (k % 2 == 1) linear.col(0) *= -1;  // a mirror image
+            TriangleMesh copy = samples::transformed(part, linear, Eigen::Vector3d(3.0 * k, 4.0 * copies.size(), 0));
+            for (auto& p : copy.positions) p = p.cast<float>().cast<double>();
+            copies.push_back(copy);
+        }
+    const auto tiles = splitIntoTiles(soupOf(copies));
+    REQUIRE(tiles.size() == copies.size());
+    const TileClassification classification = classifyTiles(tiles);
+    REQUIRE(classification.classes.size() == parts.size());
+    for (const CongruenceClass& k : classification.classes) CHECK(k.members.size() == 6);
+    checkPlacements(tiles, classification, CongruenceOptions{}.tolerance);
+}
+
 TEST_CASE("Scaled copies are not congruent", "[congruence]") {
     const TriangleMesh rock = worldMesh(readScene(modelPath("vulkan_rock/rock.gltf")));
     TriangleMesh scaled = rock, moved = rock;

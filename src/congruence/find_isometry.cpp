@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 namespace symcompress {
 namespace {
@@ -17,6 +18,9 @@ namespace {
 constexpr double kDistinctEigenvalues = 1e-4;  // relative gap above which principal axes are a frame
 constexpr double kSameValue = 1e-3;            // relative agreement of moment values at matched directions
 constexpr double kNoiseVariation = 1e-5;       // as in the detector: flatter functions have no directions
+// A Fourier mode about an axis weaker than this, relative to the function's bound, is noise (float32 data).
+constexpr double kRingModeNoise = 1e-5;
+constexpr double kPi = 3.14159265358979323846;
 
 // The rotation whose columns are a, the part of b across a, and their cross product.
 Eigen::Matrix3d frameOf(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -62,6 +66,89 @@ void criticalCandidates(const MomentFunction& f, const std::vector<Eigen::Vector
                 }
         }
     }
+}
+
+// A moment function on a ring about an axis: the ring at polar angle theta in the frame (u, v, axis), as the
+// Fourier coefficients c_m, m = 0..order, of phi -> f(sin theta (cos phi u + sin phi v) + cos theta axis). On the
+// ring f is a trigonometric polynomial of degree `order`: 2 order + 2 samples give its coefficients exactly.
+std::vector<std::complex<double>> ringModes(const MomentFunction& f, const Eigen::Matrix3d& frame, double theta) {
+    const int order = f.order(), samples = 2 * order + 2;
+    std::vector<Eigen::Vector3d> points;
+    for (int k = 0; k < samples; ++k) {
+        const double phi = 2 * kPi * k / samples;
+        points.push_back(
+            frame * Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+    }
+    std::vector<double> values(points.size());
+    f.polynomial().evaluate(points.data(), points.size(), values.data());
+    std::vector<std::complex<double>> modes(std::size_t(order) + 1);
+    for (int m = 0; m <= order; ++m)
+        for (int k = 0; k < samples; ++k)
+            modes[std::size_t(m)] += values[std::size_t(k)] * std::polar(1.0, -2 * kPi * m * k / samples);
+    return modes;
+}
+
+// A right-handed frame whose third axis is `axis`.
+Eigen::Matrix3d frameAbout(const Eigen::Vector3d& axis) {
+    const Eigen::Vector3d helper = std::abs(axis.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    Eigen::Matrix3d frame;
+    frame.col(0) = axis.cross(helper).normalized();
+    frame.col(1) = axis.cross(frame.col(0));
+    frame.col(2) = axis;
+    return frame;
+}
+
+// Candidate maps about a lone principal axis (two equal eigenvalues: a part with a 3-fold or finer axis, a
+// cylinder) from one moment function: where f varies about the axis, the turn about it that takes f's rings onto
+// g's is the phase of their strongest Fourier mode m over m, up to a multiple of 2 pi / m, for each choice of the
+// axis's sign and of the map's handedness. Each candidate is weighed by how far f's rings are from g's turned by
+// it, every mode counted, and the closest come first: a mirrored copy of a part that is nearly mirror-symmetric (a
+// bolt's thread) matches its turned copies loosely, to be refined in vain before the reflection is tried. False
+// where f is invariant about the axis to its noise (no mode tells a turn).
+bool ringCandidates(const MomentFunction& f, const Eigen::Vector3d& fromAxis, const MomentFunction& g,
+                    const Eigen::Vector3d& toAxis, std::vector<Eigen::Matrix3d>& out) {
+    // Off the equator, whose ring is the same about the axis either way up.
+    constexpr double kThetas[] = {1.2, 0.8};
+    const Eigen::Matrix3d fromFrame = frameAbout(fromAxis);
+    const double samples = 2 * f.order() + 2, scale = f.largestValue() * samples;
+    std::vector<std::vector<std::complex<double>>> fromRings;
+    for (const double theta : kThetas) fromRings.push_back(ringModes(f, fromFrame, theta));
+    // The strongest mode on either ring, relative to the function's bound.
+    std::size_t ring = 0;
+    int mode = 0;
+    double strongest = 0;
+    for (std::size_t r = 0; r < fromRings.size(); ++r)
+        for (int m = 1; m <= f.order(); ++m)
+            if (const double amplitude = 2 * std::abs(fromRings[r][std::size_t(m)]) / scale; amplitude > strongest)
+                strongest = amplitude, ring = r, mode = m;
+    if (!(strongest > kRingModeNoise)) return false;
+    std::vector<std::pair<double, Eigen::Matrix3d>> weighed;
+    for (const double handedness : {1.0, -1.0})
+        for (const double axisSign : {1.0, -1.0}) {
+            const Eigen::Matrix3d toFrame =
+                frameAbout(axisSign * toAxis) * Eigen::Vector3d(1, handedness, 1).asDiagonal();
+            std::vector<std::vector<std::complex<double>>> toRings;
+            for (const double theta : kThetas) toRings.push_back(ringModes(g, toFrame, theta));
+            // f on a ring at phi is g at phi + delta: c_m(f) = c_m(g) e^(i m delta).
+            const std::complex<double> toMode = toRings[ring][std::size_t(mode)];
+            if (!(std::abs(toMode) > 0)) continue;
+            const double delta = std::arg(fromRings[ring][std::size_t(mode)] / toMode) / mode;
+            for (int j = 0; j < mode; ++j) {
+                const double turn = delta + 2 * kPi * j / mode;
+                double residual = 0;
+                for (std::size_t r = 0; r < fromRings.size(); ++r)
+                    for (int m = 0; m <= f.order(); ++m)
+                        residual += std::abs(fromRings[r][std::size_t(m)] -
+                                             toRings[r][std::size_t(m)] * std::polar(1.0, m * turn));
+                if (residual > kSameValue * scale) continue;
+                weighed.push_back(
+                    {residual, toFrame * Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                                   fromFrame.transpose()});
+            }
+        }
+    std::stable_sort(weighed.begin(), weighed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [residual, map] : weighed) out.push_back(map);
+    return true;
 }
 
 }  // namespace
@@ -138,9 +225,25 @@ std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& from
         // A congruent tile's principal frame is then one of the 8 sign choices: when none passes, no frame will.
         if (principalAxesAreCertain(values, tolerance / from.diagonal)) return std::nullopt;
     }
+    const int lone = values[1] - values[0] > values[2] - values[1] ? 0 : 2;
+    const Eigen::Vector3d axisFrom = fromAxes.eigenvectors().col(lone), axisTo = toAxes.eigenvectors().col(lone);
+    // One eigenvalue apart from a pair: the turn about its axis from the moments' Fourier modes about it, order by
+    // order (without the critical directions, 400 Newton searches a tile and order). A part whose moments vary about
+    // no axis but by its polar angle (a lathe of many sectors) goes to the farthest point across the axis below.
+    bool variesAbout = true;
+    if (std::max(values[1] - values[0], values[2] - values[1]) > kDistinctEigenvalues * values[2]) {
+        variesAbout = false;
+        for (int order = 4; order <= from.moments.maxOrder; order += 2) {
+            const MomentFunction f(from.moments, order), g(to.moments, order);
+            candidates.clear();
+            if (!ringCandidates(f, axisFrom, g, axisTo, candidates)) continue;
+            variesAbout = true;
+            if (auto found = firstPassing(candidates)) return found;
+        }
+    }
     // Degenerate principal axes: the critical directions of each order in turn (a low order may be
     // invariant about an axis, M_4 of a 6-fold part, and its critical points then lie anywhere on circles).
-    for (int order = 4; order <= from.moments.maxOrder; order += 2) {
+    for (int order = 4; order <= from.moments.maxOrder && variesAbout; order += 2) {
         const MomentFunction f(from.moments, order), g(to.moments, order);
         if (!(f.relativeVariation() > kNoiseVariation)) continue;
         candidates.clear();
@@ -150,8 +253,6 @@ std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& from
     // Moments invariant about an axis (a part turned on a lathe, a high-order gear): the axis with the
     // distinct eigenvalue, and the direction across it to the farthest point.
     candidates.clear();
-    const int lone = values[1] - values[0] > values[2] - values[1] ? 0 : 2;
-    const Eigen::Vector3d axisFrom = fromAxes.eigenvectors().col(lone), axisTo = toAxes.eigenvectors().col(lone);
     const Eigen::Matrix3d fromFrame = frameOf(axisFrom, fromVerifier.farthestFromAxis(axisFrom));
     const Eigen::Matrix3d flip = Eigen::Vector3d(1, 1, -1).asDiagonal();
     for (double sa : {1.0, -1.0}) {
