@@ -608,7 +608,8 @@ TEST_CASE(
         if (interopAvailable()) CHECK(validatorErrors(file).empty());
     }
     // Without texture coordinates, the point is a vertex at the origin where the primitive has one, and its
-    // position then an accessor without a buffer view too (zeros); elsewhere it is written.
+    // position then an accessor without a buffer view too (zeros), a corner each, without indices; elsewhere it is
+    // written, and indexed.
     for (const double offset : {0.0, 0.25}) {
         INFO("offset " << offset);
         Primitive bare = cube;
@@ -617,9 +618,11 @@ TEST_CASE(
         const auto file = folder / "bare.glb";
         writeScene(sceneOfOneMesh("cube", bare), file, {});
         const nlohmann::json json = glbJson(file);
-        const auto& position =
-            json["accessors"][json["meshes"][0]["primitives"][1]["attributes"]["POSITION"].get<std::size_t>()];
+        const auto& point = json["meshes"][0]["primitives"][1];
+        const auto& position = json["accessors"][point["attributes"]["POSITION"].get<std::size_t>()];
         CHECK(position.contains("bufferView") == (offset != 0));
+        CHECK(point.contains("indices") == (offset != 0));
+        CHECK(position["count"] == (offset != 0 ? 1 : 12));
         const TriangleMesh drawn = worldMesh(readScene(file));
         CHECK(drawn.triangles.size() == 16);
         CHECK(zeroArea(drawn) == 4);

@@ -438,17 +438,21 @@ Json writePlainPrimitive(GltfBuilder& builder, const Primitive& primitive, const
 }
 
 // Its one vertex, and indices that are zeros: an accessor without a buffer view is zeros (glTF 2.0, 3.6.2.1),
-// so that the triangles cost their JSON alone; so is a vertex at the origin with nothing but its position.
+// so that the triangles cost their JSON alone. A vertex at the origin with nothing but its position is zeros too:
+// then a few triangles are drawn without indices, each corner a zero position (one accessor less: 61 bytes; a
+// viewer then holds 36 bytes of zeros a triangle, not 3).
 Json writeZeroAreaPrimitive(GltfBuilder& builder, const ZeroAreaPart& part) {
+    constexpr std::size_t kMostWithoutIndices = 1024;
     const Primitive& vertex = part.vertex;
-    const bool atOrigin = vertex.positions.front().isZero(0) && vertex.texcoords.empty() && vertex.attributes.empty();
-    const Json attributes = atOrigin ? Json{{"POSITION", builder.addAccessor({{"componentType", kFloat},
-                                                                              {"count", 1},
-                                                                              {"type", "VEC3"},
-                                                                              {"min", {0, 0, 0}},
-                                                                              {"max", {0, 0, 0}}})}}
-                                     : plainAttributes(builder, vertex, {});
-    return {{"attributes", attributes},
+    if (vertex.positions.front().isZero(0) && vertex.texcoords.empty() && vertex.attributes.empty() &&
+        part.triangles <= kMostWithoutIndices)
+        return {{"attributes",
+                 {{"POSITION", builder.addAccessor({{"componentType", kFloat},
+                                                    {"count", 3 * part.triangles},
+                                                    {"type", "VEC3"},
+                                                    {"min", {0, 0, 0}},
+                                                    {"max", {0, 0, 0}}})}}}};
+    return {{"attributes", plainAttributes(builder, vertex, {})},
             {"indices", builder.addAccessor(
                             {{"componentType", kUnsignedByte}, {"count", 3 * part.triangles}, {"type", "SCALAR"}})}};
 }
