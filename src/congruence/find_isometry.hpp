@@ -36,8 +36,9 @@ private:
 };
 
 // A map from shape `from` onto shape `to` within `tolerance` (absolute), or nothing. Frames come from the
-// principal axes of the second moments when they are distinct, and from the critical directions of the
-// moment functions and the farthest point across the principal axis.
+// principal axes of the second moments when they are distinct; about a lone principal axis, from the phase of the
+// moment functions' Fourier modes on rings about it; else from the critical directions of the moment functions;
+// and from the farthest point across the principal axis (docs/congruence.md).
 std::optional<FoundIsometry> findIsometry(const TileShape& from, TileProbe& fromProbe, const TileShape& to, TileProbe& toProbe,
                                           double tolerance);
 
