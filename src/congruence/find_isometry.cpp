@@ -122,11 +122,9 @@ bool ringCandidates(const MomentFunction& f, const Eigen::Vector3d& fromAxis, co
             if (const double amplitude = 2 * std::abs(fromRings[r][std::size_t(m)]) / scale; amplitude > strongest)
                 strongest = amplitude, ring = r, mode = m;
     if (!(strongest > kRingModeNoise)) return false;
-    // Per choice of sign and handedness, its candidates by residual; the choices by their best residual.
-    std::vector<std::vector<std::pair<double, Eigen::Matrix3d>>> choices;
+    std::vector<std::pair<double, Eigen::Matrix3d>> weighed;
     for (const double handedness : {1.0, -1.0})
         for (const double axisSign : {1.0, -1.0}) {
-            std::vector<std::pair<double, Eigen::Matrix3d>>& weighed = choices.emplace_back();
             const Eigen::Matrix3d toFrame =
                 frameAbout(axisSign * toAxis) * Eigen::Vector3d(1, handedness, 1).asDiagonal();
             std::vector<std::vector<std::complex<double>>> toRings;
@@ -148,23 +146,8 @@ bool ringCandidates(const MomentFunction& f, const Eigen::Vector3d& fromAxis, co
                                    fromFrame.transpose()});
             }
         }
-    // Within a choice, the turns that fit as well as its best (a part with an m-fold axis: every one) smallest first,
-    // so that copies turned alike get the same placement whichever frame their own axes gave (their instances'
-    // rotations then code alike), then the others.
-    auto byResidual = [](const auto& a, const auto& b) { return a.first < b.first; };
-    for (auto& weighed : choices) {
-        std::stable_sort(weighed.begin(), weighed.end(), byResidual);
-        if (weighed.empty()) continue;
-        const double asGood = 2 * weighed.front().first + kRingModeNoise * scale;
-        const auto good = std::find_if(weighed.begin(), weighed.end(), [&](const auto& w) { return w.first > asGood; });
-        std::stable_sort(weighed.begin(), good,
-                         [](const auto& a, const auto& b) { return a.second.trace() > b.second.trace(); });
-    }
-    std::stable_sort(choices.begin(), choices.end(), [](const auto& a, const auto& b) {
-        return !a.empty() && (b.empty() || a.front().first < b.front().first);
-    });
-    for (const auto& weighed : choices)
-        for (const auto& [residual, map] : weighed) out.push_back(map);
+    std::stable_sort(weighed.begin(), weighed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [residual, map] : weighed) out.push_back(map);
     return true;
 }
 
