@@ -415,6 +415,22 @@ TEST_CASE("X3D viewpoints and lights are read where X3D puts them, written back,
     }
 }
 
+TEST_CASE("X3D's default field of view is an SFFloat, written to glTF in float32's digits", "[io][x3d]") {
+    TemporaryFolder folder;
+    writeTextFile(folder / "view.x3d", "<X3D><Scene><Viewpoint position='0 0 35'/></Scene></X3D>");
+    const Scene scene = readScene(folder / "view.x3d");
+    REQUIRE(scene.cameras.size() == 1);
+    CHECK(scene.cameras[0].yfov == double(float(M_PI / 4)));
+    writeScene(scene, folder / "view.gltf");
+    CHECK(readTextFile(folder / "view.gltf").find("\"yfov\": 0.7853982,") != std::string::npos);
+    CHECK(float(readScene(folder / "view.gltf").cameras[0].yfov) == float(M_PI / 4));
+    // A yfov that is no float32 keeps every digit.
+    Scene wide = scene;
+    wide.cameras[0].yfov = 0.7853981633974483;
+    writeScene(wide, folder / "wide.gltf");
+    CHECK(readScene(folder / "wide.gltf").cameras[0].yfov == 0.7853981633974483);
+}
+
 TEST_CASE("glTF cameras and lights that break the rules are left out with a warning", "[io]") {
     TemporaryFolder folder;
     const auto file = folder / "broken.gltf";

@@ -37,6 +37,12 @@ inline double asFloat32(double value) {
     return std::strtod(text, nullptr);
 }
 
+// `value` itself where it is no float32, else asFloat32(value): a number that came as float32 (an X3D SFFloat)
+// prints in at most 9 digits, one that came as a double keeps every digit.
+inline double asFloat32WhereExact(double value) {
+    return static_cast<double>(static_cast<float>(value)) == value ? asFloat32(value) : value;
+}
+
 // Appends the shortest text that reads back to exactly `value` as a double.
 inline void appendShortest(std::string& out, double value) {
     char buffer[32];

@@ -123,7 +123,7 @@ Json writeCamera(const Camera& camera) {
         return out;
     }
     out["type"] = "perspective";
-    Json perspective = {{"yfov", camera.yfov}, {"znear", camera.znear}};
+    Json perspective = {{"yfov", asFloat32WhereExact(camera.yfov)}, {"znear", camera.znear}};
     if (camera.aspectRatio > 0) perspective["aspectRatio"] = camera.aspectRatio;
     if (camera.zfar > 0) perspective["zfar"] = camera.zfar;
     out["perspective"] = perspective;
@@ -141,7 +141,8 @@ Json writeLight(const Light& light) {
     if (light.intensity != 1) out["intensity"] = light.intensity;
     if (light.range > 0 && light.type != Light::Type::Directional) out["range"] = light.range;
     if (light.type == Light::Type::Spot)
-        out["spot"] = {{"innerConeAngle", light.innerConeAngle}, {"outerConeAngle", light.outerConeAngle}};
+        out["spot"] = {{"innerConeAngle", asFloat32WhereExact(light.innerConeAngle)},
+                       {"outerConeAngle", asFloat32WhereExact(light.outerConeAngle)}};
     return out;
 }
 

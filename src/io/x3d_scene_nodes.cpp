@@ -10,6 +10,9 @@
 namespace symcompress {
 namespace fs = std::filesystem;
 
+// π/4, the default of Viewpoint's fieldOfView and SpotLight's cutOffAngle, as the SFFloat (float32) it is.
+constexpr double kQuarterTurnAsSFFloat = static_cast<float>(0.7853981633974483);
+
 // A ROUTE from a Position- or OrientationInterpolator's value to a Transform's translation, rotation or
 // scale, the interpolator driven by a TimeSensor's fraction, becomes a channel of that TimeSensor's
 // animation: key times the cycleInterval (nudged to increase strictly where keys repeat, as glTF asks),
@@ -161,7 +164,7 @@ int X3dReader::readViewpoint(const pugi::xml_node& viewpoint) {
         placement.translate(Eigen::Vector3d((field[0] + field[2]) / 2, (field[1] + field[3]) / 2, 0));
         if (!(camera.zfar > camera.znear)) camera.zfar = 1e4;  // glTF needs a far plane; X3D's may be infinite
     } else {
-        camera.yfov = scalar(viewpoint, "fieldOfView", 0.7853981633974483);
+        camera.yfov = scalar(viewpoint, "fieldOfView", kQuarterTurnAsSFFloat);
     }
     if (const std::string problem = cameraProblem(camera); !problem.empty()) {
         notes_.insert("a " + std::string(viewpoint.name()) + " was left out: " + problem);
@@ -202,7 +205,7 @@ int X3dReader::readLight(const pugi::xml_node& source, int depth) {
         if (light.range >= std::numeric_limits<float>::max()) light.range = 0;  // how the writer says "no limit"
     }
     if (light.type == Light::Type::Spot) {
-        light.outerConeAngle = std::min(scalar(source, "cutOffAngle", 0.7853981633974483), std::acos(0.0));
+        light.outerConeAngle = std::min(scalar(source, "cutOffAngle", kQuarterTurnAsSFFloat), std::acos(0.0));
         light.innerConeAngle =
             std::min(scalar(source, "beamWidth", std::acos(0.0)), std::nextafter(light.outerConeAngle, 0.0));
     }
