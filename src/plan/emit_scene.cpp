@@ -197,6 +197,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
                 auto [entry, added] = inMaterial.try_emplace(*node.material, int(out.meshes.size()));
                 if (added) {
                     Mesh variant = out.meshes[std::size_t(mesh)];
+                    variant.name.clear();  // the first mesh names the part; its name again costs a line each
                     for (Primitive& primitive : variant.primitives) primitive.material = *node.material;
                     out.meshes.push_back(std::move(variant));
                     deviation.push_back(deviation[std::size_t(mesh)]);
