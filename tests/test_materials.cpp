@@ -165,7 +165,8 @@ Scene withoutUnreadTangents(Scene scene) {
 }
 
 // The skins by their joints' names and inverse bind matrices (float32), the morph weights of meshes and nodes,
-// and the animation channels by node name and path: what moves a skinned or morphed mesh.
+// and the animation channels by node name, path and first and last key times (keys between that interpolation
+// gives back may be dropped: dropRedundantKeys): what moves a skinned or morphed mesh.
 std::multiset<std::string> skinsAndMorphs(const Scene& scene) {
     std::multiset<std::string> out;
     for (const Skin& skin : scene.skins) {
@@ -193,7 +194,8 @@ std::multiset<std::string> skinsAndMorphs(const Scene& scene) {
     for (const Animation& animation : scene.animations)
         for (const AnimationChannel& channel : animation.channels)
             out.insert("channel " + scene.nodes[std::size_t(channel.node)].name + " " +
-                       std::to_string(int(channel.path)) + " " + std::to_string(channel.times.size()) + " keys");
+                       std::to_string(int(channel.path)) + " from " + std::to_string(channel.times.front()) + " to " +
+                       std::to_string(channel.times.back()));
     return out;
 }
 

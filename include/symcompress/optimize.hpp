@@ -16,6 +16,9 @@ struct OptimizeOptions {
         true;  // materials no primitive uses, textures no material uses, animation channels that change nothing
     bool dedup = true;            // materials equal but for their names, textures equal by content
     bool dropFlatNormals = true;  // normals equal to their triangles' own (the viewer's flat shading)
+    // Animation keys that interpolation gives back within the budget (compressFile, which has the budget:
+    // dropRedundantKeys).
+    bool dropKeys = true;
 };
 
 // What the optimizations removed or merged, counted.
@@ -25,6 +28,7 @@ struct OptimizeReport {
     std::size_t materialsMerged = 0, texturesMerged = 0;
     std::size_t materialsRemoved = 0, texturesRemoved = 0;
     std::size_t stillChannelsRemoved = 0;  // animation channels that hold their node where it rests
+    std::size_t animationKeysDropped = 0;  // keys that interpolation gives back (dropRedundantKeys)
     // One line for each optimization that did something, for the warnings a user reads.
     std::vector<std::string> lines() const;
 };
@@ -61,5 +65,17 @@ std::pair<std::size_t, std::size_t> pruneUnused(Scene& scene);
 // animation keys the same node and path (a viewer playing both would blend them), the animation keeps a channel
 // and the same first and last key times (its length, over which a viewer loops). Returns how many.
 std::size_t removeStillChannels(Scene& scene);
+
+// What dropRedundantKeys dropped, and how far that moves a vertex in the poses.
+struct RedundantKeys {
+    std::size_t keysDropped = 0;
+    double deviation = 0;  // a distance, at most the allowance
+};
+// Animation keys that interpolation of the keys kept gives back dropped, where every vertex the animation moves
+// stays within `allowed` (a distance) of where it lies as read, at each key time and halfway between (PoseProbe):
+// in linear and step channels of nodes that draw something (a camera's or a light's motion is not measured), each
+// channel's first and last keys kept (its length). Channels keyed at the same times keep them shared (one accessor in
+// the file). Nothing where the poses are too many to measure.
+RedundantKeys dropRedundantKeys(Scene& scene, double allowed);
 
 }  // namespace symcompress

@@ -41,6 +41,9 @@ std::vector<double> keyTimes(const Animation& animation);
 // scale replacing its own (glTF allows no matrix on an animated node). The animation names the scene's nodes.
 std::vector<Eigen::Matrix4d> posedWorldTransforms(const Scene& scene, const Animation* animation, double time);
 
+// Which nodes lie under `seeds` (node indices), the seeds included.
+std::vector<char> nodesUnder(const Scene& scene, std::vector<int> seeds);
+
 // The parts of the scene that `animation` moves (the nodes it targets and all under them, the meshes their joints
 // skin), drawn at `time` as a viewer draws them: keyed translations, rotations and scales interpolated as their
 // samplers say, morph targets at their weights, skinned vertices by their joints. The same scene and channel

@@ -26,6 +26,8 @@ namespace {
 constexpr double kRotationShare = 1.0 / 64, kTranslationShare = 1.0 / 64;
 // The share for the rounding of skin weights, in a scene with skins.
 constexpr double kSkinWeightShare = 1.0 / 32;
+// Of the keys' share, the part that dropping keys may take (the rounding takes the rest and what it leaves).
+constexpr double kKeyDroppingShare = 1.0 / 2;
 // The share for the rounding of animations' key values, in a scene with animations: of two roundings that share
 // an error, the bits are fewest in all where each takes a part in proportion to the values it rounds (n_k
 // log(1 / e_k) + n_p log(1 / e_p), least for e_k + e_p = E at e_k / E = n_k / (n_k + n_p)), key values against
@@ -175,6 +177,13 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         const double keyShare = rounds && write.gpuInstancing ? options.maxError * animationKeyShare(scene) : 0;
         write.skinWeightError = skinShare * analysis.diagonal;
         write.animationKeyError = keyShare * analysis.diagonal;
+        // Keys that interpolation gives back dropped with a share of the keys' allowance; their rounding takes what
+        // the dropping leaves of it.
+        if (options.optimize.dropKeys && keyShare > 0) {
+            const RedundantKeys dropped = dropRedundantKeys(scene, write.animationKeyError * kKeyDroppingShare);
+            report.optimizations.animationKeysDropped = dropped.keysDropped;
+            write.animationKeyError -= dropped.deviation;
+        }
         report.skinWeightShare = skinShare;
         report.animationKeyShare = keyShare;
         planOptions.maxError = options.maxError - skinShare - keyShare;

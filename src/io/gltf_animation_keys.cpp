@@ -1,12 +1,9 @@
-// Key values rounded within the budget, measured where it matters: the vertices the animation moves, drawn as a
-// viewer draws them (posedMesh) with the values as a viewer decodes them (meshopt's own decoding filters), against
-// the values as read. A joint's rotation moves a hand by the arm's length, a tail's root its tip: no bound per key
-// value says by how much, the poses do.
+// Key values rounded within the budget, measured in the poses (PoseProbe) with the values as a viewer decodes them
+// (meshopt's own decoding filters), against the values as read.
 #include "gltf_animation_keys.hpp"
 
 #include "gltf_instance_encoding.hpp"
-
-#include "symcompress/scene_ops.hpp"
+#include "mesh/pose_probe.hpp"
 
 #include <meshoptimizer.h>
 
@@ -18,10 +15,6 @@
 
 namespace symcompress {
 namespace {
-
-// The most vertices drawn over all the poses measured (key times and halfway between them, each rounding tried
-// some ten times): beyond, the values stay as read rather than the writer take seconds.
-constexpr std::size_t kMostPosedVertices = 4'000'000;
 
 // A channel's values rounded: as the file stores them, and as a viewer decodes them.
 struct Rounded {
@@ -64,71 +57,6 @@ Rounded exponentialRounded(const AnimationChannel& channel, int bits) {
     const std::vector<std::uint32_t> encoded = exponentialFiltered(floats, components, bits, liftZeros);
     const std::vector<float> back = exponentialDecoded(encoded, components);
     return {{"EXPONENTIAL", kFloat, components * 4, bytesOf(encoded), bits}, {back.begin(), back.end()}};
-}
-
-// The animation's poses as read, against which a rounding is measured.
-class PoseProbe {
-public:
-    PoseProbe(const Scene& scene, const Animation& animation) : scene_(scene) {
-        const std::vector<double> keys = keyTimes(animation);
-        for (std::size_t k = 0; k < keys.size(); ++k) {
-            times_.push_back(keys[k]);
-            if (k + 1 < keys.size()) times_.push_back((keys[k] + keys[k + 1]) / 2);
-        }
-        std::size_t drawn = 0;
-        for (double time : times_) {
-            poses_.push_back(posedMesh(scene, animation, time).positions);
-            drawn += poses_.back().size();
-            if (drawn * 10 > kMostPosedVertices) {
-                poses_.clear();
-                return;
-            }
-        }
-    }
-    // Whether anything drawn can be measured.
-    bool measurable() const {
-        return std::any_of(poses_.begin(), poses_.end(), [](const auto& pose) { return !pose.empty(); });
-    }
-    // Whether every vertex of every pose of `changed` lies within `allowed` of where it lies as read.
-    bool within(const Animation& changed, double allowed) const {
-        for (std::size_t t = 0; t < times_.size(); ++t) {
-            const std::vector<Eigen::Vector3d> posed = posedMesh(scene_, changed, times_[t]).positions;
-            for (std::size_t v = 0; v < posed.size(); ++v)
-                if (!((posed[v] - poses_[t][v]).norm() <= allowed)) return false;
-        }
-        return true;
-    }
-
-private:
-    const Scene& scene_;
-    std::vector<double> times_;
-    std::vector<std::vector<Eigen::Vector3d>> poses_;
-};
-
-// The nodes whose motion the probe measures: those with something drawn under them (a mesh, or a joint of a
-// drawn skin) and no camera or light, whose motion it would not see.
-std::vector<char> measuredNodes(const Scene& scene) {
-    const std::size_t count = scene.nodes.size();
-    std::vector<char> drawsOrSkins(count, 0), unseen(count, 0);
-    for (std::size_t n = 0; n < count; ++n) {
-        const Node& node = scene.nodes[n];
-        if (node.mesh >= 0) drawsOrSkins[n] = 1;
-        if (node.camera >= 0 || node.light >= 0) unseen[n] = 1;
-        if (node.mesh >= 0 && node.skin >= 0)
-            for (int joint : scene.skins[std::size_t(node.skin)].joints) drawsOrSkins[std::size_t(joint)] = 1;
-    }
-    // Up the hierarchy: a node measures what any node under it does, and is unseen where one under it is.
-    std::vector<int> parent(count, -1);
-    for (std::size_t n = 0; n < count; ++n)
-        for (int child : scene.nodes[n].children) parent[std::size_t(child)] = int(n);
-    for (std::size_t n = 0; n < count; ++n)
-        for (int up = parent[n], steps = 0; up >= 0 && steps < int(count); up = parent[std::size_t(up)], ++steps) {
-            drawsOrSkins[std::size_t(up)] |= drawsOrSkins[n];
-            unseen[std::size_t(up)] |= unseen[n];
-        }
-    std::vector<char> measured(count, 0);
-    for (std::size_t n = 0; n < count; ++n) measured[n] = drawsOrSkins[n] && !unseen[n];
-    return measured;
 }
 
 // The bytes meshopt codes the channels' rounded values into, in one stream as the file stores them.

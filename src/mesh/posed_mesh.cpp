@@ -9,29 +9,29 @@
 
 namespace symcompress {
 
+std::vector<char> nodesUnder(const Scene& scene, std::vector<int> seeds) {
+    std::vector<char> found(scene.nodes.size(), 0);
+    while (!seeds.empty()) {
+        const auto n = std::size_t(seeds.back());
+        seeds.pop_back();
+        if (found[n]) continue;
+        found[n] = 1;
+        seeds.insert(seeds.end(), scene.nodes[n].children.begin(), scene.nodes[n].children.end());
+    }
+    return found;
+}
+
 TriangleMesh posedMesh(const Scene& scene, const Animation& animation, double time) {
     const std::size_t count = scene.nodes.size();
     const std::vector<Eigen::Matrix4d> world = posedWorldTransforms(scene, &animation, time);
     std::vector<std::vector<const AnimationChannel*>> channelsOf(count);
     for (const AnimationChannel& channel : animation.channels)
         channelsOf[std::size_t(channel.node)].push_back(&channel);
-    // The nodes under `seeds`, themselves included.
-    auto under = [&](std::vector<int> stack) {
-        std::vector<char> found(count, 0);
-        while (!stack.empty()) {
-            const auto n = std::size_t(stack.back());
-            stack.pop_back();
-            if (found[n]) continue;
-            found[n] = 1;
-            stack.insert(stack.end(), scene.nodes[n].children.begin(), scene.nodes[n].children.end());
-        }
-        return found;
-    };
     // Which nodes the animation moves (those it targets and everything under them), and which are drawn.
     std::vector<int> targeted;
     for (std::size_t n = 0; n < count; ++n)
         if (!channelsOf[n].empty()) targeted.push_back(int(n));
-    const std::vector<char> moved = under(targeted), drawn = under(scene.roots);
+    const std::vector<char> moved = nodesUnder(scene, targeted), drawn = nodesUnder(scene, scene.roots);
 
     TriangleMesh out;
     for (std::size_t n = 0; n < count; ++n) {

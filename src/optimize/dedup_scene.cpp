@@ -85,6 +85,8 @@ std::vector<std::string> OptimizeReport::lines() const {
     say(materialsRemoved, "materials that no primitive uses (merged ones included) removed (--no-prune keeps them)");
     say(texturesRemoved, "textures that no material uses (merged ones included) removed (--no-prune keeps them)");
     say(stillChannelsRemoved, "animation channels that hold their node where it rests removed (--no-prune keeps them)");
+    say(animationKeysDropped,
+        "animation keys dropped: interpolation gives them back within the budget (--keep-animation-keys keeps them)");
     return out;
 }
 

@@ -1,0 +1,160 @@
+// Animation keys that interpolation gives back, dropped (glTF-Transform's `resample` does the same): exporters
+// sample every frame, where a linear track needs only its turning points (the milk truck's wheels: 31 keys of one
+// steady turn). Within a share of the budget, measured in the poses as the rounding of the keys is (PoseProbe).
+#include "mesh/pose_probe.hpp"
+#include "symcompress/optimize.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <map>
+#include <optional>
+
+namespace symcompress {
+namespace {
+
+// The most keys one kept pair may stand for: each span is checked key by key as it grows, so a key costs up to this
+// many checks (of each channel sharing its times); a steady track then keeps one key in 64.
+constexpr std::size_t kLongestSpan = 64;
+// The tolerances tried, relative (a quaternion's components; a translation's or scale's over its largest value),
+// coarsest first: the coarsest whose poses stay within the allowance is kept.
+constexpr double kTolerances[] = {3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6};
+
+bool reducible(const AnimationChannel& channel, const std::vector<char>& measured) {
+    return channel.interpolation != AnimationChannel::Interpolation::CubicSpline && channel.times.size() > 2 &&
+           channel.node >= 0 && std::size_t(channel.node) < measured.size() && measured[std::size_t(channel.node)] &&
+           channel.components() > 0 && channel.values.size() == channel.times.size() * channel.components();
+}
+
+// What a tolerance is relative to: 1 for rotations (unit quaternions) and weights, else the largest value's size.
+double unitOf(const AnimationChannel& channel) {
+    if (channel.path == AnimationChannel::Path::Rotation || channel.path == AnimationChannel::Path::Weights) return 1;
+    double largest = 0;
+    for (double value : channel.values) largest = std::max(largest, std::abs(value));
+    return largest;
+}
+
+// Whether interpolating keys a and b alone gives every key between them within `tolerance` (each component; a
+// rotation as either of its quaternions), as the sampler interpolates: held for STEP, slerp for rotations.
+bool spanHolds(const AnimationChannel& channel, std::size_t a, std::size_t b, double tolerance) {
+    const std::size_t width = channel.components();
+    const double* va = &channel.values[a * width];
+    const double* vb = &channel.values[b * width];
+    const bool rotation = channel.path == AnimationChannel::Path::Rotation,
+               step = channel.interpolation == AnimationChannel::Interpolation::Step;
+    const Eigen::Quaterniond qa(va[3], va[0], va[1], va[2]), qb(vb[3], vb[0], vb[1], vb[2]);
+    for (std::size_t k = a + 1; k < b; ++k) {
+        const double u = (channel.times[k] - channel.times[a]) / (channel.times[b] - channel.times[a]);
+        const double* vk = &channel.values[k * width];
+        if (rotation && !step) {
+            const Eigen::Quaterniond q = qa.normalized().slerp(u, qb.normalized());
+            const double expected[] = {q.x(), q.y(), q.z(), q.w()};
+            double same = 0, opposite = 0;
+            for (std::size_t c = 0; c < 4; ++c) {
+                same = std::max(same, std::abs(vk[c] - expected[c]));
+                opposite = std::max(opposite, std::abs(vk[c] + expected[c]));
+            }
+            if (std::min(same, opposite) > tolerance) return false;
+            continue;
+        }
+        for (std::size_t c = 0; c < width; ++c) {
+            const double expected = step ? va[c] : (1 - u) * va[c] + u * vb[c];
+            if (!(std::abs(vk[c] - expected) <= tolerance)) return false;
+        }
+    }
+    return true;
+}
+
+// The keys kept at `tolerance` of channels keyed at the same times: the first and the last (the length), and each
+// key after which the span from the key kept before it no longer holds for one of them.
+std::vector<std::size_t> keysKept(const Animation& animation, const std::vector<std::size_t>& channels,
+                                  double tolerance) {
+    std::vector<double> tolerances;
+    for (std::size_t c : channels) tolerances.push_back(tolerance * unitOf(animation.channels[c]));
+    auto holds = [&](std::size_t a, std::size_t b) {
+        for (std::size_t i = 0; i < channels.size(); ++i)
+            if (!spanHolds(animation.channels[channels[i]], a, b, tolerances[i])) return false;
+        return true;
+    };
+    const std::size_t count = animation.channels[channels.front()].times.size();
+    std::vector<std::size_t> kept{0};
+    for (std::size_t b = 2; b < count; ++b)
+        if (b - kept.back() > kLongestSpan || !holds(kept.back(), b)) kept.push_back(b - 1);
+    kept.push_back(count - 1);
+    return kept;
+}
+
+void keepOnly(AnimationChannel& channel, const std::vector<std::size_t>& keys) {
+    const std::size_t width = channel.components();
+    std::vector<double> times, values;
+    for (std::size_t k : keys) {
+        times.push_back(channel.times[k]);
+        values.insert(values.end(), channel.values.begin() + std::ptrdiff_t(k * width),
+                      channel.values.begin() + std::ptrdiff_t((k + 1) * width));
+    }
+    channel.times = std::move(times);
+    channel.values = std::move(values);
+}
+
+// `animation` with the keys that interpolation gives back within `tolerance` dropped from its `reducible`
+// channels. Channels keyed at the same times share one accessor of them in the file and keep the same keys: each
+// its own took the fox 61564 -> 64824 bytes, Cesium Man 265528 -> 265532 (times code poorly, and meshopt codes
+// the values of a channel that hardly moves in a few bytes however many keys it has).
+Animation reduced(const Animation& animation, const std::vector<char>& reducible, double tolerance) {
+    Animation out = animation;
+    std::map<std::vector<double>, std::vector<std::size_t>> byTimes;
+    for (std::size_t c = 0; c < animation.channels.size(); ++c)
+        if (reducible[c]) byTimes[animation.channels[c].times].push_back(c);
+    for (const auto& [times, channels] : byTimes) {
+        const std::vector<std::size_t> keys = keysKept(animation, channels, tolerance);
+        for (std::size_t c : channels) keepOnly(out.channels[c], keys);
+    }
+    return out;
+}
+
+std::size_t keyCount(const Animation& animation) {
+    std::size_t keys = 0;
+    for (const AnimationChannel& channel : animation.channels) keys += channel.times.size();
+    return keys;
+}
+
+}  // namespace
+
+RedundantKeys dropRedundantKeys(Scene& scene, double allowed) {
+    RedundantKeys out;
+    if (!(allowed > 0)) return out;
+    const std::vector<char> measured = measuredNodes(scene);
+    for (Animation& animation : scene.animations) {
+        std::vector<char> reducibleChannels(animation.channels.size());
+        for (std::size_t c = 0; c < animation.channels.size(); ++c)
+            reducibleChannels[c] = reducible(animation.channels[c], measured);
+        if (std::none_of(reducibleChannels.begin(), reducibleChannels.end(), [](char r) { return r != 0; }) ||
+            keyCount(reduced(animation, reducibleChannels, kTolerances[0])) == keyCount(animation))
+            continue;
+        const PoseProbe probe(scene, animation);
+        if (!probe.measurable()) continue;
+        // The coarsest tolerance within the allowance, by bisection (the poses' error grows with it).
+        // kTolerances[high] holds (none tried yet: high is past the end), [low, high) are not known to.
+        std::size_t low = 0, high = std::size(kTolerances);
+        std::optional<Animation> kept;
+        while (low < high) {
+            const std::size_t middle = (low + high) / 2;
+            Animation trial = reduced(animation, reducibleChannels, kTolerances[middle]);
+            if (probe.within(trial, allowed)) {
+                high = middle;
+                kept = std::move(trial);
+            } else {
+                low = middle + 1;
+            }
+        }
+        if (!kept || keyCount(*kept) == keyCount(animation)) continue;
+        out.deviation = std::max(out.deviation, probe.deviation(*kept));
+        out.keysDropped += keyCount(animation) - keyCount(*kept);
+        animation = std::move(*kept);
+    }
+    return out;
+}
+
+}  // namespace symcompress
