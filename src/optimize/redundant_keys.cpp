@@ -44,11 +44,11 @@ bool spanHolds(const AnimationChannel& channel, std::size_t a, std::size_t b, do
     const double* vb = &channel.values[b * width];
     const bool rotation = channel.path == AnimationChannel::Path::Rotation,
                step = channel.interpolation == AnimationChannel::Interpolation::Step;
-    const Eigen::Quaterniond qa(va[3], va[0], va[1], va[2]), qb(vb[3], vb[0], vb[1], vb[2]);
     for (std::size_t k = a + 1; k < b; ++k) {
         const double u = (channel.times[k] - channel.times[a]) / (channel.times[b] - channel.times[a]);
         const double* vk = &channel.values[k * width];
         if (rotation && !step) {
+            const Eigen::Quaterniond qa(va[3], va[0], va[1], va[2]), qb(vb[3], vb[0], vb[1], vb[2]);
             const Eigen::Quaterniond q = qa.normalized().slerp(u, qb.normalized());
             const double expected[] = {q.x(), q.y(), q.z(), q.w()};
             double same = 0, opposite = 0;
