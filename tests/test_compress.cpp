@@ -810,14 +810,16 @@ TEST_CASE("Tiles stored as they are keep the frame of a node that turns them off
     }
     // At glTF-Transform's deviation on the oblique spheres (which it stores in the node's frame at 14 bits), the
     // frame takes the bits the world's does: the close-up bound is the world box's, not the turned one's, whose
-    // diagonal is 4% shorter and asked for a bit more (1920 bytes in world space, 1760 in the frame).
+    // diagonal is 4% shorter and asked for a bit more (1920 bytes in world space, 1760 in the frame). The upright
+    // scene's spheres take a coarser grid of their bits (coarserPositionGrid) that the turned ones' bound leaves no
+    // room for: 22 bytes more than the node's.
     Scene scene = samples::makeThreeSpheresScene();
     scene.nodes[0].transform.topLeftCorner<3, 3>() = oblique;
     CompressOptions atPeer;
     atPeer.maxError = 3.1825e-5;
     const nlohmann::json report = compressAndVerify(writePlainGlb(scene, folder, "peer"), folder, "peer-small", atPeer);
     CHECK(report["node_frames"] == 1);
-    CHECK(report["output_bytes"].get<double>() < upright["output_bytes"].get<double>() + 150);
+    CHECK(report["output_bytes"].get<double>() < upright["output_bytes"].get<double>() + 200);
 }
 
 TEST_CASE("Tiles of several nodes under one turned root share one mesh in that turn's frame", "[compress]") {

@@ -427,6 +427,44 @@ TEST_CASE("Draco's size is not monotonic in the position bits: more bits within 
     CHECK(largestMove(all, readScene(folder / "tried.glb").meshes[0].primitives[0]) <= bounded.maxPositionError);
 }
 
+TEST_CASE("Where whole bits keep the corners well within the bound, a coarser grid of those bits uses the rest",
+          "[budget][writers]") {
+    const Primitive points = pointsOnSphere(5);
+    TemporaryFolder folder;
+    WriteOptions twelve;
+    twelve.positionBits = 12;
+    twelve.encodingTrials = false;
+    writeScene(sceneOf(points), folder / "twelve.glb", twelve);
+    const double atTwelve = largestMove(points, readScene(folder / "twelve.glb").meshes[0].primitives[0]);
+    // A bound 1.6 times what 12 bits move the corners by: 11 bits (twice the step) do not keep it.
+    WriteOptions options;
+    options.maxPositionError = 1.6 * atTwelve;
+    REQUIRE(positionBitsFor(points, options) == 12);
+    const std::optional<QuantizationGrid> coarser = coarserPositionGrid(points, options, 12);
+    REQUIRE(coarser);
+    CHECK(coarser->bits == 12);
+    const Eigen::AlignedBox3d box = boundsOfCorners(points.positions, points.triangles);
+    CHECK(coarser->range > box.sizes().maxCoeff() * 1.05);
+    CHECK(coarser->range < box.sizes().maxCoeff() * 2);
+    CHECK((coarser->origin - box.min()).norm() < 1e-5);
+    // Written with it where it codes smaller: the corners move farther than 12 bits' own grid moves them, within
+    // the bound.
+    writeScene(sceneOf(points), folder / "coarser.glb", options);
+    const double moved = largestMove(points, readScene(folder / "coarser.glb").meshes[0].primitives[0]);
+    CHECK(moved <= options.maxPositionError);
+    CHECK(moved > atTwelve);
+    CHECK(std::filesystem::file_size(folder / "coarser.glb") < std::filesystem::file_size(folder / "twelve.glb"));
+    // None without a bound, for a primitive with a grid of its own, or where the bound leaves no room.
+    CHECK(!coarserPositionGrid(points, twelve, 12));
+    CHECK(!coarserPositionGrid(points, WriteOptions{}, 12));
+    Primitive onGrid = points;
+    onGrid.positionGrid = QuantizationGrid{};
+    CHECK(!coarserPositionGrid(onGrid, options, 12));
+    WriteOptions tight = options;
+    tight.maxPositionError = atTwelve;
+    CHECK(!coarserPositionGrid(points, tight, 12));
+}
+
 TEST_CASE(
     "A corner's move is measured to what float32 tells apart: a bound a fraction of a unit in the last place "
     "below the move keeps the bits, a whole unit below does not",

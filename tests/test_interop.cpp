@@ -116,9 +116,10 @@ void checkDrawnByOthers(const std::vector<std::filesystem::path>& inputs) {
                 // decompressFile measured).
                 CHECK(decodeCheck(output, folder / "flat.glb")["dev_rel"].get<double>() < 2e-4);
                 // Tiles stored as they are share one mesh per material, quantized over the whole scene: the
-                // sterile room's walls move by up to a 14-bit step of its 62 m, 1.1e-3 of its volume.
+                // sterile room's walls move by up to a 14-bit step of its 62 m, 1.1e-3 of its volume; the house's
+                // thin parts, quantized on grids that take the whole of their bound (coarserPositionGrid), 2.2e-3.
                 referenceVolume = decoded["ref_volume"].get<double>();
-                CHECK(decoded["volume"].get<double>() == Approx(referenceVolume).epsilon(2e-3));
+                CHECK(decoded["volume"].get<double>() == Approx(referenceVolume).epsilon(3e-3));
             } else {
                 const auto drawn = x3dCount(output);
                 CHECK(drawn["tris"] == expanded.triangles);

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -106,6 +107,13 @@ double positionErrorBound(const Primitive& primitive, const WriteOptions& option
 // other predictions; the grass cards' scene 19390 bytes at 14 bits, 16578 at 15), so the writer encodes with
 // these too and keeps the smallest.
 std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const WriteOptions& options, int fewest);
+// A grid of `bits` for `primitive`'s positions coarser than Draco's own (its box's largest side cut into
+// 2^bits - 1 steps): the same corner, a step 2^(k/8) times as long for the largest k < 8 whose corners stay within
+// the bound and that collapses no triangle. The bits are whole, the bound is not: where `bits` keep the corners
+// well within it (a bit fewer would not), the longer step leaves Draco's predictions smaller residuals to code,
+// some fraction of a bit a coordinate. Nothing where no k holds, for a primitive with a grid of its own or of over
+// 20000 triangles, or without a bound (fixed bits).
+std::optional<QuantizationGrid> coarserPositionGrid(const Primitive& primitive, const WriteOptions& options, int bits);
 // The Draco speeds (encoding and decoding alike) to encode `primitive` with, the smallest result kept: the one
 // compressionLevel asks, and where that is the best compression (10, speed 0), for a primitive of at most
 // 20000 triangles, others too. Speed 0's predictions cost more than they save on small parts: the chess

@@ -6,14 +6,20 @@
 
 namespace symcompress {
 
+DracoGrid::DracoGrid(const QuantizationGrid& grid) {
+    for (int c = 0; c < 3; ++c) minimum_[c] = float(grid.origin[c]);
+    range_ = float(grid.range);
+    levels_ = float((1u << grid.bits) - 1);
+    bits_ = grid.bits;
+}
+
 DracoGrid::DracoGrid(const Primitive& primitive, int bits) {
     if (const auto& grid = primitive.positionGrid) {
-        for (int c = 0; c < 3; ++c) minimum_[c] = float(grid->origin[c]);
-        range_ = float(grid->range);
-        levels_ = float((1u << grid->bits) - 1);
+        *this = DracoGrid(*grid);
         return;
     }
     levels_ = float((1u << bits) - 1);
+    bits_ = bits;
     float maximum[3];
     for (int c = 0; c < 3; ++c) minimum_[c] = std::numeric_limits<float>::max(), maximum[c] = -minimum_[c];
     for (const Triangle& t : primitive.triangles)
@@ -26,6 +32,10 @@ DracoGrid::DracoGrid(const Primitive& primitive, int bits) {
     range_ = 0;
     for (int c = 0; c < 3; ++c) range_ = std::max(range_, maximum[c] - minimum_[c]);
     if (range_ == 0) range_ = 1;
+}
+
+QuantizationGrid DracoGrid::explicitGrid() const {
+    return {Eigen::Vector3d(minimum_[0], minimum_[1], minimum_[2]), double(range_), bits_};
 }
 
 bool DracoGrid::collapses(const Primitive& primitive, const Triangle& t) const {

@@ -13,6 +13,10 @@ namespace symcompress {
 class DracoGrid {
 public:
     DracoGrid(const Primitive& primitive, int bits);
+    explicit DracoGrid(const QuantizationGrid& grid);
+
+    // The grid as an explicit quantization: the box's corner, its largest side, the bits.
+    QuantizationGrid explicitGrid() const;
 
     // The cell of p on `axis` (a float32 integer), and where Draco's decoder puts it back.
     float cell(const Eigen::Vector3d& p, int axis) const {
@@ -30,6 +34,7 @@ private:
     }
     float minimum_[3] = {0, 0, 0};
     float range_ = 1, levels_ = 1;
+    int bits_ = 0;
 };
 
 }  // namespace symcompress

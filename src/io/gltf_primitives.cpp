@@ -170,11 +170,14 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     const std::vector<int> speeds = dracoSpeedsWorthTrying(primitive, options);
     // False when the encoder refuses (edgebreaker: "all triangles are degenerate"). Encoders only read the mesh:
     // several may encode it at once.
-    auto encode = [&](int encoding, int speed, int bits, draco::EncoderBuffer& encoded) {
+    // `grid`: the positions' grid where not the primitive's own (Primitive::positionGrid) or Draco's at `bits`.
+    auto encode = [&](int encoding, int speed, int bits, draco::EncoderBuffer& encoded,
+                      const QuantizationGrid* grid = nullptr) {
         draco::ExpertEncoder encoder(*mesh);
         encoder.SetSpeedOptions(speed, speed);
         encoder.SetEncodingMethod(encoding);
-        if (const auto& grid = primitive.positionGrid) {
+        if (!grid && primitive.positionGrid) grid = &*primitive.positionGrid;
+        if (grid) {
             const float origin[3] = {float(grid->origin.x()), float(grid->origin.y()), float(grid->origin.z())};
             encoder.SetAttributeExplicitQuantization(ids.position, grid->bits, 3, origin, float(grid->range));
         } else {
@@ -208,14 +211,16 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
         if (encode(draco::MESH_EDGEBREAKER_ENCODING, speeds.front(), positionBits, encoded)) result = decode(encoded);
         if (!complete(result) && method == DracoMethod::EdgebreakerOrNothing) return std::nullopt;
         // Other speeds (dracoSpeedsWorthTrying), then more bits within the bound at the best of them
-        // (positionBitsWorthTrying), may encode smaller. Each round's trials are encoded at once; in their order,
-        // one is kept where it is smaller than the best so far and decodes whole: the first smallest.
-        auto tryEach = [&](const std::vector<std::pair<int, int>>& trials) {  // (speed, bits)
+        // (positionBitsWorthTrying) and a coarser grid of the fewest bits (coarserPositionGrid), may encode
+        // smaller. Each round's trials are encoded at once; in their order, one is kept where it is smaller than
+        // the best so far and decodes whole: the first smallest.
+        auto tryEach = [&](const std::vector<std::pair<int, int>>& trials,
+                           const QuantizationGrid* grid = nullptr) {  // (speed, bits)
             std::vector<draco::EncoderBuffer> buffers(trials.size());
             std::vector<char> encodedWell(trials.size(), 0);
             tbb::parallel_for(std::size_t(0), trials.size(), [&](std::size_t t) {
                 encodedWell[t] =
-                    encode(draco::MESH_EDGEBREAKER_ENCODING, trials[t].first, trials[t].second, buffers[t]);
+                    encode(draco::MESH_EDGEBREAKER_ENCODING, trials[t].first, trials[t].second, buffers[t], grid);
             });
             std::optional<std::pair<int, int>> kept;
             for (std::size_t t = 0; t < trials.size(); ++t) {
@@ -236,6 +241,8 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
             for (const int more : positionBitsWorthTrying(primitive, options, positionBits))
                 moreBits.push_back({speed, more});
             tryEach(moreBits);
+            if (const std::optional<QuantizationGrid> coarser = coarserPositionGrid(primitive, options, positionBits))
+                tryEach({{speed, positionBits}}, &*coarser);
         }
     }
     if (!complete(result)) {

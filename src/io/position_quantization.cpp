@@ -21,8 +21,7 @@ constexpr std::size_t kMostTriedTriangles = 20000;
 // triangles, less what float32 cannot tell apart: the corners are float32 in the input and in the decoder,
 // whose measure of the move (the bunny's 8.12197e-6 at 14 bits, against a bound of 8.12174e-6 at the peers'
 // own deviation) is only as exact as half a unit in the last place of the corner's largest coordinate.
-double largestQuantizationError(const Primitive& primitive, int bits) {
-    const DracoGrid grid(primitive, bits);
+double largestQuantizationError(const Primitive& primitive, const DracoGrid& grid) {
     double largest = 0;
     for (const Triangle& t : primitive.triangles)
         for (std::uint32_t v : t) {
@@ -41,8 +40,7 @@ double largestQuantizationError(const Primitive& primitive, int bits) {
 // Whether some triangle with three distinct corners has two in one cell at `bits`: edgebreaker drops it, and
 // the writer stores it in a sequential primitive of its own, which costs more than the bits saved. (Triangles
 // with two corners at one point collapse at any bits; the writer keeps those apart, at one point.)
-bool collapsesTriangles(const Primitive& primitive, int bits) {
-    const DracoGrid grid(primitive, bits);
+bool collapsesTriangles(const Primitive& primitive, const DracoGrid& grid) {
     const auto& p = primitive.positions;
     return std::any_of(primitive.triangles.begin(), primitive.triangles.end(), [&](const Triangle& t) {
         return !hasTwoCornersAtOnePoint(p, t) && grid.collapses(primitive, t);
@@ -70,7 +68,7 @@ std::vector<int> positionBitsWorthTrying(const Primitive& primitive, const Write
     const double bound = positionErrorBound(primitive, options);
     if (!(bound > 0)) return more;
     for (int bits = fewest + 1; bits <= std::min(fewest + 2, kMostPositionBits); ++bits)
-        if (largestQuantizationError(primitive, bits) <= bound) more.push_back(bits);
+        if (largestQuantizationError(primitive, DracoGrid(primitive, bits)) <= bound) more.push_back(bits);
     return more;
 }
 
@@ -91,10 +89,26 @@ int positionBitsFor(const Primitive& primitive, const WriteOptions& options) {
     const int sufficient = std::clamp(int(std::ceil(std::log2(std::sqrt(3.0) / 2 * range / bound + 1))), 1,
                                       kMostPositionBits);
     int bits = std::max(1, sufficient - 3);
-    while (bits < kMostPositionBits && largestQuantizationError(primitive, bits) > bound) ++bits;
+    while (bits < kMostPositionBits && largestQuantizationError(primitive, DracoGrid(primitive, bits)) > bound) ++bits;
     // More bits where fewer would collapse triangles, up to the fixed bits (where they collapse anyway).
-    while (bits < options.positionBits && collapsesTriangles(primitive, bits)) ++bits;
+    while (bits < options.positionBits && collapsesTriangles(primitive, DracoGrid(primitive, bits))) ++bits;
     return bits;
+}
+
+std::optional<QuantizationGrid> coarserPositionGrid(const Primitive& primitive, const WriteOptions& options, int bits) {
+    if (!options.encodingTrials || primitive.positionGrid || primitive.triangles.size() > kMostTriedTriangles)
+        return std::nullopt;
+    const double bound = positionErrorBound(primitive, options);
+    if (!(bound > 0)) return std::nullopt;
+    const QuantizationGrid own = DracoGrid(primitive, bits).explicitGrid();
+    // Steps 2^(k/8) times the grid's own, the longest first: 2^(8/8) would be one bit fewer, which the bound refused.
+    for (int k = 7; k >= 1; --k) {
+        QuantizationGrid coarser = own;
+        coarser.range = double(float(own.range * std::exp2(k / 8.0)));
+        const DracoGrid grid(coarser);
+        if (largestQuantizationError(primitive, grid) <= bound && !collapsesTriangles(primitive, grid)) return coarser;
+    }
+    return std::nullopt;
 }
 
 }  // namespace symcompress
