@@ -427,6 +427,45 @@ TEST_CASE("Draco's size is not monotonic in the position bits: more bits within 
     CHECK(largestMove(all, readScene(folder / "tried.glb").meshes[0].primitives[0]) <= bounded.maxPositionError);
 }
 
+TEST_CASE(
+    "Texture coordinates move by at most half of 1/16 of a texel, on a grid of that step where their bits over "
+    "their span would be finer",
+    "[budget][writers]") {
+    // Coordinates over [0.2, 0.8] of a 1024-pixel texture: 9830 sixteenths of a texel, 14 bits, whose own steps
+    // over the span (0.6 / 16383) are finer than a sixteenth (1 / 16384): the grid is stretched to it.
+    Primitive points = pointsOnSphere(9);
+    std::mt19937 random(4);
+    std::uniform_real_distribution<double> uniform(0.2, 0.8);
+    for (std::size_t v = 0; v < points.positions.size(); ++v)
+        points.texcoords.push_back({uniform(random), uniform(random)});
+    points.texcoords[0] = {0.2, 0.2};
+    points.texcoords[1] = {0.8, 0.8};
+    points.material = 0;
+    Scene scene = sceneOf(points);
+    // A PNG's signature and header: 1024 by 1024 (the writer reads the size, never the pixels).
+    std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                     0,    0,   4,   0,   0,    0,    4,    0,    8, 6, 0, 0,  0,   0,   0,   0};
+    scene.textures.push_back({"checker", "", "image/png", png, {}});
+    scene.materials.push_back({});
+    scene.materials[0].baseColorTexture.texture = 0;
+    TemporaryFolder folder;
+    writeScene(scene, folder / "textured.glb");
+    const Primitive decoded = readScene(folder / "textured.glb").meshes[0].primitives[0];
+    REQUIRE(decoded.texcoords.size() == decoded.positions.size());
+    double largest = 0;
+    for (std::size_t v = 0; v < points.positions.size(); ++v) {
+        std::size_t nearest = 0;
+        for (std::size_t d = 1; d < decoded.positions.size(); ++d)
+            if ((decoded.positions[d] - points.positions[v]).norm() <
+                (decoded.positions[nearest] - points.positions[v]).norm())
+                nearest = d;
+        largest = std::max(largest, (decoded.texcoords[nearest] - points.texcoords[v]).cwiseAbs().maxCoeff());
+    }
+    const double sixteenth = 1.0 / (1024 * 16);
+    CHECK(largest <= sixteenth / 2 * (1 + 1e-3));
+    CHECK(largest > 0.6 / 16383 / 2 * 1.2);  // beyond the half step of 14 bits over the span alone
+}
+
 TEST_CASE("Where whole bits keep the corners well within the bound, a coarser grid of those bits uses the rest",
           "[budget][writers]") {
     const Primitive points = pointsOnSphere(5);

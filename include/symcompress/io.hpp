@@ -50,6 +50,9 @@ struct WriteOptions {
     double maxRelativePositionError = 0;
     int normalBits = 10;
     int texcoordBits = 12;
+    // > 0: TEXCOORD_0's Draco step (in texture coordinates) where texcoordBits over the coordinates' span would be
+    // finer: their grid is stretched to it (the glTF writer sets it to 1/16 of a texel of the largest texture read).
+    double texcoordStep = 0;
     int colorBits = 8;
     // > 0: how far (a distance) the rounding of a skin's weights may move a vertex in any pose; the glTF writer
     // sets each skinned primitive's weightBits from it. 0: weights kept as read (float32).

@@ -128,6 +128,17 @@ std::pair<Primitive, Primitive> splitCollapsingTriangles(const Primitive& primit
     return parts;
 }
 
+// TEXCOORD_0's grid where WriteOptions::texcoordStep asks for a coarser one than its bits over the coordinates'
+// span: the span's corner (as Draco takes it, float32) and a range of that step times 2^bits - 1.
+std::optional<QuantizationGrid> texcoordGridFor(const Primitive& primitive, const WriteOptions& options) {
+    if (!(options.texcoordStep > 0) || primitive.texcoords.empty()) return std::nullopt;
+    Eigen::AlignedBox2f box;
+    for (const Eigen::Vector2d& t : primitive.texcoords) box.extend(t.cast<float>());
+    const double range = options.texcoordStep * double((1u << options.texcoordBits) - 1);
+    if (!(float(range) > box.sizes().maxCoeff())) return std::nullopt;
+    return QuantizationGrid{Eigen::Vector3d(box.min().x(), box.min().y(), 0), range, options.texcoordBits};
+}
+
 // How to encode: edgebreaker compresses best but drops triangles whose corners its quantization merges;
 // the sequential method keeps every triangle.
 enum class DracoMethod {
@@ -167,6 +178,7 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
     }
     const int positionBits =
         primitive.positionGrid ? primitive.positionGrid->bits : positionBitsFor(primitive, options);
+    const std::optional<QuantizationGrid> texcoordGrid = texcoordGridFor(primitive, options);
     const std::vector<int> speeds = dracoSpeedsWorthTrying(primitive, options);
     // False when the encoder refuses (edgebreaker: "all triangles are degenerate"). Encoders only read the mesh:
     // several may encode it at once.
@@ -187,6 +199,11 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
             {ids.normal, options.normalBits}, {ids.texcoord, options.texcoordBits}, {ids.color, options.colorBits}};
         for (const auto& [id, attributeBits] : quantized)
             if (id >= 0) encoder.SetAttributeQuantization(id, attributeBits);
+        if (texcoordGrid) {
+            const float origin[2] = {float(texcoordGrid->origin.x()), float(texcoordGrid->origin.y())};
+            encoder.SetAttributeExplicitQuantization(ids.texcoord, texcoordGrid->bits, 2, origin,
+                                                     float(texcoordGrid->range));
+        }
         for (std::size_t a = 0; a < primitive.attributes.size(); ++a)
             if (otherBits[a] > 0) encoder.SetAttributeQuantization(ids.others[a], otherBits[a]);
         const draco::Status status = encoder.EncodeToBuffer(&encoded);

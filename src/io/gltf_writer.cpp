@@ -349,12 +349,17 @@ std::string glbFile(const Json& root, std::vector<unsigned char> binary) {
     return out;
 }
 
-// Draco's texture coordinate bits for a primitive: steps of 1/16 of a texel of the largest texture its material
-// reads through TEXCOORD_0 (over the span of its coordinates, times a transform's scale), so that a bilinear
-// filter's weights move by 6% at most (12 bits, Draco's usual, are a quarter of a texel of a 1024-pixel texture
-// over [0, 1]: 0.57% of the skinned Cesium Man's pixels came out changed); never fewer than `bits`.
-int texcoordBitsFor(const Scene& scene, const Primitive& primitive, int bits) {
-    if (primitive.material < 0 || primitive.texcoords.empty()) return bits;
+// Draco's texture coordinate bits for a primitive, and the step they are for: steps of 1/16 of a texel of the
+// largest texture its material reads through TEXCOORD_0 (over the span of its coordinates, times a transform's
+// scale), so that a bilinear filter's weights move by 6% at most (12 bits, Draco's usual, are a quarter of a texel
+// of a 1024-pixel texture over [0, 1]: 0.57% of the skinned Cesium Man's pixels came out changed); never fewer
+// than `bits` (then no step: the bits' own over the span is the finer).
+struct TexcoordQuantization {
+    int bits = 12;
+    double step = 0;
+};
+TexcoordQuantization texcoordQuantizationFor(const Scene& scene, const Primitive& primitive, int bits) {
+    if (primitive.material < 0 || primitive.texcoords.empty()) return {bits, 0};
     double texelsAcross = 0;
     for (const TextureRef* use : scene.materials[std::size_t(primitive.material)].textureRefs()) {
         if (use->texture < 0 || use->texCoordSet() != 0) continue;
@@ -365,8 +370,10 @@ int texcoordBitsFor(const Scene& scene, const Primitive& primitive, int bits) {
     Eigen::AlignedBox2d box;
     for (const Eigen::Vector2d& t : primitive.texcoords) box.extend(t);
     const double steps = box.sizes().maxCoeff() * texelsAcross * 16;
-    if (!(steps > 1)) return bits;
-    return std::clamp(int(std::ceil(std::log2(std::min(steps, 1e9)))), bits, 20);
+    if (!(steps > 1)) return {bits, 0};
+    const int fewest = int(std::ceil(std::log2(std::min(steps, 1e9))));
+    if (fewest <= bits || fewest > 20) return {std::clamp(fewest, bits, 20), 0};
+    return {fewest, 1 / (texelsAcross * 16)};
 }
 
 // Draco's bits for the skin weights of mesh `m`'s primitive: the fewest (of 8 to 24) whose rounding, half a step
@@ -584,14 +591,18 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         for (const Primitive& primitive : scene.meshes[m].primitives) {
             if (primitive.drawsNothing()) continue;
-            const int texcoordBits = texcoordBitsFor(scene, primitive, options.texcoordBits);
+            const TexcoordQuantization texcoords = texcoordQuantizationFor(scene, primitive, options.texcoordBits);
             const int weightBits = weightBitsFor(scene, skinsOfMesh, m, primitive, options.skinWeightError);
             if (primitive.targets.empty() && primitive.topology == Topology::Triangles) {
                 const auto [first, added] =
                     byGeometry.try_emplace(fingerprintOf(primitive, options, false), encodings.size());
                 if (!added) {
                     WriteOptions& shared = encodings[first->second].options;
-                    shared.texcoordBits = std::max(shared.texcoordBits, texcoordBits);
+                    // The finer of two: more bits, and the shorter step (none: the bits' own over the span).
+                    if (texcoords.bits != shared.texcoordBits || texcoords.step != shared.texcoordStep)
+                        shared.texcoordStep =
+                            texcoords.bits == shared.texcoordBits ? std::min(shared.texcoordStep, texcoords.step) : 0;
+                    shared.texcoordBits = std::max(shared.texcoordBits, texcoords.bits);
                     // The finer of two: none (float32 as read) is the finest.
                     shared.weightBits =
                         shared.weightBits == 0 || weightBits == 0 ? 0 : std::max(shared.weightBits, weightBits);
@@ -601,7 +612,8 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             }
             encodingOf.push_back(encodings.size());
             WriteOptions forPrimitive = options;
-            forPrimitive.texcoordBits = texcoordBits;
+            forPrimitive.texcoordBits = texcoords.bits;
+            forPrimitive.texcoordStep = texcoords.step;
             forPrimitive.weightBits = weightBits;
             encodings.push_back({&primitive,
                                  std::move(forPrimitive),

@@ -86,6 +86,7 @@ PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOption
         f.word(std::uint64_t(std::int64_t(bits)));
     f.number(options.maxPositionError);
     f.number(options.maxRelativePositionError);
+    f.number(options.texcoordStep);
     return f.result();
 }
 
