@@ -42,14 +42,19 @@ bool spanHolds(const AnimationChannel& channel, std::size_t a, std::size_t b, do
     const std::size_t width = channel.components();
     const double* va = &channel.values[a * width];
     const double* vb = &channel.values[b * width];
-    const bool rotation = channel.path == AnimationChannel::Path::Rotation,
-               step = channel.interpolation == AnimationChannel::Interpolation::Step;
+    const bool step = channel.interpolation == AnimationChannel::Interpolation::Step,
+               slerped = channel.path == AnimationChannel::Path::Rotation && !step;
+    // The span's ends as unit quaternions, once (a rotation's key has four values; others' none of this).
+    Eigen::Quaterniond qa = Eigen::Quaterniond::Identity(), qb = qa;
+    if (slerped) {
+        qa = Eigen::Quaterniond(va[3], va[0], va[1], va[2]).normalized();
+        qb = Eigen::Quaterniond(vb[3], vb[0], vb[1], vb[2]).normalized();
+    }
     for (std::size_t k = a + 1; k < b; ++k) {
         const double u = (channel.times[k] - channel.times[a]) / (channel.times[b] - channel.times[a]);
         const double* vk = &channel.values[k * width];
-        if (rotation && !step) {
-            const Eigen::Quaterniond qa(va[3], va[0], va[1], va[2]), qb(vb[3], vb[0], vb[1], vb[2]);
-            const Eigen::Quaterniond q = qa.normalized().slerp(u, qb.normalized());
+        if (slerped) {
+            const Eigen::Quaterniond q = qa.slerp(u, qb);
             const double expected[] = {q.x(), q.y(), q.z(), q.w()};
             double same = 0, opposite = 0;
             for (std::size_t c = 0; c < 4; ++c) {
