@@ -126,6 +126,56 @@ TEST_CASE("Keys stay where interpolation does not give them back, in cubic splin
     }
 }
 
+TEST_CASE(
+    "A channel within the allowance of its node's rest is removed, where the animation keeps its length and "
+    "no other animation keys it",
+    "[optimize][animation]") {
+    Scene scene = bakedBox();
+    // A scale an exporter baked at 1 but for a millionth (Cesium Man's), at the same times as the others.
+    AnimationChannel scale = scene.animations[0].channels[1];
+    scale.path = Path::Scale;
+    for (std::size_t k = 0; k < scale.times.size(); ++k)
+        for (int c = 0; c < 3; ++c) scale.values[3 * k + std::size_t(c)] = 1 + (k % 2 ? 1e-6 : -1e-6);
+    scene.animations[0].channels.push_back(scale);
+    const std::size_t keysBefore = 3 * std::size_t(kKeys);
+    auto keys = [](const Scene& s) {
+        std::size_t count = 0;
+        for (const AnimationChannel& channel : s.animations[0].channels) count += channel.times.size();
+        return count;
+    };
+    SECTION("removed: its node rests within the allowance") {
+        const Scene original = scene;
+        const RedundantKeys dropped = dropRedundantKeys(scene, 1e-4);
+        REQUIRE(scene.animations[0].channels.size() == 2);
+        for (const AnimationChannel& channel : scene.animations[0].channels) CHECK(channel.path != Path::Scale);
+        CHECK(dropped.channelsRemoved == 1);
+        CHECK(dropped.keysDropped == keysBefore - keys(scene));
+        CHECK(poseDistance(original, scene) <= 1e-4);
+    }
+    SECTION("kept: a scale held away from the rest") {
+        for (double& value : scene.animations[0].channels[2].values) value *= 1.5;
+        CHECK(dropRedundantKeys(scene, 1e-4).channelsRemoved == 0);
+        CHECK(scene.animations[0].channels.size() == 3);
+    }
+    SECTION("kept: a millionth beyond an allowance of less") {
+        CHECK(dropRedundantKeys(scene, 1e-7).channelsRemoved == 0);
+        CHECK(scene.animations[0].channels.size() == 3);
+    }
+    SECTION("kept: another animation keys the node's scale") {
+        scene.animations.push_back({"other", {scene.animations[0].channels[2]}});
+        CHECK(dropRedundantKeys(scene, 1e-4).channelsRemoved == 0);
+        CHECK(scene.animations[0].channels.size() == 3);
+    }
+    SECTION("kept: its last key is the animation's last") {
+        AnimationChannel& longer = scene.animations[0].channels[2];
+        longer.times.push_back(3);
+        longer.values.insert(longer.values.end(), {1, 1, 1});
+        CHECK(dropRedundantKeys(scene, 1e-4).channelsRemoved == 0);
+        REQUIRE(scene.animations[0].channels.size() == 3);
+        CHECK(scene.animations[0].channels[2].times.back() == 3);
+    }
+}
+
 TEST_CASE("symcompress drops the keys a baked animation repeats, and --keep-animation-keys keeps them",
           "[optimize][animation]") {
     TemporaryFolder folder;

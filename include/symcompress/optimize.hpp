@@ -29,6 +29,7 @@ struct OptimizeReport {
     std::size_t materialsRemoved = 0, texturesRemoved = 0;
     std::size_t stillChannelsRemoved = 0;  // animation channels that hold their node where it rests
     std::size_t animationKeysDropped = 0;  // keys that interpolation gives back (dropRedundantKeys)
+    std::size_t animationChannelsRemoved = 0;  // channels near their node's rest, within the budget (the same)
     // One line for each optimization that did something, for the warnings a user reads.
     std::vector<std::string> lines() const;
 };
@@ -68,14 +69,17 @@ std::size_t removeStillChannels(Scene& scene);
 
 // What dropRedundantKeys dropped, and how far that moves a vertex in the poses.
 struct RedundantKeys {
-    std::size_t keysDropped = 0;
+    std::size_t keysDropped = 0;      // the channels' removed among them
+    std::size_t channelsRemoved = 0;  // channels within the allowance of their node's rest value
     double deviation = 0;  // a distance, at most the allowance
 };
 // Animation keys that interpolation of the keys kept gives back dropped, where every vertex the animation moves
 // stays within `allowed` (a distance) of where it lies as read, at each key time and halfway between (PoseProbe):
 // in linear and step channels of nodes that draw something (a camera's or a light's motion is not measured), each
 // channel's first and last keys kept (its length). Channels keyed at the same times keep them shared (one accessor in
-// the file). Nothing where the poses are too many to measure.
+// the file). A channel that stays within the allowance of its node's rest value is removed, as
+// removeStillChannels removes those that hold it exactly, where no other animation keys the node's path and the
+// animation keeps its length. Nothing where the poses are too many to measure.
 RedundantKeys dropRedundantKeys(Scene& scene, double allowed);
 
 }  // namespace symcompress

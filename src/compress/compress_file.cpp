@@ -182,6 +182,7 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         if (options.optimize.dropKeys && keyShare > 0) {
             const RedundantKeys dropped = dropRedundantKeys(scene, write.animationKeyError * kKeyDroppingShare);
             report.optimizations.animationKeysDropped = dropped.keysDropped;
+            report.optimizations.animationChannelsRemoved = dropped.channelsRemoved;
             write.animationKeyError -= dropped.deviation;
         }
         report.skinWeightShare = skinShare;

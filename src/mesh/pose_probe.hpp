@@ -21,8 +21,8 @@ public:
     PoseProbe(const Scene& scene, const Animation& animation);
     // Whether anything drawn can be measured.
     bool measurable() const;
-    // Whether every vertex of every pose of `changed` (the same channel targets) lies within `allowed` of where it
-    // lies as read.
+    // Whether every vertex of every pose of `changed` (the same channel targets, or some of them: a node without its
+    // channel rests) lies within `allowed` of where it lies as read.
     bool within(const Animation& changed, double allowed) const;
     // The farthest any vertex of any pose of `changed` lies from where it lies as read.
     double deviation(const Animation& changed) const;

@@ -87,6 +87,9 @@ std::vector<std::string> OptimizeReport::lines() const {
     say(stillChannelsRemoved, "animation channels that hold their node where it rests removed (--no-prune keeps them)");
     say(animationKeysDropped,
         "animation keys dropped: interpolation gives them back within the budget (--keep-animation-keys keeps them)");
+    say(animationChannelsRemoved,
+        "animation channels removed: their node stays within the budget of where it rests without them "
+        "(--keep-animation-keys keeps them)");
     return out;
 }
 

@@ -1,6 +1,9 @@
 // Animation keys that interpolation gives back, dropped (glTF-Transform's `resample` does the same): exporters
 // sample every frame, where a linear track needs only its turning points (the milk truck's wheels: 31 keys of one
 // steady turn). Within a share of the budget, measured in the poses as the rounding of the keys is (PoseProbe).
+// A channel that stays that close to its node's rest value goes altogether (Cesium Man's scales, 1 to a millionth,
+// and translations).
+#include "channel_rest.hpp"
 #include "mesh/pose_probe.hpp"
 #include "symcompress/optimize.hpp"
 
@@ -104,18 +107,34 @@ void keepOnly(AnimationChannel& channel, const std::vector<std::size_t>& keys) {
 }
 
 // `animation` with the keys that interpolation gives back within `tolerance` dropped from its `reducible`
-// channels. Channels keyed at the same times share one accessor of them in the file and keep the same keys: each
-// its own took the fox 61564 -> 64824 bytes, Cesium Man 265528 -> 265532 (times code poorly, and meshopt codes
-// the values of a channel that hardly moves in a few bytes however many keys it has).
-Animation reduced(const Animation& animation, const std::vector<char>& reducible, double tolerance) {
+// channels, and those of them `removable` that stay within it of their node's rest value removed (where the
+// animation keeps its length). Channels keyed at the same times share one accessor of them in the file and keep
+// the same keys: each its own took the fox 61564 -> 64824 bytes, Cesium Man 265528 -> 265532 (times code poorly,
+// and meshopt codes the values of a channel that hardly moves in a few bytes however many keys it has); even
+// channels that hold one value throughout, cut to their first and last keys, saved Cesium Man 48 bytes and cost
+// the fox 48 (an accessor of two times).
+Animation reduced(const Scene& scene, const Animation& animation, const std::vector<char>& reducible,
+                  const std::vector<char>& removable, double tolerance) {
+    std::vector<char> still(animation.channels.size(), 0);
+    for (std::size_t c = 0; c < animation.channels.size(); ++c) {
+        const double within = tolerance * unitOf(animation.channels[c]);
+        still[c] = reducible[c] && removable[c] && holdsRest(scene, animation.channels[c], [&](double a, double b) {
+                       return std::abs(a - b) <= within;
+                   });
+    }
+    const std::vector<char> kept = channelsKeptWithLength(animation, still);
     Animation out = animation;
     std::map<std::vector<double>, std::vector<std::size_t>> byTimes;
     for (std::size_t c = 0; c < animation.channels.size(); ++c)
-        if (reducible[c]) byTimes[animation.channels[c].times].push_back(c);
+        if (reducible[c] && kept[c]) byTimes[animation.channels[c].times].push_back(c);
     for (const auto& [times, channels] : byTimes) {
         const std::vector<std::size_t> keys = keysKept(animation, channels, tolerance);
         for (std::size_t c : channels) keepOnly(out.channels[c], keys);
     }
+    std::vector<AnimationChannel> channels;
+    for (std::size_t c = 0; c < animation.channels.size(); ++c)
+        if (kept[c]) channels.push_back(std::move(out.channels[c]));
+    out.channels = std::move(channels);
     return out;
 }
 
@@ -131,12 +150,19 @@ RedundantKeys dropRedundantKeys(Scene& scene, double allowed) {
     RedundantKeys out;
     if (!(allowed > 0)) return out;
     const std::vector<char> measured = measuredNodes(scene);
+    const auto keyed = keyedPaths(scene);
     for (Animation& animation : scene.animations) {
-        std::vector<char> reducibleChannels(animation.channels.size());
-        for (std::size_t c = 0; c < animation.channels.size(); ++c)
-            reducibleChannels[c] = reducible(animation.channels[c], measured);
+        std::vector<char> reducibleChannels(animation.channels.size()), removable(animation.channels.size());
+        for (std::size_t c = 0; c < animation.channels.size(); ++c) {
+            const AnimationChannel& channel = animation.channels[c];
+            reducibleChannels[c] = reducible(channel, measured);
+            removable[c] = keyed.count({channel.node, channel.path}) == 1;
+        }
+        auto reducedAt = [&](double tolerance) {
+            return reduced(scene, animation, reducibleChannels, removable, tolerance);
+        };
         if (std::none_of(reducibleChannels.begin(), reducibleChannels.end(), [](char r) { return r != 0; }) ||
-            keyCount(reduced(animation, reducibleChannels, kTolerances[0])) == keyCount(animation))
+            keyCount(reducedAt(kTolerances[0])) == keyCount(animation))
             continue;
         const PoseProbe probe(scene, animation);
         if (!probe.measurable()) continue;
@@ -146,7 +172,7 @@ RedundantKeys dropRedundantKeys(Scene& scene, double allowed) {
         std::optional<Animation> kept;
         while (low < high) {
             const std::size_t middle = (low + high) / 2;
-            Animation trial = reduced(animation, reducibleChannels, kTolerances[middle]);
+            Animation trial = reducedAt(kTolerances[middle]);
             if (probe.within(trial, allowed)) {
                 high = middle;
                 kept = std::move(trial);
@@ -157,6 +183,7 @@ RedundantKeys dropRedundantKeys(Scene& scene, double allowed) {
         if (!kept || keyCount(*kept) == keyCount(animation)) continue;
         out.deviation = std::max(out.deviation, probe.deviation(*kept));
         out.keysDropped += keyCount(animation) - keyCount(*kept);
+        out.channelsRemoved += animation.channels.size() - kept->channels.size();
         animation = std::move(*kept);
     }
     return out;

@@ -437,7 +437,8 @@ int main(int argc, char** argv) {
         "hold their node where it rests");
     compress->add_flag(
         "--keep-animation-keys", [&](std::int64_t) { compressRequest.options.optimize.dropKeys = false; },
-        "keep animation keys that interpolation gives back (dropped by default within the budget)");
+        "keep animation keys that interpolation gives back, and channels that hardly leave their node's rest "
+        "(dropped by default within the budget)");
     compress->add_flag("--no-dedup", [&](std::int64_t) { compressRequest.options.optimize.dedup = false; },
                        "keep materials equal but for their names, and textures of the same image, apart");
     compress->add_flag("--drop-unused-texcoords", compressRequest.options.optimize.pruneAttributes,
