@@ -309,10 +309,12 @@ void printReport(const CompressionReport& report) {
         };
         share("animation keys", report.animationKeyShare);
         share("skin weights", report.skinWeightShare);
-        std::printf("  max deviation   %.2e of the diagonal (budget %g: tolerance %g%s, the rest to quantization)\n",
-                    stats.maxDeviation, report.maxError, report.tolerance, motion.c_str());
+        std::printf("  budget          %g of the diagonal: tolerance %g%s, the rest to quantization; the "
+                    "placements use %.2e (symdecompress --verify measures the whole)\n",
+                    report.maxError, report.tolerance, motion.c_str(), stats.maxDeviation);
     } else
-        std::printf("  max deviation   %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation, report.tolerance);
+        std::printf("  placements      deviate %.2e of the diagonal (tolerance %g)\n", stats.maxDeviation,
+                    report.tolerance);
     const auto& ablation = report.ablation;
     if (ablation.instancingAndRegions)
         std::printf("  ablation        every tile as it is %ju bytes, with instancing %ju, with regions too %ju\n",
