@@ -108,6 +108,20 @@ TEST_CASE("glTF: an EXT_meshopt_compression fallback that is a number is no fall
     CHECK_THAT(error, Catch::Contains("gltf_meshopt_fallback_number.gltf"));
 }
 
+TEST_CASE("glTF: a required extension symcompress cannot read is named, before its data upsets the layout",
+          "[io][fuzz]") {
+    // gltfpack -cz: KHR_meshopt_compression (its vertex codec version 1, which meshoptimizer 0.18 cannot decode),
+    // whose fallback buffer claims bytes the file does not have; tinygltf said "Invalid `byteLength'".
+    TemporaryFolder folder;
+    writeTextFile(folder / "khr_meshopt.gltf",
+                  R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_meshopt_compression"],
+                      "extensionsRequired": ["KHR_meshopt_compression"],
+                      "buffers": [{"byteLength": 40716, "extensions": {"KHR_meshopt_compression": {"fallback": true}}}]})");
+    CHECK_THAT(readError(folder / "khr_meshopt.gltf"),
+               Catch::Contains("khr_meshopt.gltf: requires the extension KHR_meshopt_compression, which symcompress "
+                               "cannot read"));
+}
+
 TEST_CASE("glTF: a buffer view whose byteOffset + byteLength wraps around is refused", "[io][fuzz]") {
     const std::string error = readError(regressionInput("gltf_view_range_wraps.gltf"));
     CHECK_THAT(error, Catch::Contains("gltf_view_range_wraps.gltf: POSITION (accessor 0): buffer view runs past the end"));

@@ -207,6 +207,12 @@ bool giveZerosABufferView(nlohmann::json& json, const std::vector<std::size_t>& 
     return true;
 }
 
+// A required extension that symcompress neither reads nor may leave out (appearanceOnly) refused.
+void refuseUnreadable(const std::string& required, const fs::path& file) {
+    if (!readExtension(required) && !appearanceOnly(required))
+        throw FileError(file, "requires the extension " + required + ", which symcompress cannot read");
+}
+
 // What tinygltf (as packaged) would refuse in a valid file, mended in the JSON before it sees it:
 // - a primitive whose indices accessor has no bufferView, which is how KHR_draco_mesh_compression files
 //   are written: the indices come from the Draco data anyway, so they are removed; any other primitive's
@@ -235,6 +241,11 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
                               bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin + jsonLength), nullptr, false);
     if (json.is_discarded() || !json.is_object()) return bytes;
     refuseIntegersBeyondInt(json, "", file);
+    // Before tinygltf, which would report what an unknown extension's data does to the file's layout instead (the
+    // fallback buffer of KHR_meshopt_compression: "Invalid `byteLength'").
+    if (json.contains("extensionsRequired") && json["extensionsRequired"].is_array())
+        for (const auto& required : json["extensionsRequired"])
+            if (required.is_string()) refuseUnreadable(required.get<std::string>(), file);
     bool changed = false;
     if (json.contains("buffers") && json["buffers"].is_array())
         for (auto& buffer : json["buffers"]) {
@@ -341,9 +352,7 @@ tinygltf::Model loadGltfModel(const fs::path& file) {
         while (!error.empty() && error.back() == '\n') error.pop_back();
         throw FileError(file, "invalid glTF: " + (error.empty() ? std::string("cannot be parsed") : error));
     }
-    for (const std::string& required : model.extensionsRequired)
-        if (!readExtension(required) && !appearanceOnly(required))
-            throw FileError(file, "requires the extension " + required + ", which symcompress cannot read");
+    for (const std::string& required : model.extensionsRequired) refuseUnreadable(required, file);
     decodeMeshopt(model, file);
     return model;
 }
