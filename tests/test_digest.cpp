@@ -22,6 +22,17 @@ TEST_CASE("The digest is short and reads back within a millionth of the diagonal
     const double diagonal = digest.bounds.diagonal().norm();
     CHECK((back.bounds.min() - digest.bounds.min()).cwiseAbs().maxCoeff() <= 1e-6 * diagonal);
     CHECK((back.bounds.max() - digest.bounds.max()).cwiseAbs().maxCoeff() <= 1e-6 * diagonal);
+    CHECK(back.poseError == 0);
+    // With an allowance of its own for the poses (--animation-error): one number more, read back.
+    digest.poseError = 5e-5 + 1e-3;
+    SurfaceDigest posed;
+    REQUIRE(SurfaceDigest::fromJson(digest.json(), posed));
+    CHECK(posed.poseError == Approx(1.05e-3));
+    CHECK(posed.maxError == 5e-5);
+    CHECK(posed.bounds.isApprox(back.bounds));
+    digest.bounds.setEmpty();
+    REQUIRE(SurfaceDigest::fromJson(digest.json(), posed));
+    CHECK(posed.poseError == Approx(1.05e-3));
 }
 
 TEST_CASE("The digest's older object form is still read, and a malformed one is not", "[verify]") {

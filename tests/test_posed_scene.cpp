@@ -1,4 +1,5 @@
 // posedMesh and the decoder's check of animations: poses worked out by hand, and an animation changed in a file.
+#include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "symcompress/verify.hpp"
@@ -384,6 +385,41 @@ TEST_CASE("Rotations a file rounded by the quaternion filter come back as read, 
     const std::vector<double>& written = back.animations[0].channels[0].values;
     REQUIRE(written.size() == swing.values.size());
     for (std::size_t k = 0; k < keys; ++k) CHECK(keyAsRead(written, k));
+}
+
+TEST_CASE(
+    "Animation keys given an allowance beside the budget (--animation-error), which the rest pose keeps "
+    "whole, and the poses verified against the sum",
+    "[io][verify]") {
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(wavingStrip(), folder / "waving.glb", plain);
+    const CompressionReport shared = compressFile(folder / "waving.glb", folder / "shared.glb");
+    CompressOptions beside;
+    beside.animationError = 1e-2;
+    const CompressionReport own = compressFile(folder / "waving.glb", folder / "own.glb", beside);
+    CHECK(shared.animationKeyShare > 0);
+    CHECK(shared.animationError == 0);
+    CHECK(own.animationKeyShare == 0);
+    CHECK(own.animationError == 1e-2);
+    CHECK(std::filesystem::file_size(folder / "own.glb") < std::filesystem::file_size(folder / "shared.glb"));
+    // The digest holds the poses' allowance: the budget and the keys'.
+    SurfaceDigest digest;
+    REQUIRE(SurfaceDigest::fromJson(readScene(folder / "own.glb").extrasJson, digest));
+    CHECK(digest.maxError == Approx(beside.maxError));
+    CHECK(digest.poseError == Approx(beside.maxError + 1e-2));
+    // The keys use their allowance, beyond the budget, and the file verifies; the rest pose within the budget.
+    const RebuildReport verified = decompressFile(folder / "own.glb", folder / "flat.glb", folder / "waving.glb");
+    CHECK(verified.verified);
+    CHECK(verified.maxDeviation <= verified.allowedDeviation);
+    CHECK(verified.posedDeviation > verified.allowedDeviation);
+    CHECK(verified.posedDeviation <= verified.allowedPosedDeviation);
+    CHECK(verified.allowedPosedDeviation == Approx((beside.maxError + 1e-2) * 1.01));
+    // Without an allowance of its own the poses keep the budget.
+    const RebuildReport kept = decompressFile(folder / "shared.glb", folder / "flat.glb", folder / "waving.glb");
+    CHECK(kept.verified);
+    CHECK(kept.allowedPosedDeviation == kept.allowedDeviation);
 }
 
 TEST_CASE("Animation keys that move a camera are kept as read", "[io]") {

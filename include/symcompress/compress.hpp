@@ -25,6 +25,10 @@ struct CompressOptions {
     // the copies it draws leaves (the bits chosen per mesh), unless fixedPositionBits.
     double maxError = 5e-5;
     double tolerance = 0;              // congruence and symmetry, relative to the diagonal; 0: maxError / 2
+    // How much farther than maxError the rounding and dropping of animation keys may move a vertex in a pose,
+    // relative to the diagonal (glTF output), beside the budget, which the rest pose and the meshes keep whole
+    // (symdecompress verifies the poses against the sum). 0: the keys take a share of maxError.
+    double animationError = 0;
     bool fixedPositionBits = false;    // write.positionBits for every mesh (--position-bits), not the budget
     // Quantization also moves no corner of a stored primitive farther than closeUpError * maxError of the
     // primitive's own diagonal (0: no such bound): the budget holds for a part seen on its own, as a viewer
@@ -91,8 +95,9 @@ struct CompressionReport {
     std::string plan = "final";      // whose file is the output: final, instancing (no regions), draco_alone
     double tolerance = 0;  // the congruence and symmetry tolerance used, relative to the diagonal
     double maxError = 0;   // the error budget, relative; 0 with fixed position bits
-    // Of the budget, the shares for the rounding of animations' key values and of skin weights (relative).
-    double animationKeyShare = 0, skinWeightShare = 0;
+    // Of the budget, the shares for the rounding of animations' key values and of skin weights (relative); the
+    // keys' allowance beside the budget, where CompressOptions::animationError gave one.
+    double animationKeyShare = 0, skinWeightShare = 0, animationError = 0;
     CompressionStats stats;                               // of the plan kept
     std::size_t animations = 0, cameras = 0, lights = 0;  // in the output
     // The bytes a node drawing a shared mesh costs in the output, on average over its instance nodes, by

@@ -21,7 +21,11 @@ struct SurfaceDigest {
     Eigen::AlignedBox3d bounds;
     double tolerance = 0;                                                  // relative to the bounds' diagonal
     double maxError = 0;  // the error budget the file was written within (relative), 0 when it had none
-    std::string json() const;  // {"symcompress_digest": [triangles, area, max error, tolerance, min, max]}
+    // Where animation keys were given an allowance of their own (--animation-error): the farthest a vertex may lie
+    // in a pose (relative), the budget's part and the keys'; else 0 (the budget holds in every pose).
+    double poseError = 0;
+    // {"symcompress_digest": [triangles, area, max error, tolerance, min, max, pose error where there is one]}
+    std::string json() const;
     static bool fromJson(const std::string& text, SurfaceDigest& digest);  // false when absent
 };
 
@@ -61,6 +65,7 @@ struct RebuildReport {
     // The stored error budget, else (a file written with fixed bits) the stored tolerance plus half a 14-bit
     // quantization step.
     double allowedDeviation = 0;
+    double allowedPosedDeviation = 0;  // in the poses: allowedDeviation, or the digest's pose error
     bool verified = false;
     std::vector<std::string> warnings;  // what expanding and writing left out (the input's own are not repeated)
     std::string json() const;

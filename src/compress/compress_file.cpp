@@ -174,12 +174,16 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         const FileFormat format = formatFromExtension(output);
         const bool rounds = (format == FileFormat::Gltf || format == FileFormat::Glb) && write.draco;
         const double skinShare = !rounds || scene.skins.empty() ? 0 : options.maxError * kSkinWeightShare;
-        const double keyShare = rounds && write.gpuInstancing ? options.maxError * animationKeyShare(scene) : 0;
+        // The keys' allowance: a share of the budget, or one of its own beside it (--animation-error).
+        const bool keysRounded = rounds && write.gpuInstancing && !scene.animations.empty();
+        const bool ownAllowance = keysRounded && options.animationError > 0;
+        const double keyShare = keysRounded && !ownAllowance ? options.maxError * animationKeyShare(scene) : 0;
         write.skinWeightError = skinShare * analysis.diagonal;
-        write.animationKeyError = keyShare * analysis.diagonal;
+        write.animationKeyError = (ownAllowance ? options.animationError : keyShare) * analysis.diagonal;
+        report.animationError = ownAllowance ? options.animationError : 0;
         // Keys that interpolation gives back dropped with a share of the keys' allowance; their rounding takes what
         // the dropping leaves of it.
-        if (options.optimize.dropKeys && keyShare > 0) {
+        if (options.optimize.dropKeys && write.animationKeyError > 0) {
             const RedundantKeys dropped = dropRedundantKeys(scene, write.animationKeyError * kKeyDroppingShare);
             report.optimizations.animationKeysDropped = dropped.keysDropped;
             report.optimizations.animationChannelsRemoved = dropped.channelsRemoved;
@@ -197,7 +201,10 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     planOptions.costs = costModelFor(formatFromExtension(output), write);
     // The decoder verifies against the whole budget (without tiles, there is no diagonal to scale it by).
     SurfaceDigest digest = analysis.digest;
-    if (!options.fixedPositionBits && analysis.diagonal > 0) digest.maxError = options.maxError;
+    if (!options.fixedPositionBits && analysis.diagonal > 0) {
+        digest.maxError = options.maxError;
+        if (report.animationError > 0) digest.poseError = options.maxError + report.animationError;
+    }
     write.extrasJson = digest.json();
 
     // The ablation: the same scene with every tile stored as it is (Draco alone), and with instancing but no

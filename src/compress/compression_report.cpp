@@ -33,6 +33,7 @@ std::string CompressionReport::json() const {
         {"max_error", maxError},
         {"animation_key_share", animationKeyShare},
         {"skin_weight_share", skinWeightShare},
+        {"animation_error", animationError},
         {"seconds",
          {{"read", secondsRead},
           {"tiles", stats.secondsTiles},

@@ -124,7 +124,7 @@ void verifyAgainstOriginal(const TriangleMesh& rebuilt, const DrawnVertices& reb
                       std::abs(comparison.areaRatio - 1) * digest.area <=
                           allowedAreaChange(digest.area, perimeters, allowed, diagonal) &&
                       comparison.sameBounds && comparison.flippedArea <= kFlippedAllowance &&
-                      report.posedDeviation <= allowed;
+                      report.posedDeviation <= report.allowedPosedDeviation;
 }
 
 // Against the digest: it has no surface, so the bounds and the area are what can be compared.
@@ -174,6 +174,8 @@ RebuildReport decompressFile(const std::filesystem::path& input, const std::file
     report.allowedDeviation = haveDigest && stored.maxError > 0
                                   ? stored.maxError * (1 + kBudgetSlack)
                                   : kQuantizationAllowance + (haveDigest ? stored.tolerance : 0);
+    report.allowedPosedDeviation =
+        haveDigest && stored.poseError > 0 ? stored.poseError * (1 + kBudgetSlack) : report.allowedDeviation;
     if (!original.empty())
         verifyAgainstOriginal(rebuilt, rebuiltVertices, flat, reference, report);
     else if (haveDigest)
@@ -206,6 +208,7 @@ std::string RebuildReport::json() const {
     }
     out["verified"] = verified;
     out["allowed_deviation"] = allowedDeviation;
+    out["allowed_posed_deviation"] = allowedPosedDeviation;
     return out.dump(2);
 }
 

@@ -58,6 +58,7 @@ std::string SurfaceDigest::json() const {
         for (const Eigen::Vector3d& corner : {bounds.min(), bounds.max()})
             for (int axis = 0; axis < 3; ++axis) digest.push_back(rounded(std::round(corner[axis] / step) * step, 15));
     }
+    if (poseError > 0) digest.push_back(rounded(poseError, 9));
     return nlohmann::json{{"symcompress_digest", digest}}.dump();
 }
 
@@ -67,12 +68,13 @@ bool SurfaceDigest::fromJson(const std::string& text, SurfaceDigest& digest) {
     const auto& d = root["symcompress_digest"];
     try {
         if (d.is_array()) {
-            if (d.size() != 4 && d.size() != 10) return false;
+            if (d.size() != 4 && d.size() != 5 && d.size() != 10 && d.size() != 11) return false;
             digest.triangles = d[0].get<std::size_t>();
             digest.area = d[1].get<double>();
             digest.maxError = d[2].get<double>();
             digest.tolerance = d[3].get<double>();
-            if (d.size() == 10)
+            if (d.size() == 5 || d.size() == 11) digest.poseError = d[d.size() - 1].get<double>();
+            if (d.size() >= 10)
                 digest.bounds =
                     Eigen::AlignedBox3d(Eigen::Vector3d(d[4].get<double>(), d[5].get<double>(), d[6].get<double>()),
                                         Eigen::Vector3d(d[7].get<double>(), d[8].get<double>(), d[9].get<double>()));

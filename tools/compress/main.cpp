@@ -308,6 +308,7 @@ void printReport(const CompressionReport& report) {
             if (value > 0) motion += text;
         };
         share("animation keys", report.animationKeyShare);
+        share("animation keys beside it", report.animationError);
         share("skin weights", report.skinWeightShare);
         std::printf("  budget          %g of the diagonal: tolerance %g%s, the rest to quantization; the "
                     "placements use %.2e (symdecompress --verify measures the whole)\n",
@@ -417,6 +418,11 @@ int main(int argc, char** argv) {
     compress
         ->add_option("--tolerance", compressRequest.options.tolerance,
                      "congruence and symmetry tolerance, relative to the diagonal (default: half of --max-error)")
+        ->check(CLI::Range(1e-9, 0.5));
+    compress
+        ->add_option("--animation-error", compressRequest.options.animationError,
+                     "glTF: how much farther animation keys may move a vertex in a pose, relative to the diagonal, "
+                     "beside --max-error, which the meshes then keep whole (default: the keys take a share of it)")
         ->check(CLI::Range(1e-9, 0.5));
     compress->add_flag(
         "--no-instancing", [&](std::int64_t) { compressRequest.options.instancing = false; },

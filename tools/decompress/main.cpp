@@ -27,8 +27,8 @@ void print(const RebuildReport& report) {
                 against.c_str(), report.maxDeviation, report.allowedDeviation, report.areaRatio,
                 report.verified ? "verified" : "NOT VERIFIED");
     if (report.posesCompared > 0)
-        std::printf("  animations: %zu poses drawn, max deviation %.2e of the diagonal\n", report.posesCompared,
-                    report.posedDeviation);
+        std::printf("  animations: %zu poses drawn, max deviation %.2e of the diagonal (allowed %.2e)\n",
+                    report.posesCompared, report.posedDeviation, report.allowedPosedDeviation);
 }
 
 }  // namespace
