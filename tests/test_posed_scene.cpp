@@ -420,6 +420,12 @@ TEST_CASE(
     const RebuildReport kept = decompressFile(folder / "shared.glb", folder / "flat.glb", folder / "waving.glb");
     CHECK(kept.verified);
     CHECK(kept.allowedPosedDeviation == kept.allowedDeviation);
+    // X3D writes keys as read: the allowance changes nothing, and the user is told.
+    const CompressionReport x3d = compressFile(folder / "waving.glb", folder / "own.x3d", beside);
+    CHECK(x3d.animationError == 0);
+    CHECK(std::any_of(x3d.warnings.begin(), x3d.warnings.end(), [](const std::string& warning) {
+        return warning.find("--animation-error changes nothing") != std::string::npos;
+    }));
 }
 
 TEST_CASE("Animation keys that move a camera are kept as read", "[io]") {

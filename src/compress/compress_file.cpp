@@ -198,6 +198,12 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         write.maxPositionError = (planOptions.maxError - planOptions.instanceShare) * analysis.diagonal;
         write.maxRelativePositionError = options.closeUpError * options.maxError;
     }
+    if (options.animationError > 0 && !(report.animationError > 0))
+        scene.warnings.push_back(std::string("--animation-error changes nothing: ") +
+                                 (scene.animations.empty()
+                                      ? "the scene has no animations"
+                                      : "only glTF output with Draco and meshopt rounds animation keys (not X3D, "
+                                        "--no-draco, --no-gpu-instancing or --position-bits)"));
     planOptions.costs = costModelFor(formatFromExtension(output), write);
     // The decoder verifies against the whole budget (without tiles, there is no diagonal to scale it by).
     SurfaceDigest digest = analysis.digest;
