@@ -176,6 +176,29 @@ TEST_CASE(
     }
 }
 
+TEST_CASE("Keys too many to draw pose by pose are dropped, measured at the corners of the box they move",
+          "[optimize][animation]") {
+    // A steady turn keyed 50000 times: its 100000 poses (each key and halfway) times the box's 8 corners, ten times
+    // over, are more than the vertices the probe draws (4e6) and than it measured at corners before (the same).
+    Scene scene = bakedBox();
+    AnimationChannel turn = scene.animations[0].channels[0];
+    turn.times.clear();
+    turn.values.clear();
+    constexpr int kManyKeys = 50000;
+    for (int k = 0; k < kManyKeys; ++k) {
+        const Eigen::Quaterniond q(Eigen::AngleAxisd(k * M_PI / kManyKeys, Eigen::Vector3d::UnitZ()));
+        turn.times.push_back(k / 30.0);
+        turn.values.insert(turn.values.end(), {q.x(), q.y(), q.z(), q.w()});
+    }
+    scene.animations[0].channels = {turn};
+    validateScene(scene);
+    const RedundantKeys dropped = dropRedundantKeys(scene, 1e-4);
+    const std::size_t kept = scene.animations[0].channels[0].times.size();
+    CHECK(kept <= std::size_t(kManyKeys) / 60);
+    CHECK(dropped.keysDropped == std::size_t(kManyKeys) - kept);
+    CHECK(dropped.deviation <= 1e-4);
+}
+
 TEST_CASE("symcompress drops the keys a baked animation repeats, and --keep-animation-keys keeps them",
           "[optimize][animation]") {
     TemporaryFolder folder;

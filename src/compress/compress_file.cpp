@@ -184,7 +184,8 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
         // Keys that interpolation gives back dropped with a share of the keys' allowance; their rounding takes what
         // the dropping leaves of it.
         if (options.optimize.dropKeys && write.animationKeyError > 0) {
-            const RedundantKeys dropped = dropRedundantKeys(scene, write.animationKeyError * kKeyDroppingShare);
+            const RedundantKeys dropped = withThreads(
+                options.threads, [&] { return dropRedundantKeys(scene, write.animationKeyError * kKeyDroppingShare); });
             report.optimizations.animationKeysDropped = dropped.keysDropped;
             report.optimizations.animationChannelsRemoved = dropped.channelsRemoved;
             write.animationKeyError -= dropped.deviation;

@@ -700,7 +700,9 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     // Their key values rounded within the budget where meshopt's filters can hold them.
     for (Animation animation : scene.animations) {
         const std::vector<KeyValues> stored =
-            codeData ? roundedKeyValues(scene, animation, options.animationKeyError) : std::vector<KeyValues>();
+            codeData ? withThreads(options.threads,
+                                   [&] { return roundedKeyValues(scene, animation, options.animationKeyError); })
+                     : std::vector<KeyValues>();
         for (AnimationChannel& channel : animation.channels) channel.node = numbering.index[std::size_t(channel.node)];
         root["animations"].push_back(writeAnimation(animation, stored, builder));
     }

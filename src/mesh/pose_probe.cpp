@@ -2,7 +2,11 @@
 
 #include "symcompress/scene_ops.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <map>
 
@@ -10,8 +14,10 @@ namespace symcompress {
 namespace {
 
 // The most vertices drawn over all the poses measured, times ten (a change is measured some ten times): beyond,
-// the keys stay as read rather than the writer take seconds.
-constexpr std::size_t kMostPosedVertices = 4'000'000;
+// the bounds' corners are measured instead, up to ten times as many (each a matrix times a point, where a drawn
+// vertex is skinned or placed in a mesh of its own); beyond that, the keys stay as read rather than the writer take
+// seconds.
+constexpr std::size_t kMostPosedVertices = 4'000'000, kMostBoundPoints = 40'000'000;
 
 }  // namespace
 
@@ -27,7 +33,7 @@ PoseProbe::PoseProbe(const Scene& scene, const Animation& animation) : scene_(sc
         if (!collectBounds(animation)) return;
         std::size_t points = 0;
         for (const Bound& bound : bounds_) points += bound.corners.size();
-        if (points * times_.size() * 10 > kMostPosedVertices) return;
+        if (points * times_.size() * 10 > kMostBoundPoints) return;
     }
     for (double time : times_) poses_.push_back(measuredAt(animation, time));
 }
@@ -105,16 +111,23 @@ double PoseProbe::deviation(const Animation& changed) const {
 }
 
 double PoseProbe::farthest(const Animation& changed, double stopAbove) const {
-    double out = 0;
-    for (std::size_t t = 0; t < times_.size(); ++t) {
-        const std::vector<Eigen::Vector3d> posed = measuredAt(changed, times_[t]);
-        for (std::size_t v = 0; v < posed.size(); ++v) {
-            const double distance = (posed[v] - poses_[t][v]).norm();
-            if (!(distance <= stopAbove)) return std::numeric_limits<double>::infinity();
-            out = std::max(out, distance);
-        }
-    }
-    return out;
+    // The poses one by one on each thread; the first beyond `stopAbove` stops the others.
+    std::atomic<bool> beyond{false};
+    const double out = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, times_.size()), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& range, double farthestSoFar) {
+            for (std::size_t t = range.begin(); t < range.end() && !beyond.load(std::memory_order_relaxed); ++t) {
+                const std::vector<Eigen::Vector3d> posed = measuredAt(changed, times_[t]);
+                for (std::size_t v = 0; v < posed.size(); ++v) {
+                    const double distance = (posed[v] - poses_[t][v]).norm();
+                    if (!(distance <= stopAbove)) beyond = true;
+                    farthestSoFar = std::max(farthestSoFar, distance);
+                }
+            }
+            return farthestSoFar;
+        },
+        [](double a, double b) { return std::max(a, b); });
+    return beyond ? std::numeric_limits<double>::infinity() : out;
 }
 
 std::vector<char> measuredNodes(const Scene& scene) {

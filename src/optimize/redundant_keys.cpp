@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -39,6 +40,28 @@ double unitOf(const AnimationChannel& channel) {
     return largest;
 }
 
+// Slerp from one unit quaternion to another, their angle found once for every key between them (Eigen's slerp, whose
+// arithmetic this repeats, finds it at each: its acos and sine were a third of the time on densely keyed tracks).
+class SpanSlerp {
+public:
+    SpanSlerp(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) : a_(a), b_(b) {
+        const double d = a.dot(b), absD = std::abs(d);
+        linear_ = absD >= 1 - std::numeric_limits<double>::epsilon();
+        if (!linear_) theta_ = std::acos(absD), sinTheta_ = std::sin(theta_);
+        sign_ = d < 0 ? -1 : 1;
+    }
+    Eigen::Quaterniond at(double t) const {
+        const double scale0 = linear_ ? 1 - t : std::sin((1 - t) * theta_) / sinTheta_;
+        const double scale1 = sign_ * (linear_ ? t : std::sin(t * theta_) / sinTheta_);
+        return Eigen::Quaterniond(scale0 * a_.coeffs() + scale1 * b_.coeffs());
+    }
+
+private:
+    Eigen::Quaterniond a_, b_;
+    bool linear_ = true;
+    double theta_ = 0, sinTheta_ = 1, sign_ = 1;
+};
+
 // Whether interpolating keys a and b alone gives every key between them within `tolerance` (each component; a
 // rotation as either of its quaternions), as the sampler interpolates: held for STEP, slerp for rotations.
 bool spanHolds(const AnimationChannel& channel, std::size_t a, std::size_t b, double tolerance) {
@@ -48,16 +71,14 @@ bool spanHolds(const AnimationChannel& channel, std::size_t a, std::size_t b, do
     const bool step = channel.interpolation == AnimationChannel::Interpolation::Step,
                slerped = channel.path == AnimationChannel::Path::Rotation && !step;
     // The span's ends as unit quaternions, once (a rotation's key has four values; others' none of this).
-    Eigen::Quaterniond qa = Eigen::Quaterniond::Identity(), qb = qa;
-    if (slerped) {
-        qa = Eigen::Quaterniond(va[3], va[0], va[1], va[2]).normalized();
-        qb = Eigen::Quaterniond(vb[3], vb[0], vb[1], vb[2]).normalized();
-    }
+    const SpanSlerp slerp = slerped ? SpanSlerp(Eigen::Quaterniond(va[3], va[0], va[1], va[2]).normalized(),
+                                                Eigen::Quaterniond(vb[3], vb[0], vb[1], vb[2]).normalized())
+                                    : SpanSlerp(Eigen::Quaterniond::Identity(), Eigen::Quaterniond::Identity());
     for (std::size_t k = a + 1; k < b; ++k) {
         const double u = (channel.times[k] - channel.times[a]) / (channel.times[b] - channel.times[a]);
         const double* vk = &channel.values[k * width];
         if (slerped) {
-            const Eigen::Quaterniond q = qa.slerp(u, qb);
+            const Eigen::Quaterniond q = slerp.at(u);
             const double expected[] = {q.x(), q.y(), q.z(), q.w()};
             double same = 0, opposite = 0;
             for (std::size_t c = 0; c < 4; ++c) {
