@@ -73,23 +73,26 @@ std::array<std::int16_t, 4> quaternionKey(const double* q, int bits, int largest
 // Rotations on the quaternion filter's grid at `bits` already (a file gltfpack or symcompress wrote): each key
 // encoded with the component left out that gives it back, where one does. meshopt's encoder leaves out the
 // largest, which need not be the one the file left out where two are nearly equal (gltfpack's fox: 0.68688 and
-// -0.687063), and then moves the key by up to half a step.
+// -0.687063), and then moves the key by up to half a step. Where no component gives a key back, the keys after it
+// are left as meshopt's encoder has them: the rotations are not on this grid.
 Rounded quaternionOnItsGrid(const AnimationChannel& channel, int bits) {
     Rounded out = quaternionRounded(channel, bits);
     for (std::size_t at = 0; at < channel.values.size(); at += 4) {
         const double* q = &channel.values[at];
         if (givesBack(&out.values[at], q)) continue;
-        for (int largest = 0; largest < 4; ++largest) {
+        bool back = false;
+        for (int largest = 0; largest < 4 && !back; ++largest) {
             std::array<std::int16_t, 4> key = quaternionKey(q, bits, largest);
             const std::array<std::int16_t, 4> encoded = key;
             meshopt_decodeFilterQuat(key.data(), 1, 8);
             double decoded[4];
             for (int c = 0; c < 4; ++c) decoded[c] = std::max(key[std::size_t(c)] / 32767.0, -1.0);
-            if (!givesBack(decoded, q)) continue;
+            back = givesBack(decoded, q);
+            if (!back) continue;
             std::memcpy(out.stored.filtered.data() + at * sizeof(std::int16_t), encoded.data(), sizeof encoded);
             std::copy(decoded, decoded + 4, out.values.begin() + std::ptrdiff_t(at));
-            break;
         }
+        if (!back) break;
     }
     return out;
 }
