@@ -2,6 +2,7 @@
 // (meshopt's own decoding filters), against the values as read.
 #include "gltf_animation_keys.hpp"
 
+#include "geometry/quaternion_difference.hpp"
 #include "gltf_instance_encoding.hpp"
 #include "mesh/pose_probe.hpp"
 
@@ -50,12 +51,7 @@ Rounded quaternionRounded(const AnimationChannel& channel, int bits) {
 // of its quaternions).
 bool givesBack(const double* decoded, const double* read) {
     constexpr double kHalfShortStep = 0.5 / 32767;
-    double same = 0, opposite = 0;
-    for (int c = 0; c < 4; ++c) {
-        same = std::max(same, std::abs(decoded[c] - read[c]));
-        opposite = std::max(opposite, std::abs(decoded[c] + read[c]));
-    }
-    return std::min(same, opposite) <= kHalfShortStep;
+    return quaternionDifference(decoded, read) <= kHalfShortStep;
 }
 
 // One key (x y z w) in the quaternion filter's encoding at `bits` with component `largest` left out and rebuilt by

@@ -4,6 +4,7 @@
 // A channel that stays that close to its node's rest value goes altogether (Cesium Man's scales, 1 to a millionth,
 // and translations).
 #include "channel_rest.hpp"
+#include "geometry/quaternion_difference.hpp"
 #include "mesh/pose_probe.hpp"
 #include "symcompress/optimize.hpp"
 
@@ -80,12 +81,7 @@ bool spanHolds(const AnimationChannel& channel, std::size_t a, std::size_t b, do
         if (slerped) {
             const Eigen::Quaterniond q = slerp.at(u);
             const double expected[] = {q.x(), q.y(), q.z(), q.w()};
-            double same = 0, opposite = 0;
-            for (std::size_t c = 0; c < 4; ++c) {
-                same = std::max(same, std::abs(vk[c] - expected[c]));
-                opposite = std::max(opposite, std::abs(vk[c] + expected[c]));
-            }
-            if (std::min(same, opposite) > tolerance) return false;
+            if (quaternionDifference(vk, expected) > tolerance) return false;
             continue;
         }
         for (std::size_t c = 0; c < width; ++c) {
