@@ -3,6 +3,7 @@
 // and unreadable images, the attributes beyond the core ones (tangents, more texture coordinate sets, joints
 // and weights), skins and morph targets, compared by value between the input and what comes out.
 #include "io/gltf_builder.hpp"
+#include "sample_scenes.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/optimize.hpp"
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -439,6 +441,173 @@ TEST_CASE("A hand-built scene with every feature at once round trips through com
     bool extrasKept = false;
     for (const auto& node : compressed["nodes"]) extrasKept |= node.contains("extras") && node["extras"]["id"] == 7;
     CHECK(extrasKept);
+}
+
+namespace {
+
+// The area each copy of a part (its x / 10, rounded) draws in each material, by the material's description, under
+// variant `v` of KHR_materials_variants (-1: none chosen): what a viewer that switches variants shows.
+std::map<std::pair<long, std::string>, double> areaByCopyAndMaterial(const Scene& scene, int v) {
+    std::map<std::pair<long, std::string>, double> out;
+    for (const WorldPrimitive& placed : flattenScene(scene)) {
+        int m = placed.primitive.material;
+        if (v >= 0 && m >= 0 && !scene.materials[std::size_t(m)].variants.empty() &&
+            scene.materials[std::size_t(m)].variants[std::size_t(v)] >= 0)
+            m = scene.materials[std::size_t(m)].variants[std::size_t(v)];
+        const std::string drawn = m >= 0 ? describe(scene, scene.materials[std::size_t(m)]) : "default";
+        const auto& x = placed.primitive.positions;
+        for (const Triangle& t : placed.primitive.triangles) {
+            const double area = 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
+            out[{std::lround((x[t[0]] + x[t[1]] + x[t[2]]).x() / 30), drawn}] += area;
+        }
+    }
+    return out;
+}
+
+bool sameAreas(const std::map<std::pair<long, std::string>, double>& a,
+               const std::map<std::pair<long, std::string>, double>& b) {
+    if (a.size() != b.size()) return false;
+    for (const auto& [key, area] : a)
+        if (!b.count(key) || !(std::abs(b.at(key) - area) <= 1e-3 * area)) return false;
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("Material variants (KHR_materials_variants) come out as they went in, under every variant", "[materials]") {
+    // Four copies of a part, all grey by default: the first and third turn red under variant 0 and textured blue
+    // under variant 1, the fourth red under variant 1, the second never changes. The variant materials are drawn by
+    // no primitive by default, and only the blue one reads the texture coordinates.
+    std::mt19937_64 random(11);
+    const TriangleMesh part = samples::randomConvexPart(random);
+    Scene scene;
+    Texture png;
+    png.bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 1, 2, 3};
+    png.mimeType = "image/png";
+    scene.textures = {png};
+    Material grey, red, blue;
+    grey.name = "grey";
+    grey.baseColorFactor = {0.5, 0.5, 0.5, 1};
+    red.name = "red";
+    red.baseColorFactor = {1, 0, 0, 1};
+    blue.name = "blue";
+    blue.baseColorFactor = {0, 0, 1, 1};
+    blue.baseColorTexture.texture = 0;
+    scene.materials = {grey, red, blue};
+    Mesh copies;
+    for (int k = 0; k < 4; ++k) {
+        Primitive copy;
+        samples::appendMesh(copy, samples::transformed(part, Eigen::Matrix3d::Identity(), {10.0 * k, 0, 0}));
+        for (const Eigen::Vector3d& x : copy.positions) copy.texcoords.push_back({x.y(), x.z()});
+        copy.material = 0;
+        copies.primitives.push_back(copy);
+    }
+    scene.meshes = {copies};
+    scene.nodes.resize(1);
+    scene.nodes[0].mesh = 0;
+    scene.roots = {0};
+    TemporaryFolder folder;
+    const fs::path plain = folder / "plain.gltf", input = folder / "variants.gltf";
+    WriteOptions uncompressed;
+    uncompressed.draco = false;
+    writeScene(scene, plain, uncompressed);
+    // The variants put in by hand, as a file from elsewhere has them.
+    nlohmann::json root = nlohmann::json::parse(readTextFile(plain));
+    root["extensionsUsed"].push_back("KHR_materials_variants");
+    root["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "Red"}}, {{"name", "Blue"}}};
+    const nlohmann::json redThenBlue = {
+        {"mappings", {{{"material", 1}, {"variants", {0}}}, {{"material", 2}, {"variants", {1}}}}}};
+    auto& primitives = root["meshes"][0]["primitives"];
+    REQUIRE(primitives.size() == 4);
+    primitives[0]["extensions"]["KHR_materials_variants"] = redThenBlue;
+    primitives[2]["extensions"]["KHR_materials_variants"] = redThenBlue;
+    primitives[3]["extensions"]["KHR_materials_variants"] = {{"mappings", {{{"material", 1}, {"variants", {1}}}}}};
+    writeTextFile(input, root.dump());
+    fs::copy_file(folder / "plain.bin", folder / "variants.bin");
+
+    const Scene read = readScene(input);
+    REQUIRE(read.materialVariants.size() == 2);
+    CHECK(read.materialVariants[1].name == "Blue");
+    CHECK(read.warnings.empty());
+    // The ground truth, from the file: copy 0 and 2 red then blue, copy 3 grey then red, copy 1 grey.
+    const auto byVariant = [&](const Scene& s) {
+        return std::vector{areaByCopyAndMaterial(s, -1), areaByCopyAndMaterial(s, 0), areaByCopyAndMaterial(s, 1)};
+    };
+    const auto expected = byVariant(read);
+    REQUIRE(expected[1].size() == 4);
+    std::set<std::string> underRed;
+    for (const auto& [key, area] : expected[1]) underRed.insert(std::to_string(key.first) + key.second.substr(0, 8));
+    CHECK(underRed.count("0" + describe(read, red).substr(0, 8)));
+    CHECK(underRed.count("3" + describe(read, grey).substr(0, 8)));
+
+    const CompressionReport report = compressFile(input, folder / "compressed.glb");
+    CHECK(report.stats.instances >= 1);  // copies that differ only in place and share their variants are one mesh
+    const RebuildReport rebuilt = decompressFile(folder / "compressed.glb", folder / "rebuilt.glb", input);
+    CHECK(rebuilt.verified);
+    for (const char* name : {"compressed.glb", "rebuilt.glb"}) {
+        INFO(name);
+        const Scene out = readScene(folder / name);
+        CHECK(out.warnings.empty());
+        REQUIRE(out.materialVariants == read.materialVariants);
+        const auto drawn = byVariant(out);
+        for (int v = 0; v < 3; ++v) CHECK(sameAreas(drawn[std::size_t(v)], expected[std::size_t(v)]));
+        // The texture coordinates only the blue variant reads are kept.
+        for (const WorldPrimitive& placed : flattenScene(out))
+            if (placed.primitive.material >= 0 &&
+                !out.materials[std::size_t(placed.primitive.material)].variants.empty())
+                CHECK(!placed.primitive.texcoords.empty());
+        const nlohmann::json written = glbJson(folder / name);
+        CHECK(listed(written, "extensionsUsed").count("KHR_materials_variants"));
+        CHECK(written["extensions"]["KHR_materials_variants"]["variants"][0]["name"] == "Red");
+        if (interopAvailable()) CHECK(validatorErrors(folder / name).empty());
+    }
+
+    // X3D has no variants: said, and the default materials drawn.
+    const CompressionReport x3d = compressFile(input, folder / "compressed.x3d");
+    CHECK(std::any_of(x3d.warnings.begin(), x3d.warnings.end(), [](const std::string& warning) {
+        return warning.find("2 material variants (KHR_materials_variants) not written") != std::string::npos;
+    }));
+    // X3D output of glTF materials reads back as X3D's own (described otherwise): the area drawn is compared.
+    double greyArea = 0, expectedGrey = 0;
+    for (const auto& [key, area] : areaByCopyAndMaterial(readScene(folder / "compressed.x3d"), -1)) greyArea += area;
+    for (const auto& [key, area] : expected[0]) expectedGrey += area;
+    CHECK(std::abs(greyArea - expectedGrey) <= 1e-3 * expectedGrey);
+}
+
+TEST_CASE("Broken KHR_materials_variants mappings are warned about, naming the primitive, and left out",
+          "[materials]") {
+    Scene scene = samples::singleMeshScene("box",
+                                           [] {
+                                               Primitive box;
+                                               samples::appendMesh(box, samples::boxMesh({0, 0, 0}, {1, 2, 3}));
+                                               return box;
+                                           }(),
+                                           {0.5, 0.5, 0.5, 1});
+    TemporaryFolder folder;
+    WriteOptions uncompressed;
+    uncompressed.draco = false;
+    writeScene(scene, folder / "plain.gltf", uncompressed);
+    nlohmann::json root = nlohmann::json::parse(readTextFile(folder / "plain.gltf"));
+    root["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "only"}}};
+    root["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"] = {
+        {"mappings", {{{"material", 7}, {"variants", {0}}}, {{"material", 0}, {"variants", {3}}}, "not an object"}}};
+    writeTextFile(folder / "broken.gltf", root.dump());
+    fs::copy_file(folder / "plain.bin", folder / "broken.bin");
+    const Scene read = readScene(folder / "broken.gltf");
+    CHECK(read.materials.size() == 1);
+    CHECK(read.materials[0].variants.empty());
+    CHECK(std::any_of(read.warnings.begin(), read.warnings.end(), [](const std::string& warning) {
+        return warning.find("broken.gltf: mesh 0 primitive 0: a KHR_materials_variants mapping") != std::string::npos;
+    }));
+    CHECK(std::any_of(read.warnings.begin(), read.warnings.end(), [](const std::string& warning) {
+        return warning.find("maps a variant that is not in the file's list") != std::string::npos;
+    }));
+    const CompressionReport report = compressFile(folder / "broken.gltf", folder / "out.glb");
+    const nlohmann::json written = glbJson(folder / "out.glb");
+    CHECK(written["meshes"][0]["primitives"][0]
+              .value("extensions", nlohmann::json::object())
+              .count("KHR_materials_variants") == 0);
+    if (interopAvailable()) CHECK(validatorErrors(folder / "out.glb").empty());
 }
 
 TEST_CASE("Broken material references are warned about and written as nothing, never as a dangling index",

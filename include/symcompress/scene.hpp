@@ -5,6 +5,8 @@
 //   have exactly positions.size() entries; every triangle index is < positions.size();
 // - every coordinate and attribute value is finite;
 // - Primitive::material is -1 (default material) or an index into Scene::materials;
+// - a Material's variants are empty or one per Scene::materialVariants, each -1 or an index into Scene::materials
+//   of a material without variants;
 // - Node::mesh is -1 or an index into Scene::meshes; Node::children index into Scene::nodes and the
 //   node graph is a forest (a node is the child of at most one node, no cycles);
 // - every TextureRef of a Material (Material::textureRefs) has a texture of -1 or an index into
@@ -132,10 +134,15 @@ struct Material {
     std::vector<MaterialExtension> extensions;
     std::string extrasJson;  // glTF extras as read (JSON text), empty for none
     std::optional<PhongMaterial> phong;
+    // KHR_materials_variants: under variant v of Scene::materialVariants, what this material draws draws
+    // materials[variants[v]] instead (-1: this material itself); empty where no variant changes it. The table is
+    // part of the material, so that primitives drawn alike under every variant, and only those, share one.
+    std::vector<int> variants;
     bool operator==(const Material& o) const {
         return name == o.name && sameButName(o);
     }
-    bool sameButName(const Material& o) const {
+    bool sameButName(const Material& o) const { return sameButNameAndVariants(o) && variants == o.variants; }
+    bool sameButNameAndVariants(const Material& o) const {
         return extrasJson == o.extrasJson && baseColorFactor == o.baseColorFactor && metallicFactor == o.metallicFactor &&
                roughnessFactor == o.roughnessFactor && emissiveFactor == o.emissiveFactor && alphaMode == o.alphaMode &&
                alphaCutoff == o.alphaCutoff && doubleSided == o.doubleSided && baseColorTexture == o.baseColorTexture &&
@@ -294,9 +301,17 @@ struct Animation {
     std::vector<AnimationChannel> channels;
 };
 
+// One of the variants a viewer may switch a scene's materials to (KHR_materials_variants; Material::variants).
+struct MaterialVariant {
+    std::string name;
+    std::string extrasJson;  // glTF extras as read (JSON text), empty for none
+    bool operator==(const MaterialVariant& o) const { return name == o.name && extrasJson == o.extrasJson; }
+};
+
 struct Scene {
     std::vector<Texture> textures;
     std::vector<Material> materials;
+    std::vector<MaterialVariant> materialVariants;
     std::vector<Mesh> meshes;
     std::vector<Node> nodes;
     std::vector<int> roots;             // the nodes drawn, in order

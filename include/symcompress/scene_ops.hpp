@@ -153,6 +153,13 @@ Scene expandInstances(const Scene& scene);
 // texture's KHR_texture_transform, for writers of formats without one (X3D, OBJ, PLY).
 Eigen::Vector2d baseColorTexcoord(const Scene& scene, const Primitive& primitive, std::size_t v);
 
+// The materials a primitive of material `m` draws with: m itself, then each other one a variant of it draws
+// (Material::variants), each once; none for -1 (the default material).
+std::vector<const Material*> materialsDrawnWith(const Scene& scene, int m);
+
+// Every material's variant tables renumbered: material m becomes newIndex[m].
+void renumberVariantMaterials(Scene& scene, const std::vector<int>& newIndex);
+
 // Every material's texture uses renumbered: texture t becomes newIndex[t] (-1: the use is dropped).
 void renumberTextures(Scene& scene, const std::vector<int>& newIndex);
 

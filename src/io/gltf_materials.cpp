@@ -1,6 +1,7 @@
 // glTF materials into the scene model: every core texture slot with its texCoord, scale or strength and
 // KHR_texture_transform; each glTF texture as an image with its sampler; material extensions
-// (KHR_materials_*, whatever else a material carries) kept as JSON with their textures held apart; extras.
+// (KHR_materials_*, whatever else a material carries) kept as JSON with their textures held apart; extras;
+// KHR_materials_variants as materials that carry a table of the materials each variant draws instead.
 #include "common/mime_type.hpp"
 #include "gltf_reader.hpp"
 
@@ -212,6 +213,68 @@ void GltfReader::readMaterials(Scene& scene) {
             material.extrasJson = extras.dump();
         scene.materials.push_back(std::move(material));
     }
+}
+
+void GltfReader::readMaterialVariants(Scene& scene) {
+    const Json extensions = parsedOrNull(model_.extensions_json_string);
+    if (!extensions.is_object() || !extensions.contains("KHR_materials_variants")) return;
+    const Json& source = extensions["KHR_materials_variants"];
+    if (!source.is_object() || !source.contains("variants") || !source["variants"].is_array()) {
+        warnAbout("KHR_materials_variants has no array of variants, ignored");
+        return;
+    }
+    for (const Json& variant : source["variants"]) {
+        MaterialVariant read;
+        if (variant.is_object() && variant.contains("name") && variant["name"].is_string())
+            read.name = variant["name"].get<std::string>();
+        else
+            warnAbout("KHR_materials_variants: variant " + std::to_string(scene.materialVariants.size()) +
+                      " has no name");
+        if (variant.is_object() && variant.contains("extras")) read.extrasJson = variant["extras"].dump();
+        scene.materialVariants.push_back(std::move(read));
+    }
+}
+
+int GltfReader::materialUnderVariants(int material, const std::string& extensionsJson, Scene& scene,
+                                      const std::string& where) {
+    const Json extensions = parsedOrNull(extensionsJson);
+    if (!extensions.is_object() || !extensions.contains("KHR_materials_variants")) return material;
+    const Json& source = extensions["KHR_materials_variants"];
+    if (!source.is_object() || !source.contains("mappings") || !source["mappings"].is_array()) {
+        warnAbout(where + ": KHR_materials_variants has no array of mappings, ignored");
+        return material;
+    }
+    std::vector<int> table(scene.materialVariants.size(), -1);
+    std::vector<bool> mapped(table.size(), false);
+    for (const Json& mapping : source["mappings"]) {
+        const int to = mapping.is_object() && mapping.contains("material") ? indexIn(mapping["material"]) : -1;
+        if (to < 0 || to >= static_cast<int>(model_.materials.size()) || !mapping.contains("variants") ||
+            !mapping["variants"].is_array()) {
+            warnAbout(where + ": a KHR_materials_variants mapping without a material or variants, ignored");
+            continue;
+        }
+        for (const Json& index : mapping["variants"]) {
+            const int v = indexIn(index);
+            if (v < 0 || v >= static_cast<int>(table.size())) {
+                warnAbout(where + ": KHR_materials_variants maps a variant that is not in the file's list, ignored");
+            } else if (mapped[std::size_t(v)]) {
+                warnAbout(where + ": KHR_materials_variants maps variant " + std::to_string(v) +
+                          " twice; the first mapping kept");
+            } else {
+                mapped[std::size_t(v)] = true;
+                table[std::size_t(v)] = to == material ? -1 : to;
+            }
+        }
+    }
+    if (std::all_of(table.begin(), table.end(), [](int m) { return m < 0; })) return material;
+    // The default material with the table, made once for every primitive of the same two.
+    const auto [entry, added] = materialWithVariants_.try_emplace({material, table}, int(scene.materials.size()));
+    if (added) {
+        Material withVariants = material >= 0 ? scene.materials[std::size_t(material)] : Material{};
+        withVariants.variants = std::move(table);
+        scene.materials.push_back(std::move(withVariants));
+    }
+    return entry->second;
 }
 
 std::string GltfReader::extrasOf(const std::string& extrasJson) {

@@ -26,7 +26,7 @@ constexpr std::size_t kMaxNodeDepth = 256;
 
 }  // namespace
 
-void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, const std::string& where) {
+void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, Scene& scene, const std::string& where) {
     const int mode = source.mode < 0 ? TINYGLTF_MODE_TRIANGLES : source.mode;
     auto draco = source.extensions.find("KHR_draco_mesh_compression");
     const bool triangles =
@@ -124,8 +124,9 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, co
         out.topology = Topology::Lines;
         out.lines = segmentsFromIndices(indices, mode);
     }
-    out.material =
-        source.material >= 0 && source.material < static_cast<int>(model_.materials.size()) ? source.material : -1;
+    out.material = materialUnderVariants(
+        source.material >= 0 && source.material < static_cast<int>(model_.materials.size()) ? source.material : -1,
+        source.extensions_json_string, scene, where);
     mesh.primitives.push_back(std::move(out));
 }
 
@@ -496,12 +497,13 @@ void GltfReader::expandGpuInstances(Scene& scene) {
 Scene GltfReader::read() {
     Scene scene;
     readMaterials(scene);
+    readMaterialVariants(scene);
     for (std::size_t m = 0; m < model_.meshes.size(); ++m) {
         Mesh mesh;
         mesh.name = model_.meshes[m].name;
         mesh.extrasJson = extrasOf(model_.meshes[m].extras_json_string);
         for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p)
-            readPrimitive(model_.meshes[m].primitives[p], mesh,
+            readPrimitive(model_.meshes[m].primitives[p], mesh, scene,
                           "mesh " + std::to_string(m) + " primitive " + std::to_string(p));
         mesh.weights = model_.meshes[m].weights;
         keepConsistentMorphTargets(mesh, "mesh " + std::to_string(m));

@@ -77,7 +77,7 @@ private:
     [[noreturn]] void fail(const std::string& problem) const { throw FileError(file_, problem); }
     std::vector<double> readAccessor(int accessorIndex, int expectedComponents, const char* what) const;
     std::vector<std::uint32_t> readIndices(int accessorIndex) const;
-    void readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, const std::string& where);
+    void readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, Scene& scene, const std::string& where);
     void decodeDracoPrimitive(const tinygltf::Primitive& source, const tinygltf::Value& extension, Primitive& out,
                               std::vector<std::uint32_t>& indices, const std::string& where);
     // The attributes the scene model has fields for (the others are Primitive::attributes).
@@ -93,6 +93,10 @@ private:
     void readSkins(Scene& scene);
     Eigen::Matrix4d nodeTransform(const tinygltf::Node& node) const;
     void readMaterials(Scene& scene);
+    void readMaterialVariants(Scene& scene);
+    // The material a primitive of `material` draws with, given its extensions: one with the table of the materials
+    // KHR_materials_variants maps it to (Material::variants), where it maps any.
+    int materialUnderVariants(int material, const std::string& extensionsJson, Scene& scene, const std::string& where);
     int sceneTexture(int gltfTexture, Scene& scene, const std::string& where);
     TextureRef readTextureUse(int gltfTexture, int texCoord, double scale, const std::string& extensionsJson,
                               Scene& scene, const std::string& where);
@@ -111,6 +115,7 @@ private:
     std::map<std::string, int> skippedModes_;
     std::map<int, int> textureOfGltfTexture_;  // glTF texture -> scene texture (-1: none)
     std::set<std::string> materialExtensions_;  // the names of the extensions kept on materials
+    std::map<std::pair<int, std::vector<int>>, int> materialWithVariants_;  // (default, table) -> scene material
 };
 
 }  // namespace symcompress

@@ -33,6 +33,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <map>
 #include <optional>
 #include <set>
 #include <unordered_map>
@@ -349,11 +350,40 @@ std::string glbFile(const Json& root, std::vector<unsigned char> binary) {
     return out;
 }
 
+// Every material written once: one with variants (KHR_materials_variants) as an earlier one equal to it but for its
+// table, where there is one, since its primitives carry the table. Returns each material's index in the file.
+std::vector<int> writeMaterials(const Scene& scene, TextureWriter& textures, ExtensionsInUse& extensions, Json& root) {
+    std::vector<int> index(scene.materials.size(), -1);
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        for (std::size_t k = 0; k < m && index[m] < 0; ++k) {
+            const Material& earlier = scene.materials[k];
+            if ((!material.variants.empty() || !earlier.variants.empty()) && earlier.name == material.name &&
+                earlier.sameButNameAndVariants(material))
+                index[m] = index[k];
+        }
+        if (index[m] >= 0) continue;
+        index[m] = int(root["materials"].size());
+        root["materials"].push_back(writeMaterial(material, textures, extensions));
+    }
+    return index;
+}
+
+// A primitive's KHR_materials_variants mappings: for each material its variants draw instead of `material`, which.
+void putVariantMappings(const Material& material, const std::vector<int>& materialIndex, Json& primitive) {
+    std::map<int, Json> variantsOf;  // written material -> the variants that draw it
+    for (std::size_t v = 0; v < material.variants.size(); ++v)
+        if (material.variants[v] >= 0) variantsOf[materialIndex[std::size_t(material.variants[v])]].push_back(v);
+    if (variantsOf.empty()) return;
+    Json& mappings = primitive["extensions"]["KHR_materials_variants"]["mappings"] = Json::array();
+    for (auto& [written, variants] : variantsOf) mappings.push_back({{"material", written}, {"variants", variants}});
+}
+
 // Draco's texture coordinate bits for a primitive, and the step they are for: steps of 1/16 of a texel of the
-// largest texture its material reads through TEXCOORD_0 (over the span of its coordinates, times a transform's
-// scale), so that a bilinear filter's weights move by 6% at most (12 bits, Draco's usual, are a quarter of a texel
-// of a 1024-pixel texture over [0, 1]: 0.57% of the skinned Cesium Man's pixels came out changed); never fewer
-// than `bits` (then no step: the bits' own over the span is the finer).
+// largest texture its material (under any of its variants) reads through TEXCOORD_0 (over the span of its coordinates,
+// times a transform's scale), so that a bilinear filter's weights move by 6% at most (12 bits, Draco's usual, are a
+// quarter of a texel of a 1024-pixel texture over [0, 1]: 0.57% of the skinned Cesium Man's pixels came out changed);
+// never fewer than `bits` (then no step: the bits' own over the span is the finer).
 struct TexcoordQuantization {
     int bits = 12;
     double step = 0;
@@ -361,12 +391,13 @@ struct TexcoordQuantization {
 TexcoordQuantization texcoordQuantizationFor(const Scene& scene, const Primitive& primitive, int bits) {
     if (primitive.material < 0 || primitive.texcoords.empty()) return {bits, 0};
     double texelsAcross = 0;
-    for (const TextureRef* use : scene.materials[std::size_t(primitive.material)].textureRefs()) {
-        if (use->texture < 0 || use->texCoordSet() != 0) continue;
-        const ImageSize size = imageSizeOfBytes(scene.textures[std::size_t(use->texture)].bytes);
-        const double scale = use->transform ? use->transform->scale.cwiseAbs().maxCoeff() : 1;
-        texelsAcross = std::max(texelsAcross, std::max(size.width, size.height) * scale);
-    }
+    for (const Material* material : materialsDrawnWith(scene, primitive.material))
+        for (const TextureRef* use : material->textureRefs()) {
+            if (use->texture < 0 || use->texCoordSet() != 0) continue;
+            const ImageSize size = imageSizeOfBytes(scene.textures[std::size_t(use->texture)].bytes);
+            const double scale = use->transform ? use->transform->scale.cwiseAbs().maxCoeff() : 1;
+            texelsAcross = std::max(texelsAcross, std::max(size.width, size.height) * scale);
+        }
     Eigen::AlignedBox2d box;
     for (const Eigen::Vector2d& t : primitive.texcoords) box.extend(t);
     const double steps = box.sizes().maxCoeff() * texelsAcross * 16;
@@ -555,8 +586,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     if (codeData) builder.dataEncoder = meshoptEncoded;
     ExtensionsInUse extensions;
     TextureWriter textures(scene, builder, root, file, extensions);
-    for (const Material& material : scene.materials)
-        root["materials"].push_back(writeMaterial(material, textures, extensions));
+    const std::vector<int> materialIndex = writeMaterials(scene, textures, extensions, root);
 
     // Meshes with no triangles are left out (glTF requires at least one primitive), and so is the
     // reference to them from nodes.
@@ -659,7 +689,10 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
                 encoding.encoded = {};  // its bytes are in the buffer now
             }
             for (Json part : written[e]) {
-                if (primitive.material >= 0) part["material"] = primitive.material;
+                if (primitive.material >= 0) {
+                    part["material"] = materialIndex[std::size_t(primitive.material)];
+                    putVariantMappings(scene.materials[std::size_t(primitive.material)], materialIndex, part);
+                }
                 // Only where a primitive is Draco's (a morphed one never is): a required extension names what a
                 // viewer must decode.
                 usedDraco = usedDraco ||
@@ -719,6 +752,15 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     // animations, skins).
     if (builder.fallbackBytes()) extensions.add("EXT_meshopt_compression", true);
     if (!scene.lights.empty()) extensions.add("KHR_lights_punctual", false);
+    if (!scene.materialVariants.empty()) {
+        Json& variants = root["extensions"]["KHR_materials_variants"]["variants"] = Json::array();
+        for (const MaterialVariant& variant : scene.materialVariants) {
+            Json written = {{"name", variant.name}};
+            putExtras(written, variant.extrasJson);
+            variants.push_back(std::move(written));
+        }
+        extensions.add("KHR_materials_variants", false);
+    }
     for (const std::string& extension : extensions.used) root["extensionsUsed"].push_back(extension);
     for (const std::string& extension : extensions.required) root["extensionsRequired"].push_back(extension);
 

@@ -84,6 +84,10 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
     }
     if (format == FileFormat::Glb || format == FileFormat::Gltf) return losses;
     const std::string extension = file.extension().string();
+    if (!scene.materialVariants.empty())
+        losses.push_back(std::to_string(scene.materialVariants.size()) +
+                         " material variants (KHR_materials_variants) not written: " + extension +
+                         " output draws each primitive's default material");
     std::set<std::string> attributes;
     std::size_t morphed = 0, weightChannels = 0;
     for (const Mesh& mesh : scene.meshes) {

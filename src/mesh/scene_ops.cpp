@@ -192,6 +192,13 @@ void validateScene(const Scene& scene) {
         for (const TextureRef* use : scene.materials[m].textureRefs())
             if (use->texture < -1 || use->texture >= static_cast<int>(scene.textures.size()) || use->texCoord < 0)
                 throw std::invalid_argument("material " + std::to_string(m) + ": texture index out of range");
+        const std::vector<int>& variants = scene.materials[m].variants;
+        if ((!variants.empty() && variants.size() != scene.materialVariants.size()) ||
+            std::any_of(variants.begin(), variants.end(), [&](int v) {
+                return v < -1 || v >= static_cast<int>(scene.materials.size()) ||
+                       (v >= 0 && !scene.materials[std::size_t(v)].variants.empty());
+            }))
+            throw std::invalid_argument("material " + std::to_string(m) + ": variant material out of range");
     }
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
@@ -326,6 +333,22 @@ Eigen::Vector2d baseColorTexcoord(const Scene& scene, const Primitive& primitive
     return use.transform ? Eigen::Vector2d(use.transform->matrix() * t.homogeneous()) : t;
 }
 
+std::vector<const Material*> materialsDrawnWith(const Scene& scene, int m) {
+    std::vector<const Material*> out;
+    if (m < 0) return out;
+    out.push_back(&scene.materials[std::size_t(m)]);
+    for (int v : scene.materials[std::size_t(m)].variants)
+        if (v >= 0 && std::find(out.begin(), out.end(), &scene.materials[std::size_t(v)]) == out.end())
+            out.push_back(&scene.materials[std::size_t(v)]);
+    return out;
+}
+
+void renumberVariantMaterials(Scene& scene, const std::vector<int>& newIndex) {
+    for (Material& material : scene.materials)
+        for (int& v : material.variants)
+            if (v >= 0) v = newIndex[std::size_t(v)];
+}
+
 void renumberTextures(Scene& scene, const std::vector<int>& newIndex) {
     for (Material& material : scene.materials)
         for (TextureRef* use : material.textureRefs())
@@ -392,6 +415,7 @@ Scene expandInstances(const Scene& scene) {
     Scene flat;
     flat.textures = scene.textures;
     flat.materials = scene.materials;
+    flat.materialVariants = scene.materialVariants;
     flat.warnings = scene.warnings;
     std::vector<int> tops;
     const std::vector<bool> animated = markAnimatedSubtrees(scene, tops);

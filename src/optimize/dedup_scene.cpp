@@ -52,6 +52,7 @@ std::pair<std::size_t, std::size_t> mergeDuplicateMaterialsAndTextures(Scene& sc
     for (Mesh& mesh : scene.meshes)
         for (Primitive& primitive : mesh.primitives)
             if (primitive.material >= 0) primitive.material = sameMaterial[std::size_t(primitive.material)];
+    renumberVariantMaterials(scene, sameMaterial);
     return {materialsMerged, texturesMerged};
 }
 

@@ -115,10 +115,10 @@ std::size_t dropFlatNormals(Scene& scene) {
     for (Mesh& mesh : scene.meshes)
         for (Primitive& primitive : mesh.primitives) {
             // Morph targets may displace the normals; tangents, and the normal maps that read them, need them.
-            const Material* material =
-                primitive.material >= 0 ? &scene.materials[std::size_t(primitive.material)] : nullptr;
+            const std::vector<const Material*> materials = materialsDrawnWith(scene, primitive.material);
             const bool needsNormals =
-                !primitive.targets.empty() || (material && readsTangents(*material)) ||
+                !primitive.targets.empty() ||
+                std::any_of(materials.begin(), materials.end(), [](const Material* m) { return readsTangents(*m); }) ||
                 std::any_of(primitive.attributes.begin(), primitive.attributes.end(),
                             [](const VertexAttribute& a) { return a.name == "TANGENT"; });
             // Lines and points have no face for a viewer to take a normal from.
@@ -137,12 +137,15 @@ std::size_t dropUnreadAttributes(Scene& scene) {
     std::size_t dropped = 0;
     for (Mesh& mesh : scene.meshes)
         for (Primitive& primitive : mesh.primitives) {
-            const Material* material =
-                primitive.material >= 0 ? &scene.materials[std::size_t(primitive.material)] : nullptr;
+            // Read by the material under any of its variants.
+            const std::vector<const Material*> materials = materialsDrawnWith(scene, primitive.material);
             const auto unread = [&](const VertexAttribute& attribute) {
-                if (attribute.name == "TANGENT") return !(material && readsTangents(*material));
+                if (attribute.name == "TANGENT")
+                    return std::none_of(materials.begin(), materials.end(),
+                                        [](const Material* m) { return readsTangents(*m); });
                 const int set = texcoordSet(attribute.name);
-                return set >= 0 && !(material && readsTexcoords(*material, set));
+                return set >= 0 && std::none_of(materials.begin(), materials.end(),
+                                                [&](const Material* m) { return readsTexcoords(*m, set); });
             };
             bool any = false;
             if (!primitive.texcoords.empty() && unread({"TEXCOORD_0", 2, {}})) {
@@ -165,9 +168,11 @@ std::pair<std::size_t, std::size_t> pruneUnused(Scene& scene) {
     std::vector<bool> materialUsed(scene.materials.size(), false);
     for (const Mesh& mesh : scene.meshes)
         for (const Primitive& primitive : mesh.primitives)
-            if (primitive.material >= 0) materialUsed[std::size_t(primitive.material)] = true;
+            for (const Material* material : materialsDrawnWith(scene, primitive.material))
+                materialUsed[std::size_t(material - scene.materials.data())] = true;
     const std::size_t materials = scene.materials.size();
     const std::vector<int> newMaterial = keepUsed(scene.materials, materialUsed);
+    renumberVariantMaterials(scene, newMaterial);
     for (Mesh& mesh : scene.meshes)
         for (Primitive& primitive : mesh.primitives)
             if (primitive.material >= 0) primitive.material = newMaterial[std::size_t(primitive.material)];

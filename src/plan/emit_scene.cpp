@@ -156,6 +156,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     Scene& out = result.scene;
     out.textures = input.textures;
     out.materials = input.materials;
+    out.materialVariants = input.materialVariants;
     out.x3dEnvironment = input.x3dEnvironment;
     out.warnings = input.warnings;
     std::map<int, int> keptMesh;   // input mesh -> output mesh
