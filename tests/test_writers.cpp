@@ -6,6 +6,7 @@
 #include "io/gltf_instance_encoding.hpp"
 #include "io/primitive_encodings.hpp"
 #include "sample_scenes.hpp"
+#include "symcompress/compress.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
@@ -23,6 +24,7 @@
 
 using namespace symcompress;
 using namespace symcompress::testing;
+namespace fs = std::filesystem;
 
 TEST_CASE("Rounding helpers: float32 text reads back to the same float, rotation noise prints as 0", "[io]") {
     for (double value : {0.1, 1.0 / 3.0, -123456.789, 0.03323778510093689, 6.4000000953674316, 1e-30}) {
@@ -660,4 +662,33 @@ TEST_CASE(
                           p.attributes.at(0).values[4 * a] != p.attributes.at(0).values[4 * b];
             }
     CHECK(parted == 3);
+}
+
+TEST_CASE("File names with spaces and % are percent-encoded in the URIs a .gltf writes, and decoded where read",
+          "[io]") {
+    // The box of the shared specular-glossiness sample, its image renamed to need encoding.
+    TemporaryFolder folder;
+    const fs::path source = modelPath("pbr/box_specgloss");
+    fs::copy_file(source / "BoxTextured0.bin", folder / "BoxTextured0.bin");
+    fs::copy_file(source / "CesiumLogoFlat.png", folder / "Cesium Logo 100%.png");
+    nlohmann::json root = nlohmann::json::parse(readTextFile(source / "BoxTextured.gltf"));
+    REQUIRE(root["images"].size() == 1);
+    root["images"][0]["uri"] = "Cesium%20Logo%20100%25.png";
+    const fs::path input = folder / "box.gltf";
+    writeTextFile(input, root.dump());
+    const Scene read = readScene(input);
+    REQUIRE(read.textures.size() == 1);
+    CHECK(read.textures[0].bytes.size() == fs::file_size(source / "CesiumLogoFlat.png"));
+
+    const fs::path output = folder / "the box 100%.gltf";
+    const CompressionReport report = compressFile(input, output);
+    // The report counts the image the input names (the ratio would be off by its bytes).
+    CHECK(report.inputBytes ==
+          fs::file_size(input) + fs::file_size(folder / "BoxTextured0.bin") + fs::file_size(source / "CesiumLogoFlat.png"));
+    const nlohmann::json written = nlohmann::json::parse(readTextFile(output));
+    CHECK(written["buffers"][0]["uri"] == "the%20box%20100%25.bin");
+    CHECK(fs::exists(folder / "the box 100%.bin"));
+    CHECK(report.outputBytes == fs::file_size(output) + fs::file_size(folder / "the box 100%.bin"));
+    CHECK(readScene(output).textures.at(0).bytes == read.textures[0].bytes);
+    if (interopAvailable()) CHECK(validatorErrors(output).empty());
 }

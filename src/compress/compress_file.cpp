@@ -1,6 +1,7 @@
 // symcompress's whole job: read, analyse once, plan three ways (the full plan, instancing without regions,
 // every tile as it is; the second takes the first's assemblies), write and measure each, keep the smallest
 // file, and report.
+#include "common/uri_text.hpp"
 #include "common/with_threads.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/detail/atomic_file.hpp"
@@ -60,7 +61,7 @@ std::uintmax_t sceneBytes(const fs::path& file) {
                 if (item.contains("uri") && item["uri"].is_string()) {
                     const std::string uri = item["uri"];
                     if (uri.rfind("data:", 0) == 0 || uri.find("://") != std::string::npos) continue;
-                    const std::uintmax_t size = fs::file_size(file.parent_path() / uri, error);
+                    const std::uintmax_t size = fs::file_size(file.parent_path() / uriDecoded(uri), error);
                     if (!error) total += size;
                 }
     return total;

@@ -6,6 +6,7 @@
 // compressed with KHR_draco_mesh_compression unless WriteOptions::draco is false.
 #include "common/image_size.hpp"
 #include "common/number_text.hpp"
+#include "common/uri_text.hpp"
 #include "common/with_threads.hpp"
 #include "geometry/bounds.hpp"
 #include "gltf_animation_keys.hpp"
@@ -801,7 +802,7 @@ void writeGltf(const Scene& scene, const fs::path& file, const WriteOptions& opt
     // .gltf: the binary data in a .bin beside it, written first so that the JSON never points at nothing.
     if (!binary.empty()) {
         const fs::path bin = fs::path(file).replace_extension(".bin");
-        root["buffers"] = {{{"byteLength", binary.size()}, {"uri", bin.filename().string()}}};
+        root["buffers"] = {{{"byteLength", binary.size()}, {"uri", uriEncodedPath(bin.filename().string())}}};
         if (built.fallbackBytes) root["buffers"].push_back(fallback);
         writeFileAtomically(bin, std::string_view(reinterpret_cast<const char*>(binary.data()), binary.size()));
     }
