@@ -692,3 +692,67 @@ TEST_CASE("File names with spaces and % are percent-encoded in the URIs a .gltf 
     CHECK(readScene(output).textures.at(0).bytes == read.textures[0].bytes);
     if (interopAvailable()) CHECK(validatorErrors(output).empty());
 }
+
+TEST_CASE(
+    "What a file says about itself (copyright, asset extras, X3D meta tags, the scene's name) comes out of "
+    "every tool as it went in",
+    "[io]") {
+    TemporaryFolder folder;
+    Primitive box;
+    samples::appendMesh(box, samples::boxMesh({0, 0, 0}, {1, 2, 3}));
+    Scene scene = samples::singleMeshScene("box", box, {0.5, 0.5, 0.5, 1});
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(scene, folder / "plain.gltf", plain);
+    nlohmann::json root = nlohmann::json::parse(readTextFile(folder / "plain.gltf"));
+    root["asset"]["copyright"] = "CC-BY 4.0 Model by someone";
+    root["asset"]["extras"] = {{"author", "someone"}, {"license", "CC-BY-4.0"}, {"views", 3}};
+    root["scenes"][0]["name"] = "Main";
+    root["scenes"][0]["extras"] = {{"layer", 2}};
+    const fs::path input = folder / "noted.gltf";
+    writeTextFile(input, root.dump());
+    fs::copy_file(folder / "plain.bin", folder / "noted.bin");
+
+    compressFile(input, folder / "compressed.glb");
+    CHECK(decompressFile(folder / "compressed.glb", folder / "rebuilt.gltf", input).verified);
+    for (const char* name : {"compressed.glb", "rebuilt.gltf"}) {
+        INFO(name);
+        const fs::path file = folder / name;
+        const nlohmann::json written =
+            file.extension() == ".glb" ? glbJson(file) : nlohmann::json::parse(readTextFile(file));
+        CHECK(written["asset"]["copyright"] == "CC-BY 4.0 Model by someone");
+        CHECK(written["asset"]["extras"]["author"] == "someone");
+        CHECK(written["asset"]["extras"]["views"] == 3);
+        CHECK(written["scenes"][0]["name"] == "Main");
+        CHECK(written["scenes"][0]["extras"]["layer"] == 2);
+        // The digest describes the file it is in: the compressed file's, none in the rebuilt one.
+        CHECK(written["asset"]["extras"].contains("symcompress_digest") == (file.extension() == ".glb"));
+    }
+    // Through X3D, as meta tags, and back.
+    const CompressionReport x3d = compressFile(input, folder / "compressed.x3d");
+    const std::string text = readTextFile(folder / "compressed.x3d");
+    CHECK(text.find("<meta name='copyright' content='CC-BY 4.0 Model by someone'/>") != std::string::npos);
+    CHECK(text.find("<meta name='license' content='CC-BY-4.0'/>") != std::string::npos);
+    compressFile(folder / "compressed.x3d", folder / "again.glb");
+    const nlohmann::json again = glbJson(folder / "again.glb");
+    CHECK(again["asset"]["copyright"] == "CC-BY 4.0 Model by someone");
+    CHECK(again["asset"]["extras"]["license"] == "CC-BY-4.0");
+    CHECK(again["asset"]["extras"]["views"] == "3");  // X3D's meta tags hold text
+
+    // An X3D file's meta tags, a name given twice included, through X3D output.
+    writeTextFile(folder / "noted.x3d",
+                  "<X3D version='3.3'><head><meta name='title' content='Two boxes'/><meta name='reference' "
+                  "content='a'/><meta name='reference' content='b'/><meta name='generator' content='someone else'/>"
+                  "</head><Scene><Shape><Box/></Shape></Scene></X3D>");
+    compressFile(folder / "noted.x3d", folder / "noted_out.x3d");
+    const std::string out = readTextFile(folder / "noted_out.x3d");
+    for (const char* tag : {"<meta name='title' content='Two boxes'/>", "<meta name='reference' content='a'/>",
+                            "<meta name='reference' content='b'/>", "<meta name='generator' content='symcompress'/>"})
+        CHECK(out.find(tag) != std::string::npos);
+    CHECK(out.find("someone else") == std::string::npos);
+    // OBJ holds none of it: said.
+    const CompressionReport obj = compressFile(input, folder / "compressed.obj");
+    CHECK(std::any_of(obj.warnings.begin(), obj.warnings.end(), [](const std::string& warning) {
+        return warning.find("4 notes of what the file says about itself") != std::string::npos;
+    }));
+}

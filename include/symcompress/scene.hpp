@@ -323,7 +323,12 @@ struct Scene {
     // glTF have no place for: an X3D writer gives them back.
     std::vector<std::string> x3dEnvironment;
     std::vector<std::string> warnings;  // what the reader could not carry through, one line each
-    std::string extrasJson;             // glTF asset.extras as read (where symcompress keeps its digest)
+    // What the file says about itself, as a JSON object (io/file_metadata.hpp): glTF's asset.extras, X3D's <head>
+    // <meta> tags; where symcompress keeps its digest.
+    std::string extrasJson;
+    std::string copyright;        // glTF's asset.copyright; X3D's meta tag named "copyright"
+    std::string name;             // glTF: the scene's name
+    std::string sceneExtrasJson;  // glTF: the scene's extras (JSON text), empty for none
 };
 
 }  // namespace symcompress

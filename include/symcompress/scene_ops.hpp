@@ -157,6 +157,9 @@ Eigen::Vector2d baseColorTexcoord(const Scene& scene, const Primitive& primitive
 // (Material::variants), each once; none for -1 (the default material).
 std::vector<const Material*> materialsDrawnWith(const Scene& scene, int m);
 
+// What the file of `from` says about itself (its extras, copyright, the scene's name and extras), given to `to`.
+void copyFileMetadata(const Scene& from, Scene& to);
+
 // Every material's variant tables renumbered: material m becomes newIndex[m].
 void renumberVariantMaterials(Scene& scene, const std::vector<int>& newIndex);
 

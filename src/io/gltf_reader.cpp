@@ -541,6 +541,8 @@ Scene GltfReader::read() {
     expandGpuInstances(scene);
     const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (sceneIndex < static_cast<int>(model_.scenes.size())) {
+        scene.name = model_.scenes[sceneIndex].name;
+        scene.sceneExtrasJson = extrasOf(model_.scenes[sceneIndex].extras_json_string);
         for (int root : model_.scenes[sceneIndex].nodes) {
             if (root < 0 || root >= static_cast<int>(model_.nodes.size())) fail("scene: root node out of range");
             scene.roots.push_back(root);
@@ -563,6 +565,7 @@ Scene readGltf(const fs::path& file) {
     const tinygltf::Model model = loadGltfModel(file);
     Scene scene = GltfReader(file, model).read();
     scene.extrasJson = model.asset.extras_json_string;
+    scene.copyright = model.asset.copyright;
     std::set<std::string> kept;  // on a material that was read
     for (const Material& material : scene.materials)
         for (const MaterialExtension& extension : material.extensions) kept.insert(extension.name);

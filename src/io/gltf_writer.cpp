@@ -8,6 +8,7 @@
 #include "common/number_text.hpp"
 #include "common/uri_text.hpp"
 #include "common/with_threads.hpp"
+#include "file_metadata.hpp"
 #include "geometry/bounds.hpp"
 #include "gltf_animation_keys.hpp"
 #include "gltf_builder.hpp"
@@ -572,16 +573,13 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     GltfFile out;
     Json& root = out.root;
     root = {{"asset", {{"version", "2.0"}}}};
-    if (!options.extrasJson.empty()) {
-        try {
-            root["asset"]["extras"] = Json::parse(options.extrasJson);
-        } catch (const Json::exception& error) {
-            throw std::invalid_argument(std::string("extras are not valid JSON: ") + error.what());
-        }
-    }
+    if (!scene.copyright.empty()) root["asset"]["copyright"] = scene.copyright;
+    if (Json extras = writtenExtras(scene.extrasJson, options.extrasJson); !extras.is_null())
+        root["asset"]["extras"] = std::move(extras);
     // The digest in the extras says who wrote the file: the optional generator would say it again in 26 bytes,
     // which on a small file at a peer's deviation are the difference.
-    if (!root["asset"].contains("extras") || !root["asset"]["extras"].contains("symcompress_digest"))
+    if (!root["asset"].contains("extras") || !root["asset"]["extras"].is_object() ||
+        !root["asset"]["extras"].contains(kDigestMember))
         root["asset"]["generator"] = "symcompress";
     GltfBuilder builder(root);
     if (codeData) builder.dataEncoder = meshoptEncoded;
@@ -729,6 +727,8 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     if (!gpu.batches.empty()) extensions.add("EXT_mesh_gpu_instancing", true);
     for (Json& node : extraNodes) root["nodes"].push_back(std::move(node));
     root["scenes"] = {{{"nodes", numbering.list(scene.roots)}}};
+    if (!scene.name.empty()) root["scenes"][0]["name"] = scene.name;
+    putExtras(root["scenes"][0], scene.sceneExtrasJson);
     root["scene"] = 0;
     // Animations and skins name nodes that are never batched, renumbered as the nodes are.
     // Their key values rounded within the budget where meshopt's filters can hold them.

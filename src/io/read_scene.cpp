@@ -1,3 +1,4 @@
+#include "file_metadata.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
@@ -84,6 +85,12 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
     }
     if (format == FileFormat::Glb || format == FileFormat::Gltf) return losses;
     const std::string extension = file.extension().string();
+    if (format != FileFormat::X3d) {
+        const std::size_t notes = metaTags(writtenExtras(scene.extrasJson, "")).size() + !scene.copyright.empty();
+        if (notes)
+            losses.push_back(std::to_string(notes) + " notes of what the file says about itself (copyright, asset " +
+                             "extras, X3D meta tags) not written: " + extension + " output has no place for them");
+    }
     if (!scene.materialVariants.empty())
         losses.push_back(std::to_string(scene.materialVariants.size()) +
                          " material variants (KHR_materials_variants) not written: " + extension +

@@ -3,6 +3,7 @@
 #include "x3d_reader.hpp"
 #include "common/color_space.hpp"
 #include "common/mime_type.hpp"
+#include "file_metadata.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/detail/triangulate_polygon.hpp"
 #include "symcompress/io.hpp"
@@ -210,10 +211,21 @@ std::vector<int> X3dReader::read() {
     document_.traverse(limit);
     if (limit.tooDeep)
         throw FileError(file_, "XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels");
-    // symcompress's digest of the original, for symdecompress (see the X3D writer).
-    for (pugi::xml_node meta : document_.child("X3D").child("head").children("meta"))
-        if (std::string(meta.attribute("name").value()) == "symcompress")
-            scene_.extrasJson = meta.attribute("content").value();
+    // What the file says about itself (file_metadata.hpp), and symcompress's digest of the original, for
+    // symdecompress (see the X3D writer); the generator is the writer's to say.
+    nlohmann::json extras;
+    for (pugi::xml_node meta : document_.child("X3D").child("head").children("meta")) {
+        const std::string name = meta.attribute("name").value(), content = meta.attribute("content").value();
+        if (name == "symcompress") {
+            const nlohmann::json digest = nlohmann::json::parse(content, nullptr, false);
+            if (digest.is_object() && digest.contains(kDigestMember)) extras[kDigestMember] = digest[kDigestMember];
+        } else if (name == "copyright" && scene_.copyright.empty()) {
+            scene_.copyright = content;
+        } else if (!name.empty() && name != "generator") {
+            addMetaTag(extras, name, content);
+        }
+    }
+    if (!extras.is_null()) scene_.extrasJson = extras.dump();
     pugi::xml_node scene = document_.child("X3D").child("Scene");
     if (!scene) throw FileError(file_, "no <X3D><Scene> element (only the XML encoding of X3D is read)");
     std::vector<int> roots;

@@ -7,6 +7,7 @@
 #include "common/color_space.hpp"
 #include "common/markup_text.hpp"
 #include "common/number_text.hpp"
+#include "file_metadata.hpp"
 #include "image_reference.hpp"
 #include "rotation_and_scale.hpp"
 #include "symcompress/detail/atomic_file.hpp"
@@ -278,6 +279,11 @@ public:
                         [](const Camera& camera) { return camera.projection == Camera::Projection::Orthographic; }))
             out_ += "<component name='Navigation' level='3'/>\n";
         out_ += "<meta name='generator' content='symcompress'/>\n";
+        // What the scene's file said about itself, as meta tags (file_metadata.hpp).
+        if (!scene_.copyright.empty())
+            out_ += "<meta name='copyright' content='" + escapedMarkup(scene_.copyright) + "'/>\n";
+        for (const auto& [name, content] : metaTags(writtenExtras(scene_.extrasJson, "")))
+            out_ += "<meta name='" + escapedMarkup(name) + "' content='" + escapedMarkup(content) + "'/>\n";
         if (!options_.extrasJson.empty())
             out_ += "<meta name='symcompress' content='" + escapedMarkup(options_.extrasJson) + "'/>\n";
         out_ += "</head>\n<Scene>\n";

@@ -343,6 +343,13 @@ std::vector<const Material*> materialsDrawnWith(const Scene& scene, int m) {
     return out;
 }
 
+void copyFileMetadata(const Scene& from, Scene& to) {
+    to.extrasJson = from.extrasJson;
+    to.copyright = from.copyright;
+    to.name = from.name;
+    to.sceneExtrasJson = from.sceneExtrasJson;
+}
+
 void renumberVariantMaterials(Scene& scene, const std::vector<int>& newIndex) {
     for (Material& material : scene.materials)
         for (int& v : material.variants)
@@ -416,6 +423,7 @@ Scene expandInstances(const Scene& scene) {
     flat.textures = scene.textures;
     flat.materials = scene.materials;
     flat.materialVariants = scene.materialVariants;
+    copyFileMetadata(scene, flat);
     flat.warnings = scene.warnings;
     std::vector<int> tops;
     const std::vector<bool> animated = markAnimatedSubtrees(scene, tops);

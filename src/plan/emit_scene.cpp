@@ -157,6 +157,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     out.textures = input.textures;
     out.materials = input.materials;
     out.materialVariants = input.materialVariants;
+    copyFileMetadata(input, out);
     out.x3dEnvironment = input.x3dEnvironment;
     out.warnings = input.warnings;
     std::map<int, int> keptMesh;   // input mesh -> output mesh
