@@ -709,11 +709,25 @@ TEST_CASE(
     root["asset"]["extras"] = {{"author", "someone"}, {"license", "CC-BY-4.0"}, {"views", 3}};
     root["scenes"][0]["name"] = "Main";
     root["scenes"][0]["extras"] = {{"layer", 2}};
+    // KHR_xmp_json_ld: packets in the file, named by the asset, the node that draws the box and its material.
+    root["extensionsUsed"].push_back("KHR_xmp_json_ld");
+    root["extensions"]["KHR_xmp_json_ld"]["packets"] = {{{"dc:rights", "CC-BY"}}, {{"dc:title", "box"}}};
+    root["asset"]["extensions"]["KHR_xmp_json_ld"]["packet"] = 0;
+    REQUIRE(root["nodes"].size() == 1);
+    root["nodes"][0]["extensions"]["KHR_xmp_json_ld"]["packet"] = 1;
+    root["materials"][0]["extensions"]["KHR_xmp_json_ld"]["packet"] = 1;
+    // A group above it, named: the output draws the tiles under nodes of its own, which is said.
+    root["nodes"].push_back({{"name", "assembly"}, {"children", {0}}});
+    root["scenes"][0]["nodes"] = {1};
     const fs::path input = folder / "noted.gltf";
     writeTextFile(input, root.dump());
     fs::copy_file(folder / "plain.bin", folder / "noted.bin");
 
-    compressFile(input, folder / "compressed.glb");
+    const CompressionReport compressed = compressFile(input, folder / "compressed.glb");
+    CHECK(std::any_of(compressed.warnings.begin(), compressed.warnings.end(), [](const std::string& warning) {
+        return warning.find("1 node names, extras or extensions (e.g. 'assembly') not kept: they group") !=
+               std::string::npos;
+    }));
     CHECK(decompressFile(folder / "compressed.glb", folder / "rebuilt.gltf", input).verified);
     for (const char* name : {"compressed.glb", "rebuilt.gltf"}) {
         INFO(name);
@@ -725,11 +739,23 @@ TEST_CASE(
         CHECK(written["asset"]["extras"]["views"] == 3);
         CHECK(written["scenes"][0]["name"] == "Main");
         CHECK(written["scenes"][0]["extras"]["layer"] == 2);
+        CHECK(written["extensions"]["KHR_xmp_json_ld"]["packets"][1]["dc:title"] == "box");
+        CHECK(written["asset"]["extensions"]["KHR_xmp_json_ld"]["packet"] == 0);
+        CHECK(written["materials"][0]["extensions"]["KHR_xmp_json_ld"]["packet"] == 1);
+        std::size_t nodesNaming = 0;
+        for (const auto& node : written["nodes"])
+            nodesNaming += node.contains("extensions") && node["extensions"].contains("KHR_xmp_json_ld") &&
+                           node["extensions"]["KHR_xmp_json_ld"]["packet"] == 1;
+        CHECK(nodesNaming == (file.extension() == ".glb"));  // symdecompress draws all in one node
+        CHECK(std::count(written["extensionsUsed"].begin(), written["extensionsUsed"].end(), "KHR_xmp_json_ld") == 1);
         // The digest describes the file it is in: the compressed file's, none in the rebuilt one.
         CHECK(written["asset"]["extras"].contains("symcompress_digest") == (file.extension() == ".glb"));
     }
     // Through X3D, as meta tags, and back.
     const CompressionReport x3d = compressFile(input, folder / "compressed.x3d");
+    CHECK(std::any_of(x3d.warnings.begin(), x3d.warnings.end(), [](const std::string& warning) {
+        return warning.find("glTF extensions passed through on 3 objects") != std::string::npos;
+    }));
     const std::string text = readTextFile(folder / "compressed.x3d");
     CHECK(text.find("<meta name='copyright' content='CC-BY 4.0 Model by someone'/>") != std::string::npos);
     CHECK(text.find("<meta name='license' content='CC-BY-4.0'/>") != std::string::npos);

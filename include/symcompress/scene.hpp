@@ -276,6 +276,7 @@ struct Node {
     std::vector<double> weights;                              // morph weights replacing the mesh's, or empty
     std::vector<int> children;                                // indices into Scene::nodes
     std::string extrasJson;                                   // glTF extras as read (JSON text), empty for none
+    std::string extensionsJson;  // glTF extensions passed through as read (Scene::extensionsJson), empty for none
 };
 
 // A keyframed transform of one node (glTF's animation channel with its sampler), kept as read so that a
@@ -329,6 +330,10 @@ struct Scene {
     std::string copyright;        // glTF's asset.copyright; X3D's meta tag named "copyright"
     std::string name;             // glTF: the scene's name
     std::string sceneExtrasJson;  // glTF: the scene's extras (JSON text), empty for none
+    // glTF extensions of the file, its asset and its scene passed through as read (an extensions object as JSON
+    // text, empty for none): those whose indices name only what the file's own object of them holds
+    // (KHR_xmp_json_ld's packets; kPassedThroughExtensions).
+    std::string extensionsJson, assetExtensionsJson, sceneExtensionsJson;
 };
 
 }  // namespace symcompress

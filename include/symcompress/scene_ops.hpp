@@ -157,7 +157,15 @@ Eigen::Vector2d baseColorTexcoord(const Scene& scene, const Primitive& primitive
 // (Material::variants), each once; none for -1 (the default material).
 std::vector<const Material*> materialsDrawnWith(const Scene& scene, int m);
 
-// What the file of `from` says about itself (its extras, copyright, the scene's name and extras), given to `to`.
+// What an input node says about itself (its name, extras and the extensions passed through), given to a node of the
+// output that draws what it drew.
+void copyNodeNotes(const Node& from, Node& to);
+inline bool hasNodeNotes(const Node& node) {
+    return !node.name.empty() || !node.extrasJson.empty() || !node.extensionsJson.empty();
+}
+
+// What the file of `from` says about itself (its extras, copyright, the scene's name and extras, the extensions
+// passed through on them), given to `to`.
 void copyFileMetadata(const Scene& from, Scene& to);
 
 // Every material's variant tables renumbered: material m becomes newIndex[m].

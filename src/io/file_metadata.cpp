@@ -23,6 +23,16 @@ nlohmann::json writtenExtras(const std::string& sceneExtras, const std::string& 
     return out.empty() ? nlohmann::json() : out;
 }
 
+std::string passedThroughExtensions(const std::string& extensionsJson) {
+    if (extensionsJson.empty()) return "";
+    const nlohmann::json extensions = nlohmann::json::parse(extensionsJson, nullptr, false);
+    if (!extensions.is_object()) return "";
+    nlohmann::json passed = nlohmann::json::object();
+    for (const char* name : {"KHR_xmp_json_ld"})
+        if (extensions.contains(name)) passed[name] = extensions[name];
+    return passed.empty() ? "" : passed.dump();
+}
+
 void addMetaTag(nlohmann::json& extras, const std::string& name, const std::string& content) {
     if (!extras.is_object()) extras = nlohmann::json::object();
     auto found = extras.find(name);

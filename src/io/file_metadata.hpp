@@ -22,6 +22,11 @@ nlohmann::json writtenExtras(const std::string& sceneExtras, const std::string& 
 // An X3D meta tag as a member of such an object: a name given twice holds an array of its contents.
 void addMetaTag(nlohmann::json& extras, const std::string& name, const std::string& content);
 
+// Of a glTF extensions object (JSON text), the members that symcompress passes through as they are, wherever it keeps
+// the object they are on (the file, its asset, its scene, a node): those whose indices name only what the file's
+// own object of them holds (KHR_xmp_json_ld's packets). JSON text, empty for none.
+std::string passedThroughExtensions(const std::string& extensionsJson);
+
 // Such an object's members as X3D meta tags (name, content), the digest's left out: a string as it is, an array
 // a tag for each of its strings, anything else as its JSON text.
 std::vector<std::pair<std::string, std::string>> metaTags(const nlohmann::json& extras);

@@ -46,10 +46,11 @@ std::optional<InstanceTrs> instanceTrsOf(const Eigen::Matrix4d& local, bool mirr
 }
 
 // A node that can be an instance as far as the node itself tells: it draws a mesh and nothing else, holds no
-// extras of its own (kept on the node; only names have a place in the batch) and is TRS.
+// extras or extensions of its own (kept on the node; only names have a place in the batch) and is TRS.
 bool plainLeaf(const Node& node) {
     return node.mesh >= 0 && node.children.empty() && node.camera < 0 && node.light < 0 && node.skin < 0 &&
-           node.weights.empty() && node.extrasJson.empty() && instanceTrsOf(node.transform, mirrors(node.transform));
+           node.weights.empty() && node.extrasJson.empty() && node.extensionsJson.empty() &&
+           instanceTrsOf(node.transform, mirrors(node.transform));
 }
 
 // Which of the three attributes a batch needs: each is left out where it does nothing for every instance.

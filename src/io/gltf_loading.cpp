@@ -306,9 +306,9 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
 // The extensions we read.
 bool readExtension(const std::string& name) {
     static const std::set<std::string> read = {
-        "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization",
-        "EXT_mesh_gpu_instancing",    "KHR_lights_punctual",     "KHR_texture_transform",
-        "EXT_texture_webp",           "KHR_texture_basisu",      "KHR_materials_variants"};
+        "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization", "EXT_mesh_gpu_instancing",
+        "KHR_lights_punctual",        "KHR_texture_transform",   "EXT_texture_webp",      "KHR_texture_basisu",
+        "KHR_materials_variants",     "KHR_xmp_json_ld"};
     return read.count(name) > 0;
 }
 

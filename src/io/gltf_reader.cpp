@@ -3,6 +3,7 @@
 // that accessors stay inside their buffers.
 #include "gltf_reader.hpp"
 #include "common/mime_type.hpp"
+#include "file_metadata.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 
@@ -502,6 +503,9 @@ Scene GltfReader::read() {
         Mesh mesh;
         mesh.name = model_.meshes[m].name;
         mesh.extrasJson = extrasOf(model_.meshes[m].extras_json_string);
+        if (!passedThroughExtensions(model_.meshes[m].extensions_json_string).empty())
+            warnAbout("mesh " + std::to_string(m) +
+                      ": its KHR_xmp_json_ld metadata not kept (meshes are rebuilt from " + "their tiles)");
         for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p)
             readPrimitive(model_.meshes[m].primitives[p], mesh, scene,
                           "mesh " + std::to_string(m) + " primitive " + std::to_string(p));
@@ -514,6 +518,7 @@ Scene GltfReader::read() {
         Node node;
         node.name = source.name;
         node.extrasJson = extrasOf(source.extras_json_string);
+        node.extensionsJson = passedThroughExtensions(source.extensions_json_string);
         node.transform = nodeTransform(source);
         node.mesh = source.mesh >= 0 && source.mesh < static_cast<int>(scene.meshes.size()) ? source.mesh : -1;
         for (int child : source.children) {
@@ -543,6 +548,7 @@ Scene GltfReader::read() {
     if (sceneIndex < static_cast<int>(model_.scenes.size())) {
         scene.name = model_.scenes[sceneIndex].name;
         scene.sceneExtrasJson = extrasOf(model_.scenes[sceneIndex].extras_json_string);
+        scene.sceneExtensionsJson = passedThroughExtensions(model_.scenes[sceneIndex].extensions_json_string);
         for (int root : model_.scenes[sceneIndex].nodes) {
             if (root < 0 || root >= static_cast<int>(model_.nodes.size())) fail("scene: root node out of range");
             scene.roots.push_back(root);
@@ -566,6 +572,8 @@ Scene readGltf(const fs::path& file) {
     Scene scene = GltfReader(file, model).read();
     scene.extrasJson = model.asset.extras_json_string;
     scene.copyright = model.asset.copyright;
+    scene.extensionsJson = passedThroughExtensions(model.extensions_json_string);
+    scene.assetExtensionsJson = passedThroughExtensions(model.asset.extensions_json_string);
     std::set<std::string> kept;  // on a material that was read
     for (const Material& material : scene.materials)
         for (const MaterialExtension& extension : material.extensions) kept.insert(extension.name);

@@ -158,6 +158,16 @@ struct ExtensionsInUse {
     }
 };
 
+// The extensions passed through on an object (passedThroughExtensions), put on it as they were read.
+void putPassedExtensions(Json& object, const std::string& extensionsJson, ExtensionsInUse& extensions) {
+    if (extensionsJson.empty()) return;
+    const Json passed = Json::parse(extensionsJson);
+    for (const auto& [name, value] : passed.items()) {
+        object["extensions"][name] = value;
+        extensions.add(name, false);
+    }
+}
+
 // The textures, images and samplers the materials use, each written the first time a material uses it: one
 // glTF image per image (textures of the same image share it), one sampler per distinct sampler (none for
 // the default one), one glTF texture per scene texture. WebP and KTX2 images are sources of
@@ -721,6 +731,7 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
             undoGrid(node, animated[n], *integerGrids[std::size_t(node.mesh)], meshIndex[std::size_t(node.mesh)],
                      numbering.written, extraNodes);
         root["nodes"].push_back(writeNode(node, meshIndex, numbering.written, extraNodes, translationPrecision));
+        putPassedExtensions(root["nodes"].back(), node.extensionsJson, extensions);
     }
     if (usesQuantization) extensions.add("KHR_mesh_quantization", true);
     writeGpuBatches(gpu, scene, meshIndex, builder, root);
@@ -729,6 +740,9 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     root["scenes"] = {{{"nodes", numbering.list(scene.roots)}}};
     if (!scene.name.empty()) root["scenes"][0]["name"] = scene.name;
     putExtras(root["scenes"][0], scene.sceneExtrasJson);
+    putPassedExtensions(root["scenes"][0], scene.sceneExtensionsJson, extensions);
+    putPassedExtensions(root["asset"], scene.assetExtensionsJson, extensions);
+    putPassedExtensions(root, scene.extensionsJson, extensions);
     root["scene"] = 0;
     // Animations and skins name nodes that are never batched, renumbered as the nodes are.
     // Their key values rounded within the budget where meshopt's filters can hold them.

@@ -91,6 +91,13 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
             losses.push_back(std::to_string(notes) + " notes of what the file says about itself (copyright, asset " +
                              "extras, X3D meta tags) not written: " + extension + " output has no place for them");
     }
+    const std::size_t passed =
+        !scene.extensionsJson.empty() + !scene.assetExtensionsJson.empty() + !scene.sceneExtensionsJson.empty() +
+        std::count_if(scene.nodes.begin(), scene.nodes.end(), [](const Node& n) { return !n.extensionsJson.empty(); });
+    if (passed)
+        losses.push_back("glTF extensions passed through on " + std::to_string(passed) +
+                         " objects (the file, its asset, scene or nodes: KHR_xmp_json_ld) not written: " + extension +
+                         " output has no place for them");
     if (!scene.materialVariants.empty())
         losses.push_back(std::to_string(scene.materialVariants.size()) +
                          " material variants (KHR_materials_variants) not written: " + extension +

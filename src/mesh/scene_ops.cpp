@@ -343,11 +343,20 @@ std::vector<const Material*> materialsDrawnWith(const Scene& scene, int m) {
     return out;
 }
 
+void copyNodeNotes(const Node& from, Node& to) {
+    to.name = from.name;
+    to.extrasJson = from.extrasJson;
+    to.extensionsJson = from.extensionsJson;
+}
+
 void copyFileMetadata(const Scene& from, Scene& to) {
     to.extrasJson = from.extrasJson;
     to.copyright = from.copyright;
     to.name = from.name;
     to.sceneExtrasJson = from.sceneExtrasJson;
+    to.extensionsJson = from.extensionsJson;
+    to.assetExtensionsJson = from.assetExtensionsJson;
+    to.sceneExtensionsJson = from.sceneExtensionsJson;
 }
 
 void renumberVariantMaterials(Scene& scene, const std::vector<int>& newIndex) {

@@ -20,12 +20,19 @@ namespace {
 // A root node drawing `mesh`, with the name and extras of the input node `source` stands for (if any).
 int addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const Node* source) {
     Node node;
-    if (source) node.name = source->name, node.extrasJson = source->extrasJson;
+    if (source) copyNodeNotes(*source, node);
     node.mesh = mesh;
     node.transform = transform;
     out.roots.push_back(int(out.nodes.size()));
     out.nodes.push_back(std::move(node));
     return out.roots.back();
+}
+
+// The start of a warning about input nodes whose notes (copyNodeNotes) are not kept: how many, and one's name.
+std::string nodeNotesLost(const std::set<const Node*>& nodes) {
+    const auto named = std::find_if(nodes.begin(), nodes.end(), [](const Node* n) { return !n->name.empty(); });
+    return std::to_string(nodes.size()) + " node names, extras or extensions" +
+           (named != nodes.end() ? " (e.g. '" + (*named)->name + "')" : "") + " not kept";
 }
 
 // Every node with a camera or a light, outside the animated subtrees (which keep theirs), as a root node at
@@ -52,6 +59,23 @@ void keepCamerasAndLights(const Scene& input, const SceneAnalysis& analysis, Sce
         for (auto child = from.children.rbegin(); child != from.children.rend(); ++child)
             stack.push_back({*child, world});
     }
+}
+
+// The input nodes outside the animated subtrees that draw nothing but group others and carry notes (copyNodeNotes):
+// the tiles are rebuilt under nodes of their own, so these are not kept.
+std::set<const Node*> flattenedGroupsWithNotes(const Scene& input, const SceneAnalysis& analysis) {
+    std::set<const Node*> out;
+    std::vector<int> stack(input.roots.begin(), input.roots.end());
+    while (!stack.empty()) {
+        const Node& node = input.nodes[std::size_t(stack.back())];
+        const bool animated =
+            std::binary_search(analysis.animatedSubtrees.begin(), analysis.animatedSubtrees.end(), stack.back());
+        stack.pop_back();
+        if (animated) continue;
+        if (node.mesh < 0 && node.camera < 0 && node.light < 0 && hasNodeNotes(node)) out.insert(&node);
+        stack.insert(stack.end(), node.children.begin(), node.children.end());
+    }
+    return out;
 }
 
 // What a shared part adds to the stats.
@@ -162,16 +186,16 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     out.warnings = input.warnings;
     std::map<int, int> keptMesh;   // input mesh -> output mesh
     PrimitivesByKind unique;       // what is stored as it is
-    std::set<std::string> merged;      // names of the input nodes whose parts are merged into `unique`
-    std::set<std::string> dropped;     // names of the input nodes whose tiles unnamed nodes draw
-    const Node* mergedSource = nullptr;  // one of them
+    // The input nodes with notes (copyNodeNotes) whose parts are merged into `unique`, and those whose tiles nodes
+    // without notes draw.
+    std::set<const Node*> merged, dropped;
     for (const KeptInstance& kept : analysis.keptInstances) {
         // Without instancing, a kept mesh the tiles can carry (the author's scaled copies) is stored as it is too.
         const Mesh& source = input.meshes[std::size_t(kept.mesh)];
         if (!plan.shareInputInstances && tilesCanCarry(source, kept.transform.topLeftCorner<3, 3>())) {
             for (const Primitive& primitive : source.primitives)
                 unique.add(transformPrimitive(primitive, kept.transform));
-            if (kept.source && !kept.source->name.empty()) merged.insert(kept.source->name), mergedSource = kept.source;
+            if (kept.source && hasNodeNotes(*kept.source)) merged.insert(kept.source);
             continue;
         }
         auto [entry, added] = keptMesh.emplace(kept.mesh, int(out.meshes.size()));
@@ -216,8 +240,8 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         }
         if (!part.named)
             for (std::size_t t : part.tiles)
-                if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())
-                    dropped.insert(source->name);
+                if (const Node* source = sourceNode(input, analysis, t); source && hasNodeNotes(*source))
+                    dropped.insert(source);
         count(part, stats);
     }
     // The error budget as a distance (with fixed bits, about half a 14-bit step of the diagonal).
@@ -229,22 +253,20 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     for (const WorldPrimitive& placed : analysis.zeroArea) unique.add(placed.primitive);
     for (std::size_t t : plan.tilesAsTheyAre) {
         if (framed[t] == 1) continue;
-        if (const Node* source = sourceNode(input, analysis, t); source && !source->name.empty())
-            merged.insert(source->name), mergedSource = source;
+        if (const Node* source = sourceNode(input, analysis, t); source && hasNodeNotes(*source)) merged.insert(source);
         if (!framed[t]) unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
     }
     // The tiles stored as they are share one mesh per material, drawn by one node (or one per turn of their
-    // nodes, below): it takes the name of the node its tiles came from when that is a single one; otherwise the
-    // names are lost.
+    // nodes, below): it takes the name, extras and extensions of the node its tiles came from when that is a single
+    // one; otherwise they are lost.
     if (merged.size() > 1)
-        out.warnings.push_back(std::to_string(merged.size()) + " node names (e.g. '" + *merged.begin() +
-                               "') not kept: their tiles are stored as they are in one mesh per material");
+        out.warnings.push_back(nodeNotesLost(merged) + ": their tiles are stored as they are in one mesh per material");
     if (!unique.empty()) {
         Mesh mesh;
         unique.moveInto(mesh);
         const Eigen::Matrix4d offset = centredIfFar(mesh, budget);
         out.meshes.push_back(std::move(mesh));
-        addRootNode(out, int(out.meshes.size()) - 1, offset, merged.size() == 1 ? mergedSource : nullptr);
+        addRootNode(out, int(out.meshes.size()) - 1, offset, merged.size() == 1 ? *merged.begin() : nullptr);
     }
     for (const FramedTiles& group : plan.framedTiles) {
         const Node* source = group.node >= 0 ? &input.nodes[std::size_t(group.node)] : nullptr;
@@ -256,10 +278,13 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         stats.tilesInNodeFrames += group.tiles.size();
         ++stats.nodeFrames;
     }
+    if (const std::set<const Node*> groups = flattenedGroupsWithNotes(input, analysis); !groups.empty())
+        out.warnings.push_back(nodeNotesLost(groups) + ": they group other nodes, and the output draws the tiles " +
+                               "under nodes of their own");
     if (!dropped.empty())
-        out.warnings.push_back(std::to_string(dropped.size()) + " node names (e.g. '" + *dropped.begin() +
-                               "') not kept: their copies are drawn by instances without names, smaller than "
-                               "storing them as they are, which would lose them too");
+        out.warnings.push_back(nodeNotesLost(dropped) +
+                               ": their copies are drawn by instances without names, smaller than storing them as "
+                               "they are, which would lose them too");
     deviation.resize(out.meshes.size(), 0);
     if (plan.maxError > 0)
         shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceShare * analysis.diagonal, deviation,

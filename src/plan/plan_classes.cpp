@@ -150,7 +150,7 @@ std::optional<StandIn> lightestStandIn(const PlanContext& context, const Congrue
 bool anyNamed(const PlanContext& context, const CongruenceClass& c, const std::vector<std::size_t>& placed) {
     return std::any_of(placed.begin(), placed.end(), [&](std::size_t i) {
         const Node* source = context.sourceOf(c.members[i]);
-        return source && !(source->name.empty() && source->extrasJson.empty());
+        return source && hasNodeNotes(*source);
     });
 }
 

@@ -48,7 +48,7 @@ double StorageCosts::node(const Node& node) const {
 double StorageCosts::node(const Eigen::Matrix4d& transform, const Node* source) const {
     Node drawing;
     drawing.transform = transform;
-    if (source) drawing.name = source->name, drawing.extrasJson = source->extrasJson;
+    if (source) copyNodeNotes(*source, drawing);
     return node(drawing);
 }
 
@@ -60,9 +60,7 @@ double StorageCosts::nodes(const std::vector<PlacedCopy>& copies) const {
         Node& drawing = byMaterial[copy.material].emplace_back();
         drawing.mesh = 0;
         drawing.transform = copy.transform;
-        if (!copy.source) continue;
-        drawing.name = copy.source->name;
-        drawing.extrasJson = copy.source->extrasJson;
+        if (copy.source) copyNodeNotes(*copy.source, drawing);
     }
     double bytes = 0;
     for (const auto& [material, drawing] : byMaterial) {
