@@ -2,6 +2,7 @@
 // by the fuzz targets of fuzz/ and by reading the readers with them in mind (issue 19). Each is now a clear
 // FileError naming the file and what is wrong, or read as the format says. The small ones are files in
 // tests/fuzz_regressions/; the deep ones are written here, as they are large.
+#include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
@@ -324,6 +325,19 @@ TEST_CASE("Writers: names read from X3D that are not UTF-8 are written to glTF a
         writeScene(scene, folder / name);
         CHECK(readScene(folder / name).meshes.size() == scene.meshes.size());
     }
+}
+
+TEST_CASE("X3D meta tags that are not UTF-8 are read, written to every format and reported", "[io][fuzz]") {
+    // Found by fuzz_x3d: a meta tag's name with a byte that is no UTF-8 threw from the JSON the tags are kept in.
+    const Scene scene = readScene(regressionInput("x3d_meta_not_utf8.x3d"));
+    CHECK(!scene.extrasJson.empty());
+    TemporaryFolder folder;
+    for (const char* name : {"meta.glb", "meta.gltf", "meta.x3d"}) {
+        writeScene(scene, folder / name);
+        CHECK(readScene(folder / name).meshes.size() == scene.meshes.size());
+    }
+    const CompressionReport report = compressFile(regressionInput("x3d_meta_not_utf8.x3d"), folder / "out.glb");
+    CHECK(nlohmann::json::parse(report.json()).contains("output"));
 }
 
 TEST_CASE("Writers: an OBJ texture name with control bytes is written to X3D that reads back", "[io][fuzz]") {

@@ -70,7 +70,7 @@ std::string CompressionReport::json() const {
           {"instancing_and_regions", orNull(ablation.instancingAndRegions)},
           {"final", outputBytes}}},
         {"warnings", warnings}};
-    return report.dump(2);
+    return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);  // names from X3D need not be UTF-8
 }
 
 }  // namespace symcompress

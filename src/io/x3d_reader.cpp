@@ -225,7 +225,8 @@ std::vector<int> X3dReader::read() {
             addMetaTag(extras, name, content);
         }
     }
-    if (!extras.is_null()) scene_.extrasJson = extras.dump();
+    // Names and contents are XML text, which need not be UTF-8: a byte that is not is written as U+FFFD.
+    if (!extras.is_null()) scene_.extrasJson = extras.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     pugi::xml_node scene = document_.child("X3D").child("Scene");
     if (!scene) throw FileError(file_, "no <X3D><Scene> element (only the XML encoding of X3D is read)");
     std::vector<int> roots;

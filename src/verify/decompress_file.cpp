@@ -209,7 +209,7 @@ std::string RebuildReport::json() const {
     out["verified"] = verified;
     out["allowed_deviation"] = allowedDeviation;
     out["allowed_posed_deviation"] = allowedPosedDeviation;
-    return out.dump(2);
+    return out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);  // names from X3D need not be UTF-8
 }
 
 }  // namespace symcompress
