@@ -690,3 +690,66 @@ TEST_CASE("X3D output refers to an image file where it was read, and embeds an i
     CHECK_THAT(readTextFile(folder / "out" / "embedded.x3d"), Catch::Contains("url='\"data:image/png;base64,"));
     CHECK(readScene(folder / "out" / "embedded.x3d").textures[0].bytes == scene.textures[0].bytes);
 }
+
+TEST_CASE(
+    "A texture's core image beside an extension's (KHR_texture_basisu, EXT_texture_webp) is kept as its "
+    "fallback, and the extension stays optional",
+    "[materials]") {
+    // The box of the shared specular-glossiness sample, its texture given a KTX2 image (a header: the bytes are
+    // carried, not decoded) with the PNG as the core source; a second texture has the KTX2 image alone.
+    TemporaryFolder folder;
+    const fs::path source = modelPath("pbr/box_specgloss");
+    for (const char* file : {"BoxTextured0.bin", "CesiumLogoFlat.png"}) fs::copy_file(source / file, folder / file);
+    std::vector<std::uint8_t> ktx2 = {0xab, 'K', 'T', 'X', ' ', '2', '0', 0xbb, '\r', '\n', 0x1a, '\n'};
+    ktx2.resize(32, 0);
+    ktx2[20] = 64, ktx2[24] = 64;  // 64 x 64
+    std::ofstream(folder / "logo.ktx2", std::ios::binary)
+        .write(reinterpret_cast<const char*>(ktx2.data()), long(ktx2.size()));
+    nlohmann::json root = nlohmann::json::parse(readTextFile(source / "BoxTextured.gltf"));
+    REQUIRE(root["textures"].size() == 1);
+    root["images"].push_back({{"uri", "logo.ktx2"}});
+    root["textures"][0]["extensions"]["KHR_texture_basisu"]["source"] = 1;
+    root["extensionsUsed"].push_back("KHR_texture_basisu");
+    writeTextFile(folder / "fallback.gltf", root.dump());
+    // The same with the KTX2 image alone: the extension required.
+    root["textures"][0].erase("source");
+    root["extensionsRequired"] = {"KHR_texture_basisu"};
+    writeTextFile(folder / "alone.gltf", root.dump());
+
+    const Scene read = readScene(folder / "fallback.gltf");
+    REQUIRE(read.textures.size() == 1);
+    CHECK(read.textures[0].mimeType == "image/ktx2");
+    REQUIRE(read.textures[0].fallback);
+    CHECK(read.textures[0].fallback->mimeType == "image/png");
+    CHECK(read.textures[0].fallback->bytes.size() == fs::file_size(source / "CesiumLogoFlat.png"));
+
+    for (const char* name : {"fallback", "alone"}) {
+        INFO(name);
+        const fs::path output = folder / (std::string(name) + ".glb");
+        compressFile(folder / (std::string(name) + ".gltf"), output);
+        const nlohmann::json written = glbJson(output);
+        const nlohmann::json& texture = written["textures"][0];
+        const int ktx2Image = texture["extensions"]["KHR_texture_basisu"]["source"];
+        CHECK(written["images"][std::size_t(ktx2Image)]["mimeType"] == "image/ktx2");
+        CHECK(listed(written, "extensionsUsed").count("KHR_texture_basisu"));
+        if (std::string(name) == "fallback") {
+            REQUIRE(texture.contains("source"));
+            CHECK(written["images"][texture["source"].get<std::size_t>()]["mimeType"] == "image/png");
+            CHECK(!listed(written, "extensionsRequired").count("KHR_texture_basisu"));
+            const Scene out = readScene(output);
+            REQUIRE(out.textures.at(0).fallback);
+            CHECK(out.textures[0].fallback->bytes == read.textures[0].fallback->bytes);
+            CHECK(out.textures.at(0).bytes == ktx2);
+        } else {
+            CHECK(!texture.contains("source"));
+            CHECK(listed(written, "extensionsRequired").count("KHR_texture_basisu"));
+        }
+        if (interopAvailable()) CHECK(validatorErrors(output).empty());
+    }
+    // X3D lists both, the fallback second: a browser shows the first URL it can read.
+    compressFile(folder / "fallback.gltf", folder / "fallback.x3d");
+    CHECK(readTextFile(folder / "fallback.x3d").find("url='\"logo.ktx2\" \"CesiumLogoFlat.png\"'") !=
+          std::string::npos);
+    CHECK(x3dReferencedImageBytes(readScene(folder / "fallback.gltf")) ==
+          ktx2.size() + fs::file_size(source / "CesiumLogoFlat.png"));
+}

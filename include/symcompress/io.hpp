@@ -143,9 +143,10 @@ GpuInstancingCount gltfGpuInstancing(const Scene& scene, const WriteOptions& opt
 void writeX3d(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options);
 // gltfMeshBytes for X3D: the text of a Group holding `primitive`'s Shape (uncompressed, as in .x3d).
 std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options);
-// Whether X3D output refers to the texture's image where it was read from (Texture::uri, a file that exists)
-// instead of embedding its bytes as a data: URL, a third larger: as an X3D author keeps images beside the scene.
-bool x3dRefersToImageFile(const Texture& texture);
+// Whether X3D output refers to an image (a texture's, or its fallback) where it was read from (`uri`, a file that
+// exists) instead of embedding its `bytes` as a data: URL, a third larger: as an X3D author keeps images beside the
+// scene.
+bool x3dRefersToImageFile(const std::string& uri, const std::vector<std::uint8_t>& bytes);
 // The bytes of the image files an X3D file written from `scene` refers to, each once: part of its size.
 std::uintmax_t x3dReferencedImageBytes(const Scene& scene);
 // gltfNodeBytes for X3D: a Transform around a USE of the mesh.

@@ -53,6 +53,13 @@ struct TextureSampler {
     }
 };
 
+// An image file as a reader found it (Texture's fields of the same names).
+struct ImageFile {
+    std::string uri, mimeType;
+    std::vector<std::uint8_t> bytes;
+    bool operator==(const ImageFile& o) const { return uri == o.uri && mimeType == o.mimeType && bytes == o.bytes; }
+};
+
 // An image used by a material with its sampler, the image kept as the bytes of the file so that writers can
 // embed it unchanged. Textures of the same image share it in the output (firstTextureOfSameImage).
 struct Texture {
@@ -61,6 +68,9 @@ struct Texture {
     std::string mimeType;             // "image/png", "image/jpeg", "image/webp", "image/ktx2", ... (may be empty)
     std::vector<std::uint8_t> bytes;  // empty when the image file could not be read (a warning says so)
     TextureSampler sampler;
+    // Where the image is an extension's (glTF's EXT_texture_webp, KHR_texture_basisu) and the file gave a core image
+    // beside it, that one: what viewers without the extension draw, so that the extension stays optional for them.
+    std::optional<ImageFile> fallback;
 };
 
 // KHR_texture_transform on one use of a texture: uv' = T(offset) R(rotation) S(scale) uv, on texCoord set

@@ -174,8 +174,8 @@ void renumberVariantMaterials(Scene& scene, const std::vector<int>& newIndex);
 // Every material's texture uses renumbered: texture t becomes newIndex[t] (-1: the use is dropped).
 void renumberTextures(Scene& scene, const std::vector<int>& newIndex);
 
-// For each texture, the first one with the same image bytes and type: an image that several materials
-// (or an X3D file's several ImageTextures of one URL) use is written once.
+// For each texture, the first one with the same image bytes and type (and the same fallback): an image that several
+// materials (or an X3D file's several ImageTextures of one URL) use is written once.
 std::vector<int> firstTextureOfSameImage(const std::vector<Texture>& textures);
 
 // Of each node, whether an animation's channel targets it or a skin takes it for a joint: what moves its transform,

@@ -73,30 +73,9 @@ std::optional<TextureTransform> GltfReader::readTextureTransform(const std::stri
     return transform;
 }
 
-int GltfReader::sceneTexture(int gltfTexture, Scene& scene, const std::string& where) {
-    if (gltfTexture < 0 || gltfTexture >= static_cast<int>(model_.textures.size())) {
-        warnAbout(where + ": texture index " + std::to_string(gltfTexture) + " does not exist, left out");
-        return -1;
-    }
-    if (const auto found = textureOfGltfTexture_.find(gltfTexture); found != textureOfGltfTexture_.end())
-        return found->second;
-    const tinygltf::Texture& source = model_.textures[std::size_t(gltfTexture)];
-    // An image in a format the core does not list is the source of an extension (the core source, if any, is
-    // its fallback for viewers without the extension, which the one kept here makes unnecessary).
-    int imageIndex = source.source;
-    for (const char* extension : {"EXT_texture_webp", "KHR_texture_basisu", "MSFT_texture_dds"})
-        if (const auto found = source.extensions.find(extension); found != source.extensions.end()) {
-            const int image = indexIn(member(found->second, "source"));
-            if (image >= 0) imageIndex = image;
-        }
-    if (imageIndex < 0 || imageIndex >= static_cast<int>(model_.images.size())) {
-        warnAbout(where + ": texture " + std::to_string(gltfTexture) + " has no image, left out");
-        textureOfGltfTexture_[gltfTexture] = -1;
-        return -1;
-    }
+ImageFile GltfReader::readImageFile(int imageIndex) {
     const tinygltf::Image& image = model_.images[std::size_t(imageIndex)];
-    Texture out;
-    out.name = !source.name.empty() ? source.name : image.name;
+    ImageFile out;
     const bool embedded = image.uri.empty() || image.uri.rfind("data:", 0) == 0;
     // Where the file is (or should be): the writers refer to it from there, relative to their output.
     out.uri = embedded ? "" : (file_.parent_path() / image.uri).lexically_normal().string();
@@ -110,6 +89,42 @@ int GltfReader::sceneTexture(int gltfTexture, Scene& scene, const std::string& w
                   ": its bytes are no PNG, JPEG, WebP or KTX2 image (kept as they are)");
     } else {
         out.mimeType = sniffed;
+    }
+    return out;
+}
+
+int GltfReader::sceneTexture(int gltfTexture, Scene& scene, const std::string& where) {
+    if (gltfTexture < 0 || gltfTexture >= static_cast<int>(model_.textures.size())) {
+        warnAbout(where + ": texture index " + std::to_string(gltfTexture) + " does not exist, left out");
+        return -1;
+    }
+    if (const auto found = textureOfGltfTexture_.find(gltfTexture); found != textureOfGltfTexture_.end())
+        return found->second;
+    const tinygltf::Texture& source = model_.textures[std::size_t(gltfTexture)];
+    // An image in a format the core does not list is the source of an extension; the core source, if any, is its
+    // fallback for viewers without the extension.
+    const auto inRange = [&](int image) { return image >= 0 && image < static_cast<int>(model_.images.size()); };
+    int imageIndex = source.source;
+    for (const char* extension : {"EXT_texture_webp", "KHR_texture_basisu", "MSFT_texture_dds"})
+        if (const auto found = source.extensions.find(extension); found != source.extensions.end()) {
+            const int image = indexIn(member(found->second, "source"));
+            if (inRange(image)) imageIndex = image;
+        }
+    if (!inRange(imageIndex)) {
+        warnAbout(where + ": texture " + std::to_string(gltfTexture) + " has no image, left out");
+        textureOfGltfTexture_[gltfTexture] = -1;
+        return -1;
+    }
+    Texture out;
+    out.name = !source.name.empty() ? source.name : model_.images[std::size_t(imageIndex)].name;
+    ImageFile image = readImageFile(imageIndex);
+    out.uri = std::move(image.uri);
+    out.mimeType = std::move(image.mimeType);
+    out.bytes = std::move(image.bytes);
+    if (imageIndex != source.source && inRange(source.source)) {
+        // Kept where a viewer can draw it: read, or referred to where it should be.
+        ImageFile fallback = readImageFile(source.source);
+        if (!fallback.bytes.empty() || !fallback.uri.empty()) out.fallback = std::move(fallback);
     }
     if (source.sampler >= 0 && source.sampler < static_cast<int>(model_.samplers.size())) {
         const tinygltf::Sampler& sampler = model_.samplers[std::size_t(source.sampler)];

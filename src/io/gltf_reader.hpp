@@ -98,6 +98,9 @@ private:
     // KHR_materials_variants maps it to (Material::variants), where it maps any.
     int materialUnderVariants(int material, const std::string& extensionsJson, Scene& scene, const std::string& where);
     int sceneTexture(int gltfTexture, Scene& scene, const std::string& where);
+    // The file's image `imageIndex` (in range): its bytes as read (none, with a warning, where they could not be),
+    // their type, and where the file is when it is not embedded.
+    ImageFile readImageFile(int imageIndex);
     TextureRef readTextureUse(int gltfTexture, int texCoord, double scale, const std::string& extensionsJson,
                               Scene& scene, const std::string& where);
     std::optional<TextureTransform> readTextureTransform(const std::string& extensionsJson, const std::string& where);

@@ -171,7 +171,8 @@ void putPassedExtensions(Json& object, const std::string& extensionsJson, Extens
 // The textures, images and samplers the materials use, each written the first time a material uses it: one
 // glTF image per image (textures of the same image share it), one sampler per distinct sampler (none for
 // the default one), one glTF texture per scene texture. WebP and KTX2 images are sources of
-// EXT_texture_webp and KHR_texture_basisu, without a fallback.
+// EXT_texture_webp and KHR_texture_basisu, with the core image the file had beside them (Texture::fallback) as the
+// texture's source; without one the extension is required.
 class TextureWriter {
 public:
     TextureWriter(const Scene& scene, GltfBuilder& builder, Json& root, const fs::path& file,
@@ -213,7 +214,10 @@ private:
                                                                   : nullptr;
         if (extension) {
             texture["extensions"][extension]["source"] = image;
-            extensions_.add(extension, true);
+            // A core image beside it keeps the extension optional: viewers without it draw that one.
+            const int fallback = source.fallback ? fallbackIndex(*source.fallback) : -1;
+            if (fallback >= 0) texture["source"] = fallback;
+            extensions_.add(extension, fallback < 0);
         } else {
             texture["source"] = image;
         }
@@ -223,22 +227,35 @@ private:
         return texture_[t] = static_cast<int>(root_["textures"].size()) - 1;
     }
 
-    // An image is embedded; one that could not be read is referred to where it should be.
     int imageIndex(int t) {
         if (image_[t] >= 0) return image_[t];
         const Texture& source = scene_.textures[std::size_t(t)];
+        return image_[t] = addImage({source.uri, source.mimeType, source.bytes}, source.name);
+    }
+
+    // Each fallback image written once.
+    int fallbackIndex(const ImageFile& fallback) {
+        for (const auto& [written, index] : fallbacks_)
+            if (*written == fallback) return index;
+        const int index = addImage(fallback, "");
+        if (index >= 0) fallbacks_.emplace_back(&fallback, index);
+        return index;
+    }
+
+    // An image is embedded; one that could not be read is referred to where it should be.
+    int addImage(const ImageFile& file, const std::string& name) {
         Json image = Json::object();
-        if (!source.bytes.empty()) {
-            image["bufferView"] = builder_.addBufferView(source.bytes.data(), source.bytes.size());
-            image["mimeType"] = source.mimeType.empty() ? "image/png" : source.mimeType;
-        } else if (!source.uri.empty()) {
-            image["uri"] = imageReference(source.uri, file_);
+        if (!file.bytes.empty()) {
+            image["bufferView"] = builder_.addBufferView(file.bytes.data(), file.bytes.size());
+            image["mimeType"] = file.mimeType.empty() ? "image/png" : file.mimeType;
+        } else if (!file.uri.empty()) {
+            image["uri"] = imageReference(file.uri, file_);
         } else {
             return -1;
         }
-        if (!source.name.empty()) image["name"] = source.name;
+        if (!name.empty()) image["name"] = name;
         root_["images"].push_back(image);
-        return image_[t] = static_cast<int>(root_["images"].size()) - 1;
+        return static_cast<int>(root_["images"].size()) - 1;
     }
 
     int samplerIndex(const TextureSampler& sampler) {
@@ -262,6 +279,7 @@ private:
     fs::path file_;
     ExtensionsInUse& extensions_;
     std::vector<int> sameImage_, texture_, image_;
+    std::vector<std::pair<const ImageFile*, int>> fallbacks_;  // written, and its index
     std::vector<TextureSampler> samplers_;
 };
 

@@ -617,6 +617,13 @@ private:
         out_ += writeTextureChildren(textures) ? "</Material>" : "/>";
     }
 
+    // Where an image is: the file it was read from (relative to the output), else its bytes as a data: URL.
+    std::string imageUrl(const std::string& uri, const std::string& mimeType, const std::vector<std::uint8_t>& bytes) {
+        if (!bytes.empty() && !x3dRefersToImageFile(uri, bytes))
+            return "data:" + (mimeType.empty() ? std::string("image/png") : mimeType) + ";base64," + base64(bytes);
+        return file_.empty() ? uri : imageReference(uri, file_);
+    }
+
     // An image is written once, with a DEF, and USEd by every other material showing it with the same sampler
     // (X3D's ImageTexture holds both); `containerField` is the material's field that holds it (empty: the
     // Appearance's texture).
@@ -632,15 +639,18 @@ private:
             out_ += "<ImageTexture USE='" + def + "'" + field + "/>";
             return;
         }
+        // A fallback image (Texture::fallback) follows as a second URL: a browser shows the first it can read.
         const Texture& image = textures[std::size_t(sameImage_[std::size_t(texture)])];
-        std::string url = file_.empty() ? image.uri : imageReference(image.uri, file_);
-        if (!image.bytes.empty() && !x3dRefersToImageFile(image))
-            url = "data:" + (image.mimeType.empty() ? std::string("image/png") : image.mimeType) + ";base64," +
-                  base64(image.bytes);
-        if (url.empty()) return;
+        std::string urls;
+        for (std::string url :
+             {imageUrl(image.uri, image.mimeType, image.bytes),
+              image.fallback ? imageUrl(image.fallback->uri, image.fallback->mimeType, image.fallback->bytes)
+                             : std::string()})
+            if (!url.empty()) urls += (urls.empty() ? "\"" : " \"") + escapedMarkup(url) + "\"";
+        if (urls.empty()) return;
         textureWritten_.insert(index);
         const std::string def = defOf("texture", index);
-        out_ += "<ImageTexture DEF='" + def + "'" + field + " url='\"" + escapedMarkup(url) + "\"'";
+        out_ += "<ImageTexture DEF='" + def + "'" + field + " url='" + urls + "'";
         writeSampler(textures[std::size_t(texture)].sampler);
     }
 
@@ -969,9 +979,8 @@ std::string gzip(const std::string& text, const fs::path& file) {
 
 }  // namespace
 
-bool x3dRefersToImageFile(const Texture& texture) {
-    const std::string& uri = texture.uri;
-    if (texture.bytes.empty() || uri.empty() || uri.rfind("data:", 0) == 0 || uri.find("://") != std::string::npos)
+bool x3dRefersToImageFile(const std::string& uri, const std::vector<std::uint8_t>& bytes) {
+    if (bytes.empty() || uri.empty() || uri.rfind("data:", 0) == 0 || uri.find("://") != std::string::npos)
         return false;
     std::error_code error;
     return fs::is_regular_file(uri, error);
@@ -982,10 +991,14 @@ std::uintmax_t x3dReferencedImageBytes(const Scene& scene) {
     std::set<int> images;
     for (const Material& material : scene.materials)
         for (const x3d::TextureField& field : x3d::materialTextures(material).fields)
-            if (const int t = field.use->texture; x3dRefersToImageFile(scene.textures[std::size_t(t)]))
-                images.insert(sameImage[std::size_t(t)]);
+            images.insert(sameImage[std::size_t(field.use->texture)]);
     std::uintmax_t bytes = 0;
-    for (int image : images) bytes += scene.textures[std::size_t(image)].bytes.size();
+    for (int image : images) {
+        const Texture& texture = scene.textures[std::size_t(image)];
+        if (x3dRefersToImageFile(texture.uri, texture.bytes)) bytes += texture.bytes.size();
+        if (texture.fallback && x3dRefersToImageFile(texture.fallback->uri, texture.fallback->bytes))
+            bytes += texture.fallback->bytes.size();
+    }
     return bytes;
 }
 

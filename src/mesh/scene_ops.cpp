@@ -377,7 +377,8 @@ std::vector<int> firstTextureOfSameImage(const std::vector<Texture>& textures) {
         first[i] = int(i);
         for (std::size_t j = 0; j < i; ++j)
             if (textures[j].bytes == textures[i].bytes && textures[j].mimeType == textures[i].mimeType &&
-                (!textures[i].bytes.empty() || textures[j].uri == textures[i].uri)) {  // unread images: by URL
+                (!textures[i].bytes.empty() || textures[j].uri == textures[i].uri) &&  // unread images: by URL
+                textures[j].fallback == textures[i].fallback) {
                 first[i] = first[j];
                 break;
             }
