@@ -230,26 +230,27 @@ private:
     int imageIndex(int t) {
         if (image_[t] >= 0) return image_[t];
         const Texture& source = scene_.textures[std::size_t(t)];
-        return image_[t] = addImage({source.uri, source.mimeType, source.bytes}, source.name);
+        return image_[t] = addImage(source.uri, source.mimeType, source.bytes, source.name);
     }
 
     // Each fallback image written once.
     int fallbackIndex(const ImageFile& fallback) {
         for (const auto& [written, index] : fallbacks_)
             if (*written == fallback) return index;
-        const int index = addImage(fallback, "");
+        const int index = addImage(fallback.uri, fallback.mimeType, fallback.bytes, "");
         if (index >= 0) fallbacks_.emplace_back(&fallback, index);
         return index;
     }
 
     // An image is embedded; one that could not be read is referred to where it should be.
-    int addImage(const ImageFile& file, const std::string& name) {
+    int addImage(const std::string& uri, const std::string& mimeType, const std::vector<std::uint8_t>& bytes,
+                 const std::string& name) {
         Json image = Json::object();
-        if (!file.bytes.empty()) {
-            image["bufferView"] = builder_.addBufferView(file.bytes.data(), file.bytes.size());
-            image["mimeType"] = file.mimeType.empty() ? "image/png" : file.mimeType;
-        } else if (!file.uri.empty()) {
-            image["uri"] = imageReference(file.uri, file_);
+        if (!bytes.empty()) {
+            image["bufferView"] = builder_.addBufferView(bytes.data(), bytes.size());
+            image["mimeType"] = mimeType.empty() ? "image/png" : mimeType;
+        } else if (!uri.empty()) {
+            image["uri"] = imageReference(uri, file_);
         } else {
             return -1;
         }
@@ -386,7 +387,7 @@ std::vector<int> writeMaterials(const Scene& scene, TextureWriter& textures, Ext
     std::vector<int> index(scene.materials.size(), -1);
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& material = scene.materials[m];
-        for (std::size_t k = 0; k < m && index[m] < 0; ++k) {
+        for (std::size_t k = 0; k < m && index[m] < 0 && !scene.materialVariants.empty(); ++k) {
             const Material& earlier = scene.materials[k];
             if ((!material.variants.empty() || !earlier.variants.empty()) && earlier.name == material.name &&
                 earlier.sameButNameAndVariants(material))
