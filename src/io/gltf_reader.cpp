@@ -505,7 +505,7 @@ Scene GltfReader::read() {
         mesh.extrasJson = extrasOf(model_.meshes[m].extras_json_string);
         if (!passedThroughExtensions(model_.meshes[m].extensions_json_string).empty())
             warnAbout("mesh " + std::to_string(m) +
-                      ": its KHR_xmp_json_ld metadata not kept (meshes are rebuilt from " + "their tiles)");
+                      ": its KHR_xmp_json_ld metadata not kept (meshes are rebuilt from their tiles)");
         for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p)
             readPrimitive(model_.meshes[m].primitives[p], mesh, scene,
                           "mesh " + std::to_string(m) + " primitive " + std::to_string(p));

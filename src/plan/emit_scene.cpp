@@ -13,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <tuple>
 
 namespace symcompress {
 namespace {
@@ -28,11 +29,18 @@ int addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const No
     return out.roots.back();
 }
 
-// The start of a warning about input nodes whose notes (copyNodeNotes) are not kept: how many, and one's name.
-std::string nodeNotesLost(const std::set<const Node*>& nodes) {
-    const auto named = std::find_if(nodes.begin(), nodes.end(), [](const Node* n) { return !n->name.empty(); });
+// Input nodes by their notes (copyNodeNotes): nodes of the same name, extras and extensions count once, as one node
+// of the output can keep them for all.
+using NodesByNotes = std::map<std::tuple<std::string, std::string, std::string>, const Node*>;
+void addByNotes(NodesByNotes& nodes, const Node& node) {
+    nodes.try_emplace({node.name, node.extrasJson, node.extensionsJson}, &node);
+}
+
+// The start of a warning about input nodes whose notes are not kept: how many, and one's name.
+std::string nodeNotesLost(const NodesByNotes& nodes) {
+    const auto named = std::find_if(nodes.begin(), nodes.end(), [](const auto& n) { return !n.second->name.empty(); });
     return std::to_string(nodes.size()) + " node names, extras or extensions" +
-           (named != nodes.end() ? " (e.g. '" + (*named)->name + "')" : "") + " not kept";
+           (named != nodes.end() ? " (e.g. '" + named->second->name + "')" : "") + " not kept";
 }
 
 // Every node with a camera or a light, outside the animated subtrees (which keep theirs), as a root node at
@@ -63,8 +71,8 @@ void keepCamerasAndLights(const Scene& input, const SceneAnalysis& analysis, Sce
 
 // The input nodes outside the animated subtrees that draw nothing but group others and carry notes (copyNodeNotes):
 // the tiles are rebuilt under nodes of their own, so these are not kept.
-std::set<const Node*> flattenedGroupsWithNotes(const Scene& input, const SceneAnalysis& analysis) {
-    std::set<const Node*> out;
+NodesByNotes flattenedGroupsWithNotes(const Scene& input, const SceneAnalysis& analysis) {
+    NodesByNotes out;
     std::vector<int> stack(input.roots.begin(), input.roots.end());
     while (!stack.empty()) {
         const Node& node = input.nodes[std::size_t(stack.back())];
@@ -72,7 +80,7 @@ std::set<const Node*> flattenedGroupsWithNotes(const Scene& input, const SceneAn
             std::binary_search(analysis.animatedSubtrees.begin(), analysis.animatedSubtrees.end(), stack.back());
         stack.pop_back();
         if (animated) continue;
-        if (node.mesh < 0 && node.camera < 0 && node.light < 0 && hasNodeNotes(node)) out.insert(&node);
+        if (node.mesh < 0 && node.camera < 0 && node.light < 0 && hasNodeNotes(node)) addByNotes(out, node);
         stack.insert(stack.end(), node.children.begin(), node.children.end());
     }
     return out;
@@ -188,14 +196,14 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     PrimitivesByKind unique;       // what is stored as it is
     // The input nodes with notes (copyNodeNotes) whose parts are merged into `unique`, and those whose tiles nodes
     // without notes draw.
-    std::set<const Node*> merged, dropped;
+    NodesByNotes merged, dropped;
     for (const KeptInstance& kept : analysis.keptInstances) {
         // Without instancing, a kept mesh the tiles can carry (the author's scaled copies) is stored as it is too.
         const Mesh& source = input.meshes[std::size_t(kept.mesh)];
         if (!plan.shareInputInstances && tilesCanCarry(source, kept.transform.topLeftCorner<3, 3>())) {
             for (const Primitive& primitive : source.primitives)
                 unique.add(transformPrimitive(primitive, kept.transform));
-            if (kept.source && hasNodeNotes(*kept.source)) merged.insert(kept.source);
+            if (kept.source && hasNodeNotes(*kept.source)) addByNotes(merged, *kept.source);
             continue;
         }
         auto [entry, added] = keptMesh.emplace(kept.mesh, int(out.meshes.size()));
@@ -241,7 +249,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         if (!part.named)
             for (std::size_t t : part.tiles)
                 if (const Node* source = sourceNode(input, analysis, t); source && hasNodeNotes(*source))
-                    dropped.insert(source);
+                    addByNotes(dropped, *source);
         count(part, stats);
     }
     // The error budget as a distance (with fixed bits, about half a 14-bit step of the diagonal).
@@ -253,7 +261,8 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     for (const WorldPrimitive& placed : analysis.zeroArea) unique.add(placed.primitive);
     for (std::size_t t : plan.tilesAsTheyAre) {
         if (framed[t] == 1) continue;
-        if (const Node* source = sourceNode(input, analysis, t); source && hasNodeNotes(*source)) merged.insert(source);
+        if (const Node* source = sourceNode(input, analysis, t); source && hasNodeNotes(*source))
+            addByNotes(merged, *source);
         if (!framed[t]) unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
     }
     // The tiles stored as they are share one mesh per material, drawn by one node (or one per turn of their
@@ -266,7 +275,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         unique.moveInto(mesh);
         const Eigen::Matrix4d offset = centredIfFar(mesh, budget);
         out.meshes.push_back(std::move(mesh));
-        addRootNode(out, int(out.meshes.size()) - 1, offset, merged.size() == 1 ? *merged.begin() : nullptr);
+        addRootNode(out, int(out.meshes.size()) - 1, offset, merged.size() == 1 ? merged.begin()->second : nullptr);
     }
     for (const FramedTiles& group : plan.framedTiles) {
         const Node* source = group.node >= 0 ? &input.nodes[std::size_t(group.node)] : nullptr;
@@ -278,7 +287,7 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         stats.tilesInNodeFrames += group.tiles.size();
         ++stats.nodeFrames;
     }
-    if (const std::set<const Node*> groups = flattenedGroupsWithNotes(input, analysis); !groups.empty())
+    if (const NodesByNotes groups = flattenedGroupsWithNotes(input, analysis); !groups.empty())
         out.warnings.push_back(nodeNotesLost(groups) + ": they group other nodes, and the output draws the tiles " +
                                "under nodes of their own");
     if (!dropped.empty())
