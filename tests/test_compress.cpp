@@ -297,6 +297,56 @@ TEST_CASE("A part baked in several materials is stored once: a mesh per material
     CHECK(uses == 4);
 }
 
+TEST_CASE("Copies each alone in a material are shared: storing them as they are would open a primitive for each",
+          "[compress]") {
+    TemporaryFolder folder;
+    // The unlit test: one mesh in an orange and in a blue material, nothing else in either.
+    const auto unlit = modelPath("pbr/unlit/UnlitTest.gltf");
+    const nlohmann::json report = compressAndVerify(unlit, folder, "unlit");
+    CHECK(report["instances"] == 2);
+    CHECK(report["material_variants"] == 1);
+    CHECK(report["ablation"]["final"].get<double>() < report["ablation"]["draco_alone"].get<double>());
+    const nlohmann::json json = glbJson(folder / "unlit.glb");
+    std::set<std::string> names;  // the instance nodes keep the input's
+    for (const auto& node : json["nodes"])
+        if (node.contains("name")) names.insert(node["name"].get<std::string>());
+    CHECK(names == std::set<std::string>{"Orange Object", "Blue Object"});
+
+    // Three materials, each drawing a large part and a small one, both the same in every material. The large parts
+    // are shared; the small ones, judged beside them, would join primitives written anyway, but once the large
+    // parts are shared nothing else is stored in those materials: a second look shares them too.
+    std::mt19937_64 random(5);
+    const TriangleMesh large =
+        samples::transformed(samples::unevenEllipsoid(48, 3), Eigen::Matrix3d::Identity() * 4, {0, 0, 0});
+    const TriangleMesh small = samples::randomConvexPart(random);
+    samples::OneMeshBuilder three("large and small parts in three materials");
+    for (int k = 0; k < 3; ++k) {
+        const int material = three.addMaterial("m" + std::to_string(k), Eigen::Vector4d(0.2 * k + 0.1, 0.5, 0.3, 1));
+        three.add(material,
+                  samples::transformed(large, samples::randomRotation(random), Eigen::Vector3d(10.0 * k, 0, 0)));
+        three.add(material,
+                  samples::transformed(small, samples::randomRotation(random), Eigen::Vector3d(10.0 * k, 8, 0)));
+    }
+    const nlohmann::json both =
+        compressAndVerify(writePlainGlb(std::move(three).build(), folder, "three"), folder, "three-out");
+    CHECK(both["classes"] == 6);
+    CHECK(both["instanced_classes"] == 2);
+    CHECK(both["instances"] == 6);
+    CHECK(both["not_worth_instancing"] == 0);
+
+    // Must not act: two copies of the small part in a material whose large part is stored as it is.
+    samples::OneMeshBuilder one("small parts beside a large one");
+    const int material = one.addMaterial("m", Eigen::Vector4d(0.5, 0.5, 0.3, 1));
+    one.add(material, large);
+    for (int k = 0; k < 2; ++k)
+        one.add(material,
+                samples::transformed(small, samples::randomRotation(random), Eigen::Vector3d(10.0 * k, 8, 0)));
+    const nlohmann::json apart =
+        compressAndVerify(writePlainGlb(std::move(one).build(), folder, "one"), folder, "one-out");
+    CHECK(apart["instances"] == 0);
+    CHECK(apart["not_worth_instancing"] == 2);
+}
+
 TEST_CASE("Copies turned over face the way they do: flat cards, and a rebuild turned inside out is not verified",
           "[compress]") {
     // A flat card (a 30 x 30 grid of one-sided quads, its inner vertices moved in the plane so that only the
@@ -779,10 +829,13 @@ TEST_CASE("Tiles stored as they are keep the frame of a node that turns them off
           "[compress]") {
     // The three spheres' rings each share a coordinate in their mesh's frame and none once turned off the axes:
     // Draco codes them smaller in the frame (the file 1912 -> 1752 bytes). A quarter turn keeps the axes: the
-    // world's frame is as good, and no node is spent.
+    // world's frame is as good, and no node is spent. Stored as they are (by default the spheres, alone in their
+    // material, are one mesh drawn three times).
     TemporaryFolder folder;
-    const nlohmann::json upright =
-        compressAndVerify(writePlainGlb(samples::makeThreeSpheresScene(), folder, "upright"), folder, "upright-small");
+    CompressOptions asTheyAre;
+    asTheyAre.instancing = false;
+    const nlohmann::json upright = compressAndVerify(writePlainGlb(samples::makeThreeSpheresScene(), folder, "upright"),
+                                                     folder, "upright-small", asTheyAre);
     CHECK(upright["node_frames"] == 0);
     const Eigen::Matrix3d oblique = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
     const Eigen::Matrix3d quarter = Eigen::AngleAxisd(EIGEN_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -792,7 +845,7 @@ TEST_CASE("Tiles stored as they are keep the frame of a node that turns them off
         REQUIRE(scene.nodes.size() == 1);
         scene.nodes[0].transform.topLeftCorner<3, 3>() = turn;
         const nlohmann::json report =
-            compressAndVerify(writePlainGlb(scene, folder, name), folder, std::string(name) + "-small");
+            compressAndVerify(writePlainGlb(scene, folder, name), folder, std::string(name) + "-small", asTheyAre);
         CHECK(report["node_frames"] == (framed ? 1 : 0));
         CHECK(report["tiles_in_node_frames"] == (framed ? 3 : 0));
         const Scene out = readScene(folder / (std::string(name) + "-small.glb"));
@@ -815,7 +868,7 @@ TEST_CASE("Tiles stored as they are keep the frame of a node that turns them off
     // room for: 22 bytes more than the node's.
     Scene scene = samples::makeThreeSpheresScene();
     scene.nodes[0].transform.topLeftCorner<3, 3>() = oblique;
-    CompressOptions atPeer;
+    CompressOptions atPeer = asTheyAre;
     atPeer.maxError = 3.1825e-5;
     const nlohmann::json report = compressAndVerify(writePlainGlb(scene, folder, "peer"), folder, "peer-small", atPeer);
     CHECK(report["node_frames"] == 1);

@@ -273,11 +273,14 @@ TileClassification classifyTiles(const std::vector<Tile>& tiles, const Congruenc
         };
         // Classes of one tile whose group no use could be made of: detected last, and only while the
         // assembly's symmetry might need them.
+        // A class of one tile in a family of others is placed by its group's elements (the plan's member check).
+        std::vector<std::size_t> familyMembers(result.classes.size(), 0);
+        for (const CongruenceClass& c : result.classes) familyMembers[c.family] += c.members.size();
         std::vector<std::size_t> needed, optional;
         for (std::size_t k = 0; k < result.classes.size(); ++k) {
             const CongruenceClass& c = result.classes[k];
             if (!(result.shapes[c.prototype].diagonal > 0)) continue;
-            const bool usable = !options.groupUsable || c.members.size() > 1 || options.groupUsable(c.prototype);
+            const bool usable = !options.groupUsable || familyMembers[c.family] > 1 || options.groupUsable(c.prototype);
             (usable ? needed : optional).push_back(k);
         }
         detect(needed);

@@ -45,7 +45,9 @@ std::optional<std::pair<Isometry, double>> acceptedPlacement(const PlanContext& 
                                                              const Primitive& member, LazySurface& prototypeSurface) {
     const TileShape& shape = context.analysis.classification.shapes[c.prototype];
     std::vector<Isometry> candidates;  // for the surface check
-    for (const Symmetry& g : shape.symmetry.elements) {
+    // A group not detected (CongruenceOptions::groupUsable) places by J alone.
+    const std::vector<Symmetry> identity(1);
+    for (const Symmetry& g : shape.symmetry.elements.empty() ? identity : shape.symmetry.elements) {
         Isometry candidate;
         candidate.linear = c.placements[i].linear * g.linear;
         candidate.translation = c.placements[i].linear * (shape.moments.centroid - g.linear * shape.moments.centroid) +
@@ -154,10 +156,36 @@ bool anyNamed(const PlanContext& context, const CongruenceClass& c, const std::v
     });
 }
 
+// What a class's members stored as they are cost beside their triangles: the primitives they would be alone in (a
+// part in a material of its own, a family's members in other materials); the others' primitives are written
+// anyway. `storedIn` counts by primitive (StorageCosts::primitiveOf) the tiles that may be stored as they are.
+struct PrimitivesOpened {
+    std::map<std::size_t, std::pair<std::size_t, std::size_t>> members;  // primitive -> (members in it, one of them)
+    double bytes(StorageCosts& costs, const std::vector<std::size_t>& storedIn) const {
+        double total = 0;
+        for (const auto& [primitive, inIt] : members)
+            if (inIt.first == storedIn[primitive]) total += costs.primitiveOverhead(inIt.second);
+        return total;
+    }
+};
+
+// A verdict of "as they are" that fewer tiles stored as they are could turn: storing the members costs
+// `triangles` plus the primitives they open, sharing them `shared`.
+struct AsTheyAreVerdict {
+    double triangles = 0, shared = 0;
+    PrimitivesOpened opened;
+    bool turns(StorageCosts& costs, const std::vector<std::size_t>& storedIn) const {
+        return triangles + opened.bytes(costs, storedIn) > shared;
+    }
+};
+
 // One class (or family of classes, as one), numbered k: its stored part, if any, and the members stored as they
-// are appended to `plan`.
+// are appended to `plan`. `storedIn` counts by primitive the tiles that may be stored as they are (at first every
+// tile not `drawn`); a verdict of as they are that weighed more than one member is kept in `verdict`.
 void planClass(const PlanContext& context, std::size_t k, const CongruenceClass& c, const std::vector<bool>& drawn,
-               CompressionPlan& plan) {
+               const std::vector<std::size_t>& storedIn, CompressionPlan& plan,
+               std::optional<AsTheyAreVerdict>& verdict) {
+    verdict.reset();
     const SceneAnalysis& analysis = context.analysis;
     const std::vector<Tile>& tiles = analysis.tiles;
     const TileShape& shape = analysis.classification.shapes[c.prototype];
@@ -247,9 +275,14 @@ void planClass(const PlanContext& context, std::size_t k, const CongruenceClass&
                 costs, alone, perNode, std::min(instanced, copies * costs.merged(c.prototype)), regionNodes);
     }
     const bool single = placed.size() == 1 && !region;
-    // A family's members in other materials, stored as they are, are primitives of their own.
-    const double asTheyAre =
-        copies * costs.merged(c.prototype) + double(materials.size() - 1) * costs.primitiveOverhead(c.prototype);
+    PrimitivesOpened opened;
+    for (std::size_t i : placed) {
+        auto& inIt = opened.members[costs.primitiveOf(c.members[i])];
+        ++inIt.first;
+        inIt.second = c.members[i];
+    }
+    const double triangles = copies * costs.merged(c.prototype);
+    double asTheyAre = triangles + opened.bytes(costs, storedIn);
     bool named = true;
     if (!single && asTheyAre <= std::min(instanced, regional) && anyNamed(context, c, placed)) {
         // Stored as they are, the members lose their nodes' names and extras anyway (one mesh per material):
@@ -260,9 +293,12 @@ void planClass(const PlanContext& context, std::size_t k, const CongruenceClass&
             region ? costs.asMesh(region->region) + costs.nodes(nodesOf(regionCopies(*region), false)) + variants
                    : kNever;
         if (std::min(unnamed, unnamedRegion) < asTheyAre) named = false, instanced = unnamed, regional = unnamedRegion;
+        else if (!single)
+            verdict = AsTheyAreVerdict{triangles, std::min(unnamed, unnamedRegion), opened};
     }
     if (single || asTheyAre <= std::min(instanced, regional)) {
         if (placed.size() > 1) plan.notWorthInstancing += placed.size();
+        if (!single && !verdict) verdict = AsTheyAreVerdict{triangles, std::min(instanced, regional), opened};
         for (std::size_t i : placed) plan.tilesAsTheyAre.push_back(c.members[i]);
         return;
     }
@@ -340,32 +376,85 @@ std::vector<CongruenceClass> classesToPlan(const PlanContext& context) {
 }  // namespace
 
 CompressionPlan planClasses(const PlanContext& context, const std::vector<bool>& drawn) {
-    CompressionPlan plan;
-    const TileClassification& classification = context.analysis.classification;
+    StorageCosts& costs = context.costs;
+    const std::vector<CongruenceClass>& classes = context.analysis.classification.classes;
+    const std::vector<CongruenceClass> planned = classesToPlan(context);
+    std::map<std::size_t, std::vector<std::size_t>> families;  // first class -> its classes, where planned as one
+    for (std::size_t k = 0; k < classes.size(); ++k)
+        if (planned[classes[k].family].members.size() > classes[classes[k].family].members.size())
+            families[classes[k].family].push_back(k);
+    std::vector<std::size_t> storedIn(costs.primitives(), 0);
+    for (std::size_t t = 0; t < drawn.size(); ++t)
+        if (!drawn[t]) ++storedIn[costs.primitiveOf(t)];
+
+    // Each class into its own plan, a family as one into its first's; verdicts of as they are kept to be weighed
+    // again.
+    std::vector<CompressionPlan> ofClass(classes.size());
+    std::vector<std::optional<AsTheyAreVerdict>> verdicts(classes.size()), familyVerdicts(classes.size());
+    auto planAlone = [&](std::size_t k) {
+        CompressionPlan one;
+        planClass(context, k, classes[k], drawn, storedIn, one, verdicts[k]);
+        return one;
+    };
+    auto planFamily = [&](std::size_t k) {
+        CompressionPlan one;
+        planClass(context, k, planned[k], drawn, storedIn, one, familyVerdicts[k]);
+        return one;
+    };
     // The classes are independent (StorageCosts is safe to share: a class measures its own mesh, the kinds'
     // measures are taken under a lock): planned in parallel, each into its own plan, then appended in order.
-    const std::vector<CongruenceClass> planned = classesToPlan(context);
-    std::vector<CompressionPlan> ofClass(classification.classes.size());
     withThreads(context.analysis.options.threads, [&] {
-        tbb::parallel_for(std::size_t(0), classification.classes.size(), [&](std::size_t k) {
-            if (!planned[k].members.empty()) planClass(context, k, planned[k], drawn, ofClass[k]);
+        tbb::parallel_for(std::size_t(0), classes.size(), [&](std::size_t k) {
+            if (planned[k].members.empty()) return;  // merged into its family's
+            ofClass[k] = families.count(k) ? planFamily(k) : planAlone(k);
         });
     });
     // A family that shares nothing is planned class by class, as without families: its members stored as they
     // are then come in their classes' order.
-    const std::vector<CongruenceClass>& classes = classification.classes;
-    for (std::size_t k = 0; k < classes.size(); ++k)
-        if (planned[k].members.empty() && ofClass[classes[k].family].shared.empty())  // merged into its family's
-            planClass(context, k, classes[k], drawn, ofClass[k]);
-    for (std::size_t k = 0; k < classes.size(); ++k)
-        if (classes[k].family == k && planned[k].members.size() > classes[k].members.size() &&
-            ofClass[k].shared.empty()) {
-            ofClass[k] = CompressionPlan();
-            planClass(context, k, classes[k], drawn, ofClass[k]);
+    std::set<std::size_t> familiesApart;
+    for (const auto& [first, members] : families)
+        if (ofClass[first].shared.empty()) {
+            familiesApart.insert(first);
+            for (std::size_t k : members) ofClass[k] = planAlone(k);
         }
-    for (std::size_t k = 0; k < classification.classes.size(); ++k) {
+
+    // A second look, once the verdicts tell which tiles are stored as they are: where none of a material but a
+    // class's members are (the others shared), storing them opens a primitive the first look counted as written
+    // anyway (a class of small parts beside shared large ones in each of their materials). Fewer tiles stored as
+    // they are only make sharing pay more: verdicts turn one way, a few looks settle them.
+    constexpr int kLooks = 4;
+    for (int look = 0; look < kLooks; ++look) {
+        std::fill(storedIn.begin(), storedIn.end(), 0);
+        for (const CompressionPlan& one : ofClass)
+            for (std::size_t t : one.tilesAsTheyAre) ++storedIn[costs.primitiveOf(t)];
+        bool turned = false;
+        auto takeIfShared = [&](std::size_t k, CompressionPlan&& again) {
+            if (again.shared.empty()) return false;
+            ofClass[k] = std::move(again);
+            return turned = true;
+        };
+        for (auto first = familiesApart.begin(); first != familiesApart.end();)
+            if (familyVerdicts[*first] && familyVerdicts[*first]->turns(costs, storedIn) &&
+                takeIfShared(*first, planFamily(*first))) {
+                for (std::size_t k : families[*first])
+                    if (k != *first) ofClass[k] = CompressionPlan();
+                first = familiesApart.erase(first);
+            } else {
+                ++first;
+            }
+        for (std::size_t k = 0; k < classes.size(); ++k) {
+            const auto family = families.find(classes[k].family);
+            const bool alone = family == families.end() || familiesApart.count(family->first);
+            if (alone && verdicts[k] && verdicts[k]->turns(costs, storedIn)) takeIfShared(k, planAlone(k));
+        }
+        if (!turned) break;
+    }
+
+    CompressionPlan plan;
+    const TileClassification& classification = context.analysis.classification;
+    for (std::size_t k = 0; k < classes.size(); ++k) {
         ++plan.classes;
-        if (classification.shapes[classification.classes[k].prototype].symmetry.order() > 1) ++plan.symmetricClasses;
+        if (classification.shapes[classes[k].prototype].symmetry.order() > 1) ++plan.symmetricClasses;
         CompressionPlan& one = ofClass[k];
         for (SharedPart& part : one.shared) plan.shared.push_back(std::move(part));
         plan.tilesAsTheyAre.insert(plan.tilesAsTheyAre.end(), one.tilesAsTheyAre.begin(), one.tilesAsTheyAre.end());

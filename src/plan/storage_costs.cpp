@@ -16,6 +16,18 @@ StorageCosts::StorageCosts(const SceneAnalysis& analysis, const StorageCostModel
             memberOf_[classes[k].members[i]] = i;
         }
     classMesh_.assign(classes.size(), -1);
+    // Tiles of one input primitive share material and attributes: its signature built once.
+    std::map<std::pair<int, Attributes>, std::size_t> primitives;
+    std::map<std::uint32_t, std::size_t> ofSource;
+    for (std::size_t t = 0; t < analysis.tiles.size(); ++t) {
+        const std::uint32_t source = analysis.tiles[t].sources.front().primitive;
+        auto [at, added] = ofSource.try_emplace(source, 0);
+        if (added)
+            at->second =
+                primitives.try_emplace({analysis.tiles[t].material, attributesOf(t)}, primitives.size()).first->second;
+        primitiveOf_.push_back(at->second);
+    }
+    primitiveCount_ = primitives.size();
     // Where a family's classes are planned as one (StorageCostModel::materialVariantBytes), their mesh is shared by
     // all its members.
     for (std::size_t k = 0; k < classes.size(); ++k) sharers_.push_back(double(classes[k].members.size()));

@@ -37,6 +37,10 @@ public:
     // What a primitive of tile t's kind costs before its triangles (the tiles stored as they are in another
     // material need one of their own).
     double primitiveOverhead(std::size_t t) { return kindOf(t).overhead; }
+    // The primitive tile t is stored in when stored as it is (one per material and attributes), numbered from 0
+    // to primitives() - 1.
+    std::size_t primitiveOf(std::size_t t) const { return primitiveOf_[t]; }
+    std::size_t primitives() const { return primitiveCount_; }
     // Tile t as a mesh of its own (its class's prototype).
     double alone(std::size_t t);
     // The cheaper way of storing tile t apart from a group of tiles: as it is, or drawn by its class's mesh
@@ -72,6 +76,8 @@ private:
     const SceneAnalysis& analysis_;
     const StorageCostModel& model_;
     std::vector<std::size_t> classOf_, memberOf_;  // a tile's class, and its index among the class's members
+    std::vector<std::size_t> primitiveOf_;
+    std::size_t primitiveCount_ = 0;
     std::vector<double> classMesh_;                // < 0: not measured yet
     std::vector<double> sharers_;                  // by class: the members its mesh draws (its family's, or its own)
     std::mutex kindsMutex_;  // the classes are planned in parallel: kinds_ is measured under it
