@@ -307,9 +307,13 @@ TEST_CASE("Copies each alone in a material are shared: storing them as they are 
     CHECK(report["material_variants"] == 1);
     CHECK(report["ablation"]["final"].get<double>() < report["ablation"]["draco_alone"].get<double>());
     const nlohmann::json json = glbJson(folder / "unlit.glb");
-    std::set<std::string> names;  // the instance nodes keep the input's
-    for (const auto& node : json["nodes"])
+    // The instance nodes keep the input's names, and its translations (+-1.2, 0, 0) print as they were, not with the
+    // rounding of the centroids they came from (1.9e-18) in float32's digits.
+    std::set<std::string> names;
+    for (const auto& node : json["nodes"]) {
         if (node.contains("name")) names.insert(node["name"].get<std::string>());
+        CHECK(node["translation"].dump() == (node["name"] == "Orange Object" ? "[-1.2,0,0]" : "[1.2,0,0]"));
+    }
     CHECK(names == std::set<std::string>{"Orange Object", "Blue Object"});
 
     // Three materials, each drawing a large part and a small one, both the same in every material. The large parts

@@ -62,12 +62,12 @@ TEST_CASE("Written glTF nodes and materials carry no needless digits and no defa
     triangle.triangles = {{0, 1, 2}};
     triangle.material = 0;
     scene.meshes[0].primitives.push_back(triangle);
-    // A node turned by 1e-9 rad (noise from a rotation solve) and moved by float32-rounded values; a mirror
-    // turned by 90 degrees.
+    // A node turned by 1e-9 rad (noise from a rotation solve) and moved by float32-rounded values and by noise far
+    // below float32's precision at the largest of them (a placement's rounding); a mirror turned by 90 degrees.
     Node noisy, mirror;
     noisy.mesh = mirror.mesh = 0;
     noisy.transform.topLeftCorner<3, 3>() = Eigen::AngleAxisd(1e-9, Eigen::Vector3d::UnitY()).toRotationMatrix();
-    noisy.transform.topRightCorner<3, 1>() = Eigen::Vector3d(double(0.1f), double(9.44278356f), 0);
+    noisy.transform.topRightCorner<3, 1>() = Eigen::Vector3d(double(0.1f), double(9.44278356f), 1.9e-15);
     mirror.transform.topLeftCorner<3, 3>() =
         Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix() * Eigen::Vector3d(-1, 1, 1).asDiagonal();
     scene.nodes = {noisy, mirror};
@@ -82,7 +82,7 @@ TEST_CASE("Written glTF nodes and materials carry no needless digits and no defa
         const nlohmann::json root = glbJson(file);
         INFO(root.dump());
         CHECK_FALSE(root["nodes"][0].contains("rotation"));
-        // Whole numbers as integers (0 for 0.0).
+        // Whole numbers as integers (0 for 0.0 and for the noise).
         CHECK(root["nodes"][0]["translation"].dump() == "[0.1,9.442783,0]");
         CHECK(root["nodes"][1]["rotation"].dump() == "[0,0,0.7071068,0.7071068]");
         CHECK(root["nodes"][1]["scale"].dump() == "[-1,1,1]");

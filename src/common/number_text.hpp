@@ -19,6 +19,21 @@ inline double rounded(double value, int digits) {
     return std::strtod(text, nullptr);
 }
 
+// The value of fewest significant digits within `precision` of `value` (0 where `value` is that small): a
+// placement's coordinate printed no finer than its share of the error budget.
+inline double shortestWithin(double value, double precision) {
+    if (std::abs(value) <= precision) return 0;
+    for (int digits = 1; digits < 17; ++digits)
+        if (const double near = rounded(value, digits); std::abs(near - value) <= precision) return near;
+    return value;
+}
+
+// `value` in the fewest digits at float32's precision about `largest` (the largest of the numbers printed with it,
+// a vector's): a component far smaller than the others (1.9e-18 beside 1.2, a placement's rounding) prints as 0.
+inline double atFloat32PrecisionOf(double value, double largest) {
+    return shortestWithin(value, std::ldexp(std::abs(largest), -23));
+}
+
 // `value` to `decimals` places after the point: for numbers of magnitude at most 1 (quaternions, axes),
 // where tiny components are noise that must print as 0, not as 1e-16.
 inline double roundedDecimals(double value, int decimals) {

@@ -45,11 +45,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A node's translation as printed: float32's shortest text (what many glTF readers keep of it) where that is
-// within `precision` of it (a distance; 0: always), else the decimals that are: a node far from the origin (a
-// georeferenced part 10 km out) would move by float32's spacing there, a millimetre.
+// A node's translation as printed: at float32's precision (what many glTF readers keep of it) where that is within
+// `precision` of it (a distance; 0: always), else the decimals that are: a node far from the origin (a georeferenced
+// part 10 km out) would move by float32's spacing there, a millimetre. Float32's precision is that of the largest
+// component, in the fewest digits: a component far smaller than the others (1.9e-18 beside 1.2, the rounding of
+// the centroids a placement came from) prints as 0.
 Eigen::Vector3d printedTranslation(const Eigen::Vector3d& translation, double precision) {
-    const Eigen::Vector3d t = translation.unaryExpr(&asFloat32);
+    const double largest = translation.cwiseAbs().maxCoeff();
+    const Eigen::Vector3d t = translation.unaryExpr([&](double x) { return atFloat32PrecisionOf(x, largest); });
     if (!(precision > 0) || (t - translation).cwiseAbs().maxCoeff() <= precision) return t;
     const int decimals = std::clamp(int(std::ceil(-std::log10(precision))), 0, 15);
     return translation.unaryExpr(

@@ -204,7 +204,8 @@ void appendTransform(std::string& out, const Eigen::Vector3d& translation, const
     auto turn = [](double x) { return roundedDecimals(x, kRotationDecimals); };
     if (!translation.isZero(0)) {
         out += " translation='";
-        appendVector(out, translation, 3, placement);
+        const double largest = translation.cwiseAbs().maxCoeff();
+        appendVector(out, translation, 3, [&](double x) { return placement(atFloat32PrecisionOf(x, largest)); });
         out += "'";
     }
     auto appendRotation = [&](const char* field, const Eigen::AngleAxisd& value) {
