@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -521,4 +522,28 @@ TEST_CASE(
     CHECK(positionBitsFor(points, bounded) == 12);
     bounded.maxPositionError = move - 4 * halfUlp;
     CHECK(positionBitsFor(points, bounded) == 13);
+}
+
+TEST_CASE("A budget finer than float32 keeps is raised to what it keeps, said in a warning, and the output verifies",
+          "[budget][compress]") {
+    // The unlit test's coordinates reach 2.2 on a diagonal of 4.9: float32's steps there are 5e-8 of it, and a few
+    // add up (its own, Draco's dequantization): 1e-8 was printed as the budget and missed (5.6e-8).
+    TemporaryFolder folder;
+    const auto input = modelPath("pbr/unlit/UnlitTest.gltf");
+    CompressOptions fine;
+    fine.maxError = 1e-8;
+    const CompressionReport report = compressFile(input, folder / "fine.glb", fine);
+    CHECK(report.maxError == Approx(std::ldexp(1.0, -21)));
+    CHECK(std::count_if(report.warnings.begin(), report.warnings.end(), [](const std::string& warning) {
+              return warning.find("--max-error 1e-08 is finer than float32") != std::string::npos;
+          }) == 1);
+    const RebuildReport rebuilt = decompressFile(folder / "fine.glb", folder / "flat.glb", input);
+    CHECK(rebuilt.verified);
+    CHECK(rebuilt.allowedDeviation < 5e-7);
+    // At a budget float32 keeps, nothing is said.
+    CompressOptions keepable;
+    keepable.maxError = 1e-6;
+    const CompressionReport kept = compressFile(input, folder / "kept.glb", keepable);
+    CHECK(kept.maxError == 1e-6);
+    for (const std::string& warning : kept.warnings) CHECK(warning.find("float32") == std::string::npos);
 }

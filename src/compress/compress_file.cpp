@@ -1,6 +1,7 @@
 // symcompress's whole job: read, analyse once, plan three ways (the full plan, instancing without regions,
 // every tile as it is; the second takes the first's assemblies), write and measure each, keep the smallest
 // file, and report.
+#include "common/number_text.hpp"
 #include "common/uri_text.hpp"
 #include "common/with_threads.hpp"
 #include "symcompress/compress.hpp"
@@ -25,6 +26,25 @@ namespace {
 // The shares of the error budget left for the rounding of GPU-instanced rotations (normalized shorts, meshopt's
 // quaternion filter) and of their translations and scales (meshopt's exponential filter).
 constexpr double kRotationShare = 1.0 / 64, kTranslationShare = 1.0 / 64;
+// The finest budget an output can keep, relative to the diagonal: glTF, Draco and viewers hold coordinates in
+// float32, whose steps at the scene's size are up to 2^-23 of it; a few of them add up (the input's, Draco's
+// dequantization, a node's translation). Finer budgets are not met (the torus knot at 1.2e-7: 1.5e-7).
+constexpr double kFloat32Budget = 1.0 / (1 << 21);
+
+// The options with a budget that float32 can keep, said where the one asked for is finer.
+CompressOptions withKeepableBudget(const CompressOptions& requested, std::vector<std::string>& warnings) {
+    CompressOptions options = requested;
+    if (requested.fixedPositionBits || !(requested.maxError < kFloat32Budget)) return options;
+    options.maxError = kFloat32Budget;
+    std::string asked, used;
+    appendShortest(asked, requested.maxError);
+    appendShortest(used, rounded(kFloat32Budget, 2));
+    warnings.push_back("--max-error " + asked +
+                       " is finer than float32, in which glTF, Draco and viewers hold coordinates, keeps a scene: " +
+                       used + " of the diagonal used");
+    return options;
+}
+
 // The share for the rounding of skin weights, in a scene with skins.
 constexpr double kSkinWeightShare = 1.0 / 32;
 // Of the keys' share, the part that dropping keys may take (the rounding takes the rest and what it leaves).
@@ -121,8 +141,9 @@ double bytesPerInstance(const CompressedScene& compressed, const StorageCostMode
 }
 
 // compressToFile, with the time the input took to read (in the report before the HTML report shows it).
-CompressionReport compressRead(Scene scene, const fs::path& output, const CompressOptions& options,
+CompressionReport compressRead(Scene scene, const fs::path& output, const CompressOptions& requested,
                                const std::vector<fs::path>& inputs, double secondsRead) {
+    const CompressOptions options = withKeepableBudget(requested, scene.warnings);
     CompressionReport report;
     report.secondsRead = secondsRead;
     report.input = inputs.empty() ? fs::path() : inputs.front();

@@ -412,7 +412,8 @@ int main(int argc, char** argv) {
     compress
         ->add_option("--max-error", compressRequest.options.maxError,
                      "how far the rebuilt surface may lie from the input, relative to the scene's bounding-box "
-                     "diagonal: shared by the tolerance and each mesh's position quantization")
+                     "diagonal: shared by the tolerance and each mesh's position quantization (below 4.8e-7, what "
+                     "float32 keeps, with a warning)")
         ->check(CLI::Range(1e-9, 0.5))
         ->capture_default_str();
     compress
