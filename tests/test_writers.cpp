@@ -70,8 +70,13 @@ TEST_CASE("Written glTF nodes and materials carry no needless digits and no defa
     noisy.transform.topRightCorner<3, 1>() = Eigen::Vector3d(double(0.1f), double(9.44278356f), 1.9e-15);
     mirror.transform.topLeftCorner<3, 3>() =
         Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix() * Eigen::Vector3d(-1, 1, 1).asDiagonal();
-    scene.nodes = {noisy, mirror};
-    scene.roots = {0, 1};
+    // Scales at float32's noise about 1 (Cesium Man's joints: 0.9999999, 0.9999998, 0.99999994) are none; a
+    // thousandth is kept.
+    Node nearOne = noisy, scaled = noisy;
+    nearOne.transform.topLeftCorner<3, 3>() = Eigen::Vector3d(0.9999998, 1.0000001, 0.99999994).asDiagonal();
+    scaled.transform.topLeftCorner<3, 3>() = Eigen::Vector3d(1.001, 1, 1).asDiagonal();
+    scene.nodes = {noisy, mirror, nearOne, scaled};
+    scene.roots = {0, 1, 2, 3};
 
     TemporaryFolder folder;
     for (bool draco : {true, false}) {
@@ -86,6 +91,8 @@ TEST_CASE("Written glTF nodes and materials carry no needless digits and no defa
         CHECK(root["nodes"][0]["translation"].dump() == "[0.1,9.442783,0]");
         CHECK(root["nodes"][1]["rotation"].dump() == "[0,0,0.7071068,0.7071068]");
         CHECK(root["nodes"][1]["scale"].dump() == "[-1,1,1]");
+        CHECK_FALSE(root["nodes"][2].contains("scale"));
+        CHECK(root["nodes"][3]["scale"].dump() == "[1.001,1,1]");
         CHECK(root["materials"][0].dump() == R"({"pbrMetallicRoughness":{"baseColorFactor":[0.8,0.8,0.8,1]}})");
         // Draco's bounds are those of the quantized positions it decodes to.
         if (!draco) CHECK(root["accessors"][0]["max"].dump() == "[0.33333334,0.1,0]");
@@ -94,7 +101,7 @@ TEST_CASE("Written glTF nodes and materials carry no needless digits and no defa
         CHECK_FALSE(root["bufferViews"][0].contains("byteOffset"));
 
         const Scene back = readScene(file);
-        REQUIRE(back.nodes.size() == 2);
+        REQUIRE(back.nodes.size() == 4);
         CHECK(back.nodes[0].transform.isApprox(scene.nodes[0].transform, 1e-7));
         CHECK(back.nodes[1].transform.isApprox(scene.nodes[1].transform, 1e-7));
         CHECK(back.materials[0].baseColorFactor.isApprox(scene.materials[0].baseColorFactor, 1e-7));

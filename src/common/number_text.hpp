@@ -78,6 +78,9 @@ inline void appendShortestFloat(std::string& out, double value) {
 // Places kept in a rotation (quaternion or axis and angle): 1e-7, about float32's resolution at 1.
 constexpr int kRotationDecimals = 7;
 constexpr int kNormalDecimals = 4;  // X3D output's unit normals
+// A scale within this of 1 on every axis is written as none: float32's noise at 1 (an exporter's 0.9999998 for 1,
+// Cesium Man's joints), which moves what the node draws by at most that share of its size.
+constexpr double kScaleNoise = 1.0 / (1 << 22);
 // Significant digits of a translation or scale written as text (X3D): what float32 holds.
 constexpr int kPlacementDigits = 9;
 

@@ -59,15 +59,18 @@ Eigen::Vector3d printedTranslation(const Eigen::Vector3d& translation, double pr
         [&](double x) { return std::abs(x) * std::pow(10.0, decimals) < 1e15 ? roundedDecimals(x, decimals) : x; });
 }
 
-// A node's fields: translation (printedTranslation), rotation quaternion to 1e-7 and scale (float32), each left
-// out when it does nothing. Instance nodes are the common case, where their size counts: a rigid or uniformly
-// scaled transform takes about half the bytes of a matrix.
+// A node's fields: translation (printedTranslation), rotation quaternion to 1e-7 and scale (float32; none within
+// kScaleNoise of 1), each left out when it does nothing. Instance nodes are the common case, where their size
+// counts: a rigid or uniformly scaled transform takes about half the bytes of a matrix.
 Json transformFields(const Eigen::Vector3d& translation, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& scale,
                      double translationPrecision) {
     Json out = Json::object();
     Eigen::Quaterniond q(rotation);
     if (q.w() < 0) q.coeffs() *= -1;
-    const Eigen::Vector3d t = printedTranslation(translation, translationPrecision), s = scale.unaryExpr(&asFloat32);
+    const Eigen::Vector3d t = printedTranslation(translation, translationPrecision);
+    const Eigen::Vector3d s = (scale.array() - 1).abs().maxCoeff() <= kScaleNoise
+                                  ? Eigen::Vector3d(Eigen::Vector3d::Ones())
+                                  : Eigen::Vector3d(scale.unaryExpr(&asFloat32));
     const Eigen::Vector4d r = q.coeffs().unaryExpr([](double x) { return roundedDecimals(x, kRotationDecimals); });
     if (!t.isZero(0)) out["translation"] = {t.x(), t.y(), t.z()};
     if (r != Eigen::Vector4d(0, 0, 0, 1)) out["rotation"] = {r.x(), r.y(), r.z(), r.w()};

@@ -217,7 +217,7 @@ void appendTransform(std::string& out, const Eigen::Vector3d& translation, const
         out += "'";
     };
     appendRotation("rotation", rotation);
-    if (!scale.isApprox(Eigen::Vector3d::Ones(), 1e-15)) {
+    if ((scale.array() - 1).abs().maxCoeff() > kScaleNoise) {
         out += " scale='";
         appendVector(out, scale, 3, placement);
         out += "'";
