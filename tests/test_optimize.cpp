@@ -69,6 +69,80 @@ TEST_CASE("Materials equal but for their names are merged into the first (its na
     CHECK(kept.materials.size() == 2);
 }
 
+TEST_CASE(
+    "Primitives joined by base colour: where the measure finds it smaller, colours multiplied into their own, and "
+    "not across materials that differ otherwise, variants, morph targets or lines",
+    "[optimize][join]") {
+    // Triangles in materials 0 to 2 (base colours only apart), 3 (its roughness apart too); material 4 unused.
+    Scene scene = sceneOfMaterials({named("a", 0.2), named("b", 0.4), named("c", 0.6), named("d", 0.8), named("e", 1)},
+                                   {0, 1, 2, 3});
+    scene.materials[3].roughnessFactor = 0.5;
+    // Each primitive's bytes: a header per primitive, and colours at 4 bytes a vertex.
+    auto measure = [](double perColour) {
+        return [perColour](const Primitive& p) {
+            return 400 + 10 * double(p.positions.size() + perColour * p.colors.size());
+        };
+    };
+    SECTION("joined where smaller: the members' materials left unused removed, the input's unused one kept") {
+        scene.meshes[0].primitives[2].colors.assign(3, Eigen::Vector4d(0.5, 1, 1, 0.25));  // multiplied by its base
+        const BaseColorJoins joins = joinByBaseColor(scene, measure(1), 80);
+        CHECK(joins.primitivesJoined == 3);
+        CHECK(joins.joinedPrimitives == 1);
+        CHECK(joins.materialsRemoved == 3);
+        validateScene(scene);
+        REQUIRE(scene.materials.size() == 3);  // d, e, and the joined one
+        CHECK(scene.materials[0].name == "d");
+        CHECK(scene.materials[1].name == "e");
+        CHECK(scene.materials[2].baseColorFactor == Eigen::Vector4d(1, 1, 1, 1));
+        const auto& primitives = scene.meshes[0].primitives;
+        REQUIRE(primitives.size() == 2);
+        const Primitive& joined = primitives[0];  // in its first member's place
+        CHECK(joined.material == 2);
+        CHECK(primitives[1].material == 0);
+        REQUIRE(joined.colors.size() == 9);
+        CHECK(joined.colors[0] == Eigen::Vector4d(0.2, 0.5, 0.5, 1));
+        CHECK(joined.colors[3] == Eigen::Vector4d(0.4, 0.5, 0.5, 1));
+        CHECK(joined.colors[6] == Eigen::Vector4d(0.3, 0.5, 0.5, 0.25));
+        CHECK(joined.colorBits > 0);
+        CHECK(joined.triangles[2] == Triangle{6, 7, 8});
+    }
+    SECTION("not where the measure finds the joined one larger") {
+        const Scene before = scene;
+        CHECK(joinByBaseColor(scene, measure(100), 80).primitivesJoined == 0);
+        CHECK(scene.meshes[0].primitives.size() == 4);
+        CHECK(scene.materials.size() == before.materials.size());
+    }
+    SECTION(
+        "not a material a variant swaps, primitives with morph targets, lines, of one material, or the default "
+        "material") {
+        // Two triangles in materials 0 and 1, which differ only in base colour, each case keeping them apart.
+        auto joinsIn = [&](const std::function<void(Scene&)>& change) {
+            Scene two = sceneOfMaterials({named("a", 0.2), named("b", 0.4)}, {0, 1});
+            change(two);
+            validateScene(two);
+            return joinByBaseColor(two, measure(1), 80).primitivesJoined;
+        };
+        CHECK(joinsIn([](Scene&) {}) == 2);
+        CHECK(joinsIn([](Scene& two) {
+                  two.materials[0].variants = {1};
+                  two.materialVariants = {MaterialVariant{"other", ""}};
+              }) == 0);
+        CHECK(joinsIn([](Scene& two) {
+                  for (Primitive& p : two.meshes[0].primitives)
+                      p.targets.push_back({{"POSITION", 3, std::vector<double>(9, 0.1)}});
+              }) == 0);
+        CHECK(joinsIn([](Scene& two) {
+                  Primitive& lines = two.meshes[0].primitives[1];
+                  lines.topology = Topology::Lines;
+                  lines.triangles.clear();
+                  lines.lines = {{0, 1}};
+              }) == 0);
+        CHECK(joinsIn([](Scene& two) { two.meshes[0].primitives[1].material = 0; }) == 0);  // one material
+        // named() leaves metallic and roughness at 1, as the default material has them.
+        CHECK(joinsIn([](Scene& two) { two.meshes[0].primitives[1].material = -1; }) == 0);
+    }
+}
+
 TEST_CASE("Textures of the same image are merged and different images stay apart", "[optimize]") {
     Scene scene =
         sceneOfMaterials({named("a", 1), named("b", 1), named("c", 1), named("d", 1), named("e", 1)}, {0, 1, 2, 3, 4});
@@ -141,6 +215,7 @@ TEST_CASE(
 
     CompressOptions noDedup;
     noDedup.optimize.dedup = false;
+    noDedup.optimize.joinByBaseColor = false;  // which would draw them as one primitive too
     const CompressionReport apart = compressFile(input, folder / "apart.glb", noDedup);
     CHECK(apart.optimizations.materialsMerged == 0);
     CHECK(readScene(folder / "apart.glb").materials.size() == 2);

@@ -82,6 +82,7 @@ struct CompressionStats {
     std::size_t animatedNodesKept = 0;     // nodes of animated subtrees, kept with their animations
     std::size_t camerasAndLightsKept = 0;  // other nodes with a camera or a light, kept at their world placement
     std::size_t lineSegmentsKept = 0, pointsKept = 0;  // stored as they are (Topology::Lines, Points)
+    BaseColorJoins baseColorJoins;                     // PlanOptions::joinByBaseColor
     double maxDeviation = 0;               // of the placements used, relative to the diagonal
     double secondsTiles = 0, secondsClasses = 0, secondsPlan = 0;
 };

@@ -3,6 +3,7 @@
 
 #include "symcompress/scene.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -99,6 +100,11 @@ std::vector<std::string> formatLosses(const Scene& scene, const std::filesystem:
 // within its error bound (Primitive::maxPositionError, else options.maxPositionError; Draco's quantization
 // simulated), else options.positionBits.
 int positionBitsFor(const Primitive& primitive, const WriteOptions& options);
+
+// COLOR_0's quantization bits: options.colorBits, or the primitive's own (Primitive::colorBits) where more.
+inline int colorBitsFor(const Primitive& primitive, const WriteOptions& options) {
+    return std::max(primitive.colorBits, options.colorBits);
+}
 
 // How far quantization may move a corner of `primitive` (a distance in its frame): its error bound
 // (Primitive::maxPositionError, else options.maxPositionError) and options.maxRelativePositionError of its own

@@ -5,6 +5,7 @@
 
 #include "symcompress/scene.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct OptimizeOptions {
     // Animation keys that interpolation gives back within the budget (compressFile, which has the budget:
     // dropRedundantKeys).
     bool dropKeys = true;
+    // Primitives of one mesh in materials that differ only in base colour drawn as one, the colour per vertex
+    // (compressFile, once the plan has made its meshes, for glTF with Draco: joinByBaseColor).
+    bool joinByBaseColor = true;
 };
 
 // What the optimizations removed or merged, counted.
@@ -30,6 +34,8 @@ struct OptimizeReport {
     std::size_t stillChannelsRemoved = 0;  // animation channels that hold their node where it rests
     std::size_t animationKeysDropped = 0;  // keys that interpolation gives back (dropRedundantKeys)
     std::size_t animationChannelsRemoved = 0;  // channels near their node's rest, within the budget (the same)
+    // Primitives joined by their base colour and the primitives they became (joinByBaseColor, on the plan kept).
+    std::size_t primitivesJoinedByColor = 0, joinedPrimitives = 0;
     // One line for each optimization that did something, for the warnings a user reads.
     std::vector<std::string> lines() const;
 };
@@ -81,5 +87,24 @@ struct RedundantKeys {
 // removeStillChannels removes those that hold it exactly, where no other animation keys the node's path and the
 // animation keeps its length. Nothing where the poses are too many to measure.
 RedundantKeys dropRedundantKeys(Scene& scene, double allowed);
+
+// What joinByBaseColor joined: primitives, the primitives they became, and the materials left unused and removed.
+struct BaseColorJoins {
+    std::size_t primitivesJoined = 0, joinedPrimitives = 0, materialsRemoved = 0;
+};
+// Primitives of one mesh whose materials differ in nothing glTF writes but the red, green and blue of their base
+// colour drawn as one primitive: each vertex carries its material's colour in COLOR_0 (multiplied into its own
+// colours), which glTF multiplies into the base colour, under one material of base colour white (nameless; X3D's
+// Phong fields dropped: for glTF output only). Triangles without morph targets, in materials no variant swaps, with
+// the same attributes otherwise; joined where `bytes` (the writer's measure of a primitive) says the joined one,
+// and `materialBytes` for a new material, is smaller than its members apart. Each joined primitive asks for the
+// COLOR_0 bits (Primitive::colorBits) that keep its colours within a 32nd of an 8-bit step of sRGB output, and keeps
+// the least position error bound of its members. The materials it leaves unused are removed.
+// For each material, the first it may be joined with by base colour (joinByBaseColor): equal in everything glTF
+// writes but the red, green and blue of its base colour (and its name, and X3D's Phong fields); itself where none is
+// earlier, or where a material variant swaps it for another.
+std::vector<int> baseColorJoinGroups(const std::vector<Material>& materials);
+BaseColorJoins joinByBaseColor(Scene& scene, const std::function<double(const Primitive&)>& bytes,
+                               double materialBytes);
 
 }  // namespace symcompress

@@ -227,6 +227,9 @@ struct Primitive {
     // of, where not the primitive's own box's: a part stored turned from the world keeps the larger of its
     // world box's and its own, so that a frame never tightens the bound.
     double closeUpDiagonal = 0;
+    // The fewest COLOR_0 quantization bits, where more than the writer's (WriteOptions::colorBits): materials' base
+    // colours moved into COLOR_0 (joinByBaseColor) keep their precision where 8 bits would lighten a dark one.
+    int colorBits = 0;
 
     bool drawsNothing() const {
         return topology == Topology::Triangles ? triangles.empty()

@@ -117,6 +117,10 @@ std::optional<ZeroAreaTriangles> zeroAreaTrianglesOf(const Primitive& primitive)
 // The primitive without them (its vertices that only they used left out too), and them; nothing where it has none.
 std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(const Primitive& primitive);
 
+// `part`'s vertices and triangles appended to `into` (its material taken), which carries the same attributes or
+// nothing yet.
+void appendPrimitive(Primitive& into, const Primitive& part);
+
 // The names and sizes of the primitive's other attributes (Primitive::attributes), as one key ("TANGENT:4;"):
 // primitives or tiles with different keys are never merged into one.
 std::string attributeSignature(const Primitive& primitive);
@@ -170,6 +174,10 @@ void copyFileMetadata(const Scene& from, Scene& to);
 
 // Every material's variant tables renumbered: material m becomes newIndex[m].
 void renumberVariantMaterials(Scene& scene, const std::vector<int>& newIndex);
+
+// The materials not marked in `keep` removed, every primitive's and variant table's index renumbered (a primitive
+// of a removed material draws the default one). Returns how many.
+std::size_t removeMaterials(Scene& scene, const std::vector<bool>& keep);
 
 // Every material's texture uses renumbered: texture t becomes newIndex[t] (-1: the use is dropped).
 void renumberTextures(Scene& scene, const std::vector<int>& newIndex);

@@ -195,8 +195,9 @@ std::optional<DracoPart> encodeDracoPrimitive(const Primitive& primitive, const 
         } else {
             encoder.SetAttributeQuantization(ids.position, bits);
         }
-        const std::pair<int, int> quantized[] = {
-            {ids.normal, options.normalBits}, {ids.texcoord, options.texcoordBits}, {ids.color, options.colorBits}};
+        const std::pair<int, int> quantized[] = {{ids.normal, options.normalBits},
+                                                 {ids.texcoord, options.texcoordBits},
+                                                 {ids.color, colorBitsFor(primitive, options)}};
         for (const auto& [id, attributeBits] : quantized)
             if (id >= 0) encoder.SetAttributeQuantization(id, attributeBits);
         if (texcoordGrid) {

@@ -165,12 +165,12 @@ double span(const std::vector<float>& values) {
 // What Draco's quantization allows attribute `name` (values `ownValues`, the primitive's own: a displacement's
 // allowance comes from the values it displaces), and whether it is measured as a vector (Euclidean); 0: none.
 std::pair<double, bool> allowance(const std::string& name, const std::vector<float>& ownValues,
-                                  const WriteOptions& options) {
+                                  const Primitive& primitive, const WriteOptions& options) {
     auto startsWith = [&](const char* prefix) { return name.rfind(prefix, 0) == 0; };
     // Draco's octahedral normals at normalBits are within about 2^-normalBits of a unit vector as read.
     if (name == "NORMAL" || name == "TANGENT") return {std::ldexp(1.0, -options.normalBits), true};
     if (startsWith("TEXCOORD_")) return {halfStep(span(ownValues), options.texcoordBits), false};
-    if (startsWith("COLOR_")) return {halfStep(span(ownValues), options.colorBits), false};
+    if (startsWith("COLOR_")) return {halfStep(span(ownValues), colorBitsFor(primitive, options)), false};
     if (startsWith("WEIGHTS_")) return {halfStep(span(ownValues), options.weightBits), false};
     return {0, false};
 }
@@ -203,7 +203,7 @@ RoundedVertices roundedPlainVertices(const Primitive& primitive, const WriteOpti
         own.erase("POSITION");
     }
     for (const auto& [name, values] : own) {
-        auto [allowed, euclidean] = allowance(name, values.first, options);
+        auto [allowed, euclidean] = allowance(name, values.first, primitive, options);
         if (name == "POSITION") allowed = positionBound, euclidean = true;
         // A TANGENT's w (its handedness, +-1) is kept exactly at any bits: the largest component sets the exponent.
         // Half of it where morph targets' displacements take the other half.
@@ -227,7 +227,7 @@ RoundedVertices roundedPlainVertices(const Primitive& primitive, const WriteOpti
         for (const VertexAttribute& displacement : primitive.targets[t]) {
             const auto found = own.find(displacement.name);
             if (found == own.end()) continue;  // a TANGENT's displacements have no w: its allowance holds all the same
-            auto [allowed, euclidean] = allowance(displacement.name, found->second.first, options);
+            auto [allowed, euclidean] = allowance(displacement.name, found->second.first, primitive, options);
             if (displacement.name == "POSITION") allowed = positionBound, euclidean = true;
             const std::vector<float> values(displacement.values.begin(), displacement.values.end());
             if (auto rounded = roundedWithin(values, displacement.components, allowed * displacementShare, euclidean))

@@ -78,6 +78,7 @@ PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOption
     }
     f.number(primitive.maxPositionError);
     f.number(primitive.closeUpDiagonal);
+    f.word(std::uint64_t(std::int64_t(primitive.colorBits)));
     // The options encodePrimitive reads (positionBitsFor, dracoSpeedsWorthTrying, positionBitsWorthTrying).
     f.word(options.draco);
     f.word(options.encodingTrials);

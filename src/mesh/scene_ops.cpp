@@ -180,6 +180,21 @@ std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(
     return split;
 }
 
+void appendPrimitive(Primitive& into, const Primitive& part) {
+    const auto offset = static_cast<std::uint32_t>(into.positions.size());
+    into.material = part.material;
+    into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
+    into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
+    into.texcoords.insert(into.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
+    into.colors.insert(into.colors.end(), part.colors.begin(), part.colors.end());
+    if (into.attributes.empty())
+        for (const VertexAttribute& attribute : part.attributes) into.attributes.push_back(attribute.withoutValues());
+    for (std::size_t a = 0; a < part.attributes.size(); ++a)
+        into.attributes[a].values.insert(into.attributes[a].values.end(), part.attributes[a].values.begin(),
+                                         part.attributes[a].values.end());
+    for (const Triangle& t : part.triangles) into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
 std::string attributeSignature(const Primitive& primitive) {
     std::string signature;
     for (const VertexAttribute& attribute : primitive.attributes)
@@ -363,6 +378,23 @@ void renumberVariantMaterials(Scene& scene, const std::vector<int>& newIndex) {
     for (Material& material : scene.materials)
         for (int& v : material.variants)
             if (v >= 0) v = newIndex[std::size_t(v)];
+}
+
+std::size_t removeMaterials(Scene& scene, const std::vector<bool>& keep) {
+    std::vector<int> newIndex(scene.materials.size(), -1);
+    std::vector<Material> kept;
+    for (std::size_t m = 0; m < scene.materials.size(); ++m)
+        if (keep[m]) {
+            newIndex[m] = int(kept.size());
+            kept.push_back(std::move(scene.materials[m]));
+        }
+    const std::size_t removed = scene.materials.size() - kept.size();
+    scene.materials = std::move(kept);
+    renumberVariantMaterials(scene, newIndex);
+    for (Mesh& mesh : scene.meshes)
+        for (Primitive& primitive : mesh.primitives)
+            if (primitive.material >= 0) primitive.material = newIndex[std::size_t(primitive.material)];
+    return removed;
 }
 
 void renumberTextures(Scene& scene, const std::vector<int>& newIndex) {

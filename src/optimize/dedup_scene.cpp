@@ -91,6 +91,10 @@ std::vector<std::string> OptimizeReport::lines() const {
     say(animationChannelsRemoved,
         "animation channels removed: their node stays within the budget of where it rests without them "
         "(--keep-animation-keys keeps them)");
+    if (primitivesJoinedByColor)
+        out.push_back(std::to_string(primitivesJoinedByColor) +
+                      " primitives in materials that differ only in base colour drawn as " +
+                      std::to_string(joinedPrimitives) + ", the colour per vertex (--no-color-join keeps them apart)");
     return out;
 }
 

@@ -170,12 +170,7 @@ std::pair<std::size_t, std::size_t> pruneUnused(Scene& scene) {
         for (const Primitive& primitive : mesh.primitives)
             for (const Material* material : materialsDrawnWith(scene, primitive.material))
                 materialUsed[std::size_t(material - scene.materials.data())] = true;
-    const std::size_t materials = scene.materials.size();
-    const std::vector<int> newMaterial = keepUsed(scene.materials, materialUsed);
-    renumberVariantMaterials(scene, newMaterial);
-    for (Mesh& mesh : scene.meshes)
-        for (Primitive& primitive : mesh.primitives)
-            if (primitive.material >= 0) primitive.material = newMaterial[std::size_t(primitive.material)];
+    const std::size_t materials = removeMaterials(scene, materialUsed);
 
     std::vector<bool> textureUsed(scene.textures.size(), false);
     for (const Material& material : scene.materials)
@@ -183,7 +178,7 @@ std::pair<std::size_t, std::size_t> pruneUnused(Scene& scene) {
             if (use->texture >= 0) textureUsed[std::size_t(use->texture)] = true;
     const std::size_t textures = scene.textures.size();
     renumberTextures(scene, keepUsed(scene.textures, textureUsed));
-    return {materials - scene.materials.size(), textures - scene.textures.size()};
+    return {materials, textures - scene.textures.size()};
 }
 
 }  // namespace symcompress

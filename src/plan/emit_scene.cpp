@@ -18,6 +18,10 @@
 namespace symcompress {
 namespace {
 
+// What a joined material adds to a glTF file ({"pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.5}}
+// and the like), for the join to weigh (joinByBaseColor).
+constexpr double kMaterialBytes = 80;
+
 // A root node drawing `mesh`, with the name and extras of the input node `source` stands for (if any).
 int addRootNode(Scene& out, int mesh, const Eigen::Matrix4d& transform, const Node* source) {
     Node node;
@@ -170,7 +174,8 @@ void shareErrorBudget(Scene& out, double budget, double instanceShare, const std
 
 }  // namespace
 
-CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, const CompressionPlan& plan) {
+CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, const CompressionPlan& plan,
+                          const StorageCostModel& costs) {
     CompressedScene result;
     CompressionStats& stats = result.stats;
     result.digest = analysis.digest;
@@ -298,6 +303,11 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     if (plan.maxError > 0)
         shareErrorBudget(out, plan.maxError * analysis.diagonal, plan.instanceShare * analysis.diagonal, deviation,
                          variantsOf);
+    // After the budget's shares: a joined primitive keeps the least of its members'. (A family's meshes have one
+    // primitive each: its geometry stays shared.)
+    if (plan.joinByBaseColor)
+        stats.baseColorJoins =
+            joinByBaseColor(out, costs.quickMeshBytes ? costs.quickMeshBytes : costs.meshBytes, kMaterialBytes);
     countStoredTriangles(out, variantsOf, stats);
     for (const Mesh& mesh : out.meshes)
         for (const Primitive& primitive : mesh.primitives) {

@@ -35,17 +35,20 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
     CompressionPlan plan;
     plan.maxError = options.maxError;
     plan.instanceShare = options.instanceShare;
+    plan.joinByBaseColor = options.joinByBaseColor;
+    const std::vector<int> joinGroups =
+        options.joinByBaseColor ? baseColorJoinGroups(input.materials) : std::vector<int>();
     if (!options.instancing || !analysis.options.classify) {
         // Every copy as it is, as Draco alone stores it, the author's shared meshes too: their sharing may
         // cost more than it saves (hundreds of small scaled copies), and this plan stores nothing shared.
         plan.shareInputInstances = false;
         for (std::size_t t = 0; t < analysis.tiles.size(); ++t) plan.tilesAsTheyAre.push_back(t);
-        StorageCosts costs(analysis, options.costs);
+        StorageCosts costs(analysis, options.costs, joinGroups);
         withThreads(analysis.options.threads, [&] { planSourceFrames(input, analysis, costs, plan); });
         return plan;
     }
     if (options.progress) options.progress("planning", analysis.classification.classes.size(), "classes");
-    StorageCosts costs(analysis, options.costs);
+    StorageCosts costs(analysis, options.costs, joinGroups);
     const PlanContext context{input, analysis, options, costs};
     std::vector<bool> drawn(analysis.tiles.size(), false);  // by the scene's symmetry or a repeated assembly
     CompressionPlan classes = withThreads(analysis.options.threads, [&] {
@@ -93,7 +96,7 @@ CompressedScene compressAnalyzed(const Scene& input, const SceneAnalysis& analys
                                  CompressionPlan* decisions) {
     const auto start = std::chrono::steady_clock::now();
     CompressionPlan plan = planCompression(input, analysis, options);
-    CompressedScene result = emitScene(input, analysis, plan);
+    CompressedScene result = emitScene(input, analysis, plan, options.costs);
     result.stats.secondsPlan = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (decisions) *decisions = std::move(plan);
     return result;

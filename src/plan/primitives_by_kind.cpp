@@ -24,7 +24,7 @@ Primitive withFaceNormals(const Primitive& part) {
             (corner.positions[1] - corner.positions[0]).cross(corner.positions[2] - corner.positions[0]);
         // A triangle without area draws nothing; its normal need only be a unit vector.
         corner.normals.assign(3, cross.norm() > 0 ? Eigen::Vector3d(cross.normalized()) : Eigen::Vector3d::UnitZ());
-        PrimitivesByKind::append(split, corner);
+        appendPrimitive(split, corner);
     }
     return split;
 }
@@ -32,24 +32,9 @@ Primitive withFaceNormals(const Primitive& part) {
 }  // namespace
 
 void PrimitivesByKind::add(const Primitive& part) {
-    append(parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty(),
-                   attributeSignature(part)}],
-           part);
-}
-
-void PrimitivesByKind::append(Primitive& into, const Primitive& part) {
-    const auto offset = static_cast<std::uint32_t>(into.positions.size());
-    into.material = part.material;
-    into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
-    into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
-    into.texcoords.insert(into.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
-    into.colors.insert(into.colors.end(), part.colors.begin(), part.colors.end());
-    if (into.attributes.empty())
-        for (const VertexAttribute& attribute : part.attributes) into.attributes.push_back(attribute.withoutValues());
-    for (std::size_t a = 0; a < part.attributes.size(); ++a)
-        into.attributes[a].values.insert(into.attributes[a].values.end(), part.attributes[a].values.begin(),
-                                         part.attributes[a].values.end());
-    for (const Triangle& t : part.triangles) into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    appendPrimitive(parts_[{part.material, !part.normals.empty(), !part.texcoords.empty(), !part.colors.empty(),
+                            attributeSignature(part)}],
+                    part);
 }
 
 void PrimitivesByKind::moveInto(Mesh& mesh) {
@@ -64,7 +49,7 @@ void PrimitivesByKind::moveInto(Mesh& mesh) {
             ++part;
             continue;
         }
-        append(smooth->second, withFaceNormals(part->second));
+        appendPrimitive(smooth->second, withFaceNormals(part->second));
         part = parts_.erase(part);
     }
     for (auto& [kind, primitive] : parts_) mesh.primitives.push_back(std::move(primitive));

@@ -13,8 +13,6 @@ namespace symcompress {
 class PrimitivesByKind {
 public:
     void add(const Primitive& part);
-    // `part` appended to `into`, which carries the same attributes.
-    static void append(Primitive& into, const Primitive& part);
     bool empty() const { return parts_.empty(); }
     // One primitive per kind, in the order of (material, normals, texture coordinates, colours); a small part
     // without normals joins the part with normals of its material, each corner given its triangle's normal.

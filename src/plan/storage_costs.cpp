@@ -7,7 +7,8 @@
 
 namespace symcompress {
 
-StorageCosts::StorageCosts(const SceneAnalysis& analysis, const StorageCostModel& model)
+StorageCosts::StorageCosts(const SceneAnalysis& analysis, const StorageCostModel& model,
+                           const std::vector<int>& joinGroups)
     : analysis_(analysis), model_(model), classOf_(analysis.tiles.size(), kNone), memberOf_(analysis.tiles.size(), 0) {
     const auto& classes = analysis.classification.classes;
     for (std::size_t k = 0; k < classes.size(); ++k)
@@ -22,9 +23,10 @@ StorageCosts::StorageCosts(const SceneAnalysis& analysis, const StorageCostModel
     for (std::size_t t = 0; t < analysis.tiles.size(); ++t) {
         const std::uint32_t source = analysis.tiles[t].sources.front().primitive;
         auto [at, added] = ofSource.try_emplace(source, 0);
-        if (added)
-            at->second =
-                primitives.try_emplace({analysis.tiles[t].material, attributesOf(t)}, primitives.size()).first->second;
+        const int material = analysis.tiles[t].material;
+        const int drawnWith =
+            material >= 0 && std::size_t(material) < joinGroups.size() ? joinGroups[std::size_t(material)] : material;
+        if (added) at->second = primitives.try_emplace({drawnWith, attributesOf(t)}, primitives.size()).first->second;
         primitiveOf_.push_back(at->second);
     }
     primitiveCount_ = primitives.size();
@@ -146,7 +148,7 @@ const StorageCosts::KindCosts& StorageCosts::kindOf(std::size_t t) {
     for (std::size_t i = 0; i < same.size(); i += step) {
         Primitive part = tilePrimitive(analysis_.tiles[same[i]], analysis_.soup);
         part.material = -1;
-        PrimitivesByKind::append(sample, part);
+        appendPrimitive(sample, part);
     }
     const Primitive one = triangleOf(sample, 0);
     KindCosts costs;

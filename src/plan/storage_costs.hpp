@@ -19,7 +19,9 @@ namespace symcompress {
 
 class StorageCosts {
 public:
-    StorageCosts(const SceneAnalysis& analysis, const StorageCostModel& model);
+    // `joinGroups`: for each material, the one whose primitive its tiles stored as they are join (the writer's
+    // joinByBaseColor: baseColorJoinGroups); empty: each its own.
+    StorageCosts(const SceneAnalysis& analysis, const StorageCostModel& model, const std::vector<int>& joinGroups = {});
 
     double asMesh(const Primitive& part) const;
     // asMesh without the writer's trials of settings (StorageCostModel::quickMeshBytes).

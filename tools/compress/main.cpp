@@ -450,6 +450,10 @@ int main(int argc, char** argv) {
         "(dropped by default within the budget)");
     compress->add_flag("--no-dedup", [&](std::int64_t) { compressRequest.options.optimize.dedup = false; },
                        "keep materials equal but for their names, and textures of the same image, apart");
+    compress->add_flag(
+        "--no-color-join", [&](std::int64_t) { compressRequest.options.optimize.joinByBaseColor = false; },
+        "glTF: keep primitives of one mesh in materials that differ only in base colour apart (joined by default, "
+        "each vertex given its colour, where that is smaller)");
     compress->add_flag("--drop-unused-texcoords", compressRequest.options.optimize.pruneAttributes,
                        "the default now (texture coordinates no texture reads are dropped); kept for scripts");
     compress->add_option("--report", compressRequest.report, "also write the size report as JSON");

@@ -125,6 +125,10 @@ struct PlanOptions {
     // (WriteOptions::instanceRotationDeviation, instanceTranslationDeviation): taken only from the meshes that
     // several nodes draw, the ones a batch can hold.
     double instanceShare = 0;
+    // Primitives of one mesh in materials that differ only in base colour joined, each vertex given its colour,
+    // where costs' quick measure finds it smaller (joinByBaseColor; glTF with Draco, which codes a colour that
+    // holds over a part in a few bytes).
+    bool joinByBaseColor = false;
     StorageCostModel costs;
     ProgressCallback progress;
     // A plan made from the same analysis with the same costs (and assemblies on): its scene symmetry and
@@ -182,6 +186,7 @@ struct CompressionPlan {
     std::string sceneGroup = "C1";
     double maxError = 0;               // PlanOptions::maxError
     double instanceShare = 0;          // PlanOptions::instanceShare
+    bool joinByBaseColor = false;      // PlanOptions::joinByBaseColor
 };
 
 // The three planners in turn: the scene's own symmetry, repeated assemblies, then every class.
@@ -198,8 +203,10 @@ struct CompressedScene {
 // subtrees (kept as they are under a node holding their parent's world transform) and cameras and lights
 // (on nodes of their own at their world placement), the output is one level of nodes: an instance node
 // takes the name of the input node its tile came from; tiles stored as they are share one mesh per
-// material, and the names of their nodes are reported as not kept (scene.warnings).
-CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, const CompressionPlan& plan);
+// material, and the names of their nodes are reported as not kept (scene.warnings). Where the plan asks, primitives
+// are then joined by base colour, weighed by `costs`.
+CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, const CompressionPlan& plan,
+                          const StorageCostModel& costs);
 
 // planCompression, then emitScene, timed (stats.secondsPlan); the plan is moved into `decisions` when given
 // (the HTML report draws it).

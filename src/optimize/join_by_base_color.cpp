@@ -1,0 +1,181 @@
+// Joining by base colour: primitives of one mesh whose materials differ in nothing a glTF viewer draws but the
+// red, green and blue of their base colour drawn as one primitive, under one material of base colour white, each
+// vertex carrying its material's colour in COLOR_0, which glTF multiplies into the base colour (docs/optimizations.md).
+#include "common/color_space.hpp"
+#include "geometry/bounds.hpp"
+#include "symcompress/optimize.hpp"
+#include "symcompress/scene_ops.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <tuple>
+
+namespace symcompress {
+namespace {
+
+// How far, in steps of an 8-bit sRGB output, the quantization of a joined colour may move it: a 32nd of a
+// step leaves the viewer's pixels as they were (but where a value lies that close to a rounding boundary).
+constexpr double kColorStepShare = 1.0 / 32;
+constexpr int kMostColorBits = 16;
+
+// The material a joined primitive is drawn with: `material`'s base colour with red, green and blue white (its
+// alpha is every member's), without a name (it stands for several) or X3D's Phong fields, which glTF does not write.
+Material joinedMaterial(Material material) {
+    material.baseColorFactor.head<3>().setOnes();
+    material.name.clear();
+    material.phong.reset();
+    return material;
+}
+
+// Whether a primitive may be joined: triangles without morph targets (their targets would have to agree) or a
+// grid of its own (a fundamental region's seams), in a material of the scene's.
+bool joinable(const Primitive& primitive) {
+    return primitive.topology == Topology::Triangles && primitive.targets.empty() && !primitive.positionGrid &&
+           primitive.material >= 0;
+}
+
+// The fewest COLOR_0 bits, up to kMostColorBits, at which Draco's quantization of `colors` (each component from
+// its least value, one step for all: its AttributeQuantizationTransform) moves no red, green or blue, encoded to
+// sRGB as the viewer's output is, farther than kColorStepShare of an 8-bit step.
+int colorBitsKeeping(const std::vector<Eigen::Vector4d>& colors) {
+    std::set<std::array<double, 4>> distinct;
+    for (const Eigen::Vector4d& color : colors) distinct.insert({color[0], color[1], color[2], color[3]});
+    Eigen::Vector4d least = Eigen::Vector4d::Constant(HUGE_VAL), most = -least;
+    for (const auto& color : distinct)
+        least = least.cwiseMin(Eigen::Vector4d(color.data())), most = most.cwiseMax(Eigen::Vector4d(color.data()));
+    const double range = (most - least).maxCoeff();
+    if (!(range > 0)) return 1;
+    for (int bits = 1; bits < kMostColorBits; ++bits) {
+        const double step = range / double((1 << bits) - 1);
+        const bool keeps = std::all_of(distinct.begin(), distinct.end(), [&](const std::array<double, 4>& color) {
+            for (int c = 0; c < 3; ++c) {
+                const double rounded = least[c] + std::round((color[c] - least[c]) / step) * step;
+                if (std::abs(linearToSrgb(rounded) - linearToSrgb(color[c])) * 255 > kColorStepShare) return false;
+            }
+            return true;
+        });
+        if (keeps) return bits;
+    }
+    return kMostColorBits;
+}
+
+// `primitive` with its material's base colour in COLOR_0 (multiplied into the colours it has).
+Primitive withBaseColorPerVertex(Primitive primitive, const Material& material) {
+    const Eigen::Vector3d base = material.baseColorFactor.head<3>();
+    if (primitive.colors.empty()) primitive.colors.assign(primitive.positions.size(), Eigen::Vector4d(1, 1, 1, 1));
+    for (Eigen::Vector4d& color : primitive.colors) color.head<3>() = color.head<3>().cwiseProduct(base);
+    return primitive;
+}
+
+}  // namespace
+
+std::vector<int> baseColorJoinGroups(const std::vector<Material>& materials) {
+    // Compared only within the same textures and other factors, so that thousands of materials cost a sort.
+    using Key = std::tuple<int, int, int, double, double, double, int, bool>;
+    std::map<Key, std::vector<int>> byKey;
+    std::vector<int> group(materials.size());
+    for (std::size_t m = 0; m < materials.size(); ++m) {
+        group[m] = int(m);
+        const Material& material = materials[m];
+        if (!material.variants.empty()) continue;
+        const Material joined = joinedMaterial(material);
+        std::vector<int>& candidates =
+            byKey[{material.baseColorTexture.texture, material.metallicRoughnessTexture.texture,
+                   material.normalTexture.texture, material.metallicFactor, material.roughnessFactor,
+                   material.baseColorFactor.w(), int(material.alphaMode), material.doubleSided}];
+        for (int c : candidates)
+            if (joinedMaterial(materials[std::size_t(c)]) == joined) {
+                group[m] = c;
+                break;
+            }
+        if (group[m] == int(m)) candidates.push_back(int(m));
+    }
+    return group;
+}
+
+BaseColorJoins joinByBaseColor(Scene& scene, const std::function<double(const Primitive&)>& bytes,
+                               double materialBytes) {
+    BaseColorJoins joins;
+    std::vector<char> usedBefore(scene.materials.size(), 0);
+    for (const Mesh& mesh : scene.meshes)
+        for (const Primitive& primitive : mesh.primitives)
+            if (primitive.material >= 0) usedBefore[std::size_t(primitive.material)] = 1;
+    const std::vector<int> group = baseColorJoinGroups(scene.materials);
+    std::map<int, int> made;  // a group's joined material, by the group's first material
+    for (Mesh& mesh : scene.meshes) {
+        // The mesh's joinable primitives by their materials' group and the attributes they carry but colours,
+        // which each gets.
+        std::map<std::tuple<int, bool, bool, std::string>, std::vector<std::size_t>> byKind;
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const Primitive& primitive = mesh.primitives[p];
+            // (A material made by an earlier join is not in a group: its primitive is joined already.)
+            if (!joinable(primitive) || std::size_t(primitive.material) >= group.size()) continue;
+            byKind[{group[std::size_t(primitive.material)], !primitive.normals.empty(), !primitive.texcoords.empty(),
+                    attributeSignature(primitive)}]
+                .push_back(p);
+        }
+        // Each joined primitive takes its first member's place (the order a viewer draws them in); the others go.
+        std::vector<std::optional<Primitive>> joinedAt(mesh.primitives.size());
+        std::vector<char> joinedAway(mesh.primitives.size(), 0);
+        for (const auto& [kind, members] : byKind) {
+            // Primitives of one material would take a colour each for nothing: a join of several materials only.
+            const int first = mesh.primitives[members.front()].material;
+            if (std::all_of(members.begin(), members.end(),
+                            [&](std::size_t p) { return mesh.primitives[p].material == first; }))
+                continue;
+            Primitive joined;
+            // Every member's bounds hold: the least error bound, and the close-up bound of the smallest member
+            // (WriteOptions::maxRelativePositionError; the joined box's would loosen it for the small ones).
+            double apart = 0, maxPositionError = HUGE_VAL, closeUpDiagonal = HUGE_VAL;
+            for (std::size_t p : members) {
+                const Primitive& member = mesh.primitives[p];
+                apart += bytes(member);
+                if (member.maxPositionError > 0) maxPositionError = std::min(maxPositionError, member.maxPositionError);
+                closeUpDiagonal =
+                    std::min(closeUpDiagonal, member.closeUpDiagonal > 0 ? member.closeUpDiagonal
+                                                                         : boundsOf(member.positions).diagonal().norm());
+                Primitive colored = withBaseColorPerVertex(member, scene.materials[std::size_t(member.material)]);
+                if (joined.positions.empty())
+                    joined = std::move(colored);
+                else
+                    appendPrimitive(joined, colored);
+            }
+            const auto madeAlready = made.find(std::get<0>(kind));
+            joined.material = madeAlready != made.end() ? madeAlready->second : int(scene.materials.size());
+            joined.colorBits = colorBitsKeeping(joined.colors);
+            joined.maxPositionError = std::isfinite(maxPositionError) ? maxPositionError : 0;  // 0: the writer's
+            joined.closeUpDiagonal = closeUpDiagonal;
+            if (bytes(joined) + (madeAlready != made.end() ? 0 : materialBytes) >= apart) continue;
+            if (madeAlready == made.end()) {
+                made[std::get<0>(kind)] = joined.material;
+                scene.materials.push_back(joinedMaterial(scene.materials[std::size_t(std::get<0>(kind))]));
+            }
+            for (std::size_t p : members) joinedAway[p] = 1;
+            joins.primitivesJoined += members.size();
+            ++joins.joinedPrimitives;
+            joinedAt[members.front()] = std::move(joined);
+        }
+        std::vector<Primitive> kept;
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+            if (joinedAt[p])
+                kept.push_back(std::move(*joinedAt[p]));
+            else if (!joinedAway[p])
+                kept.push_back(std::move(mesh.primitives[p]));
+        mesh.primitives = std::move(kept);
+    }
+    // The materials the joins left unused go; the input's own unused ones stay for pruning to decide.
+    std::vector<bool> keep(scene.materials.size(), true);
+    for (std::size_t m = 0; m < usedBefore.size(); ++m) keep[m] = !usedBefore[m];
+    for (const Mesh& mesh : scene.meshes)
+        for (const Primitive& primitive : mesh.primitives)
+            for (const Material* material : materialsDrawnWith(scene, primitive.material))
+                keep[std::size_t(material - scene.materials.data())] = true;
+    joins.materialsRemoved = removeMaterials(scene, keep);
+    return joins;
+}
+
+}  // namespace symcompress
