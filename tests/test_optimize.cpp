@@ -113,8 +113,8 @@ TEST_CASE(
         CHECK(scene.materials.size() == before.materials.size());
     }
     SECTION(
-        "not a material a variant swaps, primitives with morph targets, lines, of one material, or the default "
-        "material") {
+        "not a material a variant swaps, primitives with morph targets, lines, of one material, specular-glossiness "
+        "or the default material") {
         // Two triangles in materials 0 and 1, which differ only in base colour, each case keeping them apart.
         auto joinsIn = [&](const std::function<void(Scene&)>& change) {
             Scene two = sceneOfMaterials({named("a", 0.2), named("b", 0.4)}, {0, 1});
@@ -138,6 +138,10 @@ TEST_CASE(
                   lines.lines = {{0, 1}};
               }) == 0);
         CHECK(joinsIn([](Scene& two) { two.meshes[0].primitives[1].material = 0; }) == 0);  // one material
+        CHECK(joinsIn([](Scene& two) {
+                  for (Material& m : two.materials)
+                      m.extensions.push_back({"KHR_materials_pbrSpecularGlossiness", R"({"diffuseFactor":[1,0,0,1]})"});
+              }) == 0);
         // named() leaves metallic and roughness at 1, as the default material has them.
         CHECK(joinsIn([](Scene& two) { two.meshes[0].primitives[1].material = -1; }) == 0);
     }

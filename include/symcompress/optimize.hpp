@@ -98,11 +98,12 @@ struct BaseColorJoins {
 // Phong fields dropped: for glTF output only). Triangles without morph targets, in materials no variant swaps, with
 // the same attributes otherwise; joined where `bytes` (the writer's measure of a primitive) says the joined one,
 // and `materialBytes` for a new material, is smaller than its members apart. Each joined primitive asks for the
-// COLOR_0 bits (Primitive::colorBits) that keep its colours within a 32nd of an 8-bit step of sRGB output, and keeps
-// the least position error bound of its members. The materials it leaves unused are removed.
-// For each material, the first it may be joined with by base colour (joinByBaseColor): equal in everything glTF
-// writes but the red, green and blue of its base colour (and its name, and X3D's Phong fields); itself where none is
-// earlier, or where a material variant swaps it for another.
+// COLOR_0 bits (Primitive::colorBits) that keep its colours within a quarter of an 8-bit step of sRGB output, and keeps
+// the least position error bound of its members (its close-up bound is its own box's). The materials it leaves unused
+// are removed. For each material, the first it may be joined with by base colour (joinByBaseColor): equal in everything
+// glTF writes but the red, green and blue of its base colour (and its name, and X3D's Phong fields); itself where none
+// is earlier, or where a material variant swaps it for another or it is specular-glossiness (whose diffuse factor, not
+// the base colour, COLOR_0 multiplies).
 std::vector<int> baseColorJoinGroups(const std::vector<Material>& materials);
 BaseColorJoins joinByBaseColor(Scene& scene, const std::function<double(const Primitive&)>& bytes,
                                double materialBytes);
