@@ -106,6 +106,16 @@ TEST_CASE(
         CHECK(joined.colorBits > 0);
         CHECK(joined.triangles[2] == Triangle{6, 7, 8});
     }
+    SECTION(
+        "a part far smaller than the others is joined only with parts of its size: it would hold them to its "
+        "precision") {
+        for (Eigen::Vector3d& p : scene.meshes[0].primitives[2].positions) p *= 0.05;
+        const BaseColorJoins joins = joinByBaseColor(scene, measure(1), 80);
+        CHECK(joins.primitivesJoined == 2);
+        REQUIRE(scene.meshes[0].primitives.size() == 3);
+        CHECK(scene.meshes[0].primitives[0].colors.size() == 6);  // materials 0 and 1
+        CHECK(scene.meshes[0].primitives[1].colors.empty());      // material 2's, small
+    }
     SECTION("not where the measure finds the joined one larger") {
         const Scene before = scene;
         CHECK(joinByBaseColor(scene, measure(100), 80).primitivesJoined == 0);

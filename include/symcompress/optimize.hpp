@@ -99,7 +99,8 @@ struct BaseColorJoins {
 // the same attributes otherwise; joined where `bytes` (the writer's measure of a primitive) says the joined one,
 // and `materialBytes` for a new material, is smaller than its members apart. Each joined primitive asks for the
 // COLOR_0 bits (Primitive::colorBits) that keep its colours within a quarter of an 8-bit step of sRGB output, and keeps
-// the least position error bound of its members (its close-up bound is its own box's). The materials it leaves unused
+// every member's position bounds: the least error bound, and the close-up bound of its smallest member (members are
+// joined in runs of similar size). The materials it leaves unused
 // are removed. For each material, the first it may be joined with by base colour (joinByBaseColor): equal in everything
 // glTF writes but the red, green and blue of its base colour (and its name, and X3D's Phong fields); itself where none
 // is earlier, or where a material variant swaps it for another or it is specular-glossiness (whose diffuse factor, not
