@@ -92,20 +92,22 @@ RedundantKeys dropRedundantKeys(Scene& scene, double allowed);
 struct BaseColorJoins {
     std::size_t primitivesJoined = 0, joinedPrimitives = 0, materialsRemoved = 0;
 };
-// Primitives of one mesh whose materials differ in nothing glTF writes but the red, green and blue of their base
-// colour drawn as one primitive: each vertex carries its material's colour in COLOR_0 (multiplied into its own
-// colours), which glTF multiplies into the base colour, under one material of base colour white (nameless; X3D's
-// Phong fields dropped: for glTF output only). Triangles without morph targets, in materials no variant swaps, with
-// the same attributes otherwise; joined where `bytes` (the writer's measure of a primitive) says the joined one,
-// and `materialBytes` for a new material, is smaller than its members apart. Each joined primitive asks for the
-// COLOR_0 bits (Primitive::colorBits) that keep its colours within a quarter of an 8-bit step of sRGB output, and keeps
-// every member's position bounds: the least error bound, and the close-up bound of its smallest member (members are
-// joined in runs of similar size). The materials it leaves unused
-// are removed. For each material, the first it may be joined with by base colour (joinByBaseColor): equal in everything
-// glTF writes but the red, green and blue of its base colour (and its name, and X3D's Phong fields); itself where none
-// is earlier, or where a material variant swaps it for another or it is specular-glossiness (whose diffuse factor, not
-// the base colour, COLOR_0 multiplies).
+
+// For each material, the first it may be joined with by base colour (joinByBaseColor): equal in everything glTF
+// writes but the red, green and blue of its base colour (and its name, and X3D's Phong fields); itself where none is
+// earlier, where a material variant swaps it for another, or where it is specular-glossiness (whose diffuse factor,
+// not the base colour, COLOR_0 multiplies).
 std::vector<int> baseColorJoinGroups(const std::vector<Material>& materials);
+
+// Primitives of one mesh whose materials differ in nothing glTF writes but the red, green and blue of their base
+// colour (baseColorJoinGroups) drawn as one primitive: each vertex carries its material's colour in COLOR_0
+// (multiplied into its own colours), which glTF multiplies into the base colour, under one material of base colour
+// white (nameless; X3D's Phong fields dropped: for glTF output only). Triangles without morph targets, with the same
+// attributes otherwise, of at least two materials; joined where `bytes` (the writer's measure of a primitive) says
+// the joined one, and `materialBytes` for a new material, is smaller than its members apart. Each joined primitive
+// asks for the COLOR_0 bits (Primitive::colorBits) that keep its colours within a quarter of an 8-bit step of sRGB
+// output, and keeps every member's position bounds: the least error bound, and the close-up bound of its smallest
+// member (members are joined in runs of similar size). The materials it leaves unused are removed.
 BaseColorJoins joinByBaseColor(Scene& scene, const std::function<double(const Primitive&)>& bytes,
                                double materialBytes);
 
