@@ -1,8 +1,9 @@
 // Deduplication: materials and textures equal by content stored once (docs/optimizations.md).
+#include "optimize/first_equivalent.hpp"
 #include "symcompress/optimize.hpp"
 #include "symcompress/scene_ops.hpp"
 
-#include <map>
+#include <optional>
 #include <tuple>
 
 namespace symcompress {
@@ -11,22 +12,14 @@ namespace {
 // For each material, the first one equal to it but for its name (itself when none is earlier). Compared only
 // within a texture and base colour, so a scene of thousands of distinct materials costs a sort, not all pairs.
 std::vector<int> firstEqualMaterial(const std::vector<Material>& materials) {
-    using Key = std::tuple<int, double, double, double, double>;
-    std::map<Key, std::vector<int>> byKey;
-    std::vector<int> first(materials.size());
-    for (std::size_t i = 0; i < materials.size(); ++i) {
-        const Material& m = materials[i];
-        std::vector<int>& candidates = byKey[{m.baseColorTexture.texture, m.baseColorFactor.x(), m.baseColorFactor.y(),
-                                              m.baseColorFactor.z(), m.baseColorFactor.w()}];
-        first[i] = int(i);
-        for (int c : candidates)
-            if (materials[std::size_t(c)].sameButName(m)) {
-                first[i] = c;
-                break;
-            }
-        if (first[i] == int(i)) candidates.push_back(int(i));
-    }
-    return first;
+    return firstEquivalent(
+        materials.size(),
+        [&](std::size_t i) {
+            const Material& m = materials[i];
+            return std::optional(std::tuple(m.baseColorTexture.texture, m.baseColorFactor.x(), m.baseColorFactor.y(),
+                                            m.baseColorFactor.z(), m.baseColorFactor.w()));
+        },
+        [&](std::size_t earlier, std::size_t i) { return materials[earlier].sameButName(materials[i]); });
 }
 
 }  // namespace

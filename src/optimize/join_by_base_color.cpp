@@ -3,6 +3,7 @@
 // vertex carrying its material's colour in COLOR_0, which glTF multiplies into the base colour (docs/optimizations.md).
 #include "common/color_space.hpp"
 #include "geometry/bounds.hpp"
+#include "optimize/first_equivalent.hpp"
 #include "symcompress/optimize.hpp"
 #include "symcompress/scene_ops.hpp"
 
@@ -127,31 +128,23 @@ Primitive joinedPrimitive(const std::vector<Primitive>& primitives, const std::v
 }  // namespace
 
 std::vector<int> baseColorJoinGroups(const std::vector<Material>& materials) {
-    // Compared only within the same textures and other factors, so that thousands of materials cost a sort.
-    using Key = std::tuple<int, int, int, double, double, double, int, bool>;
-    std::map<Key, std::vector<int>> byKey;
-    std::vector<int> group(materials.size());
-    for (std::size_t m = 0; m < materials.size(); ++m) {
-        group[m] = int(m);
+    std::vector<Material> joined;
+    for (const Material& material : materials) joined.push_back(joinedMaterial(material));
+    // Compared only within the same textures and other factors.
+    auto keyOf = [&](std::size_t m) {
         const Material& material = materials[m];
         // Specular-glossiness multiplies COLOR_0 into its own diffuse factor, not the core base colour.
         const bool specularGlossiness =
             std::any_of(material.extensions.begin(), material.extensions.end(),
                         [](const MaterialExtension& e) { return e.name == "KHR_materials_pbrSpecularGlossiness"; });
-        if (!material.variants.empty() || specularGlossiness) continue;
-        const Material joined = joinedMaterial(material);
-        std::vector<int>& candidates =
-            byKey[{material.baseColorTexture.texture, material.metallicRoughnessTexture.texture,
-                   material.normalTexture.texture, material.metallicFactor, material.roughnessFactor,
-                   material.baseColorFactor.w(), int(material.alphaMode), material.doubleSided}];
-        for (int c : candidates)
-            if (joinedMaterial(materials[std::size_t(c)]) == joined) {
-                group[m] = c;
-                break;
-            }
-        if (group[m] == int(m)) candidates.push_back(int(m));
-    }
-    return group;
+        using Key = std::tuple<int, int, int, double, double, double, int, bool>;
+        if (!material.variants.empty() || specularGlossiness) return std::optional<Key>();
+        return std::optional(Key(material.baseColorTexture.texture, material.metallicRoughnessTexture.texture,
+                                 material.normalTexture.texture, material.metallicFactor, material.roughnessFactor,
+                                 material.baseColorFactor.w(), int(material.alphaMode), material.doubleSided));
+    };
+    return firstEquivalent(materials.size(), keyOf,
+                           [&](std::size_t earlier, std::size_t m) { return joined[earlier] == joined[m]; });
 }
 
 BaseColorJoins joinByBaseColor(Scene& scene, const std::function<double(const Primitive&)>& bytes,
