@@ -383,6 +383,10 @@ TEST_CASE("Parts in materials that differ only in base colour are drawn as one p
     const nlohmann::json report = compressAndVerify(input, folder, "joined");
     CHECK(report["optimizations"]["primitives_joined_by_base_color"] == 3);
     CHECK(report["optimizations"]["joined_primitives"] == 1);
+    // The three materials' names are lost, with a warning.
+    CHECK(std::any_of(report["warnings"].begin(), report["warnings"].end(), [](const nlohmann::json& warning) {
+        return warning.get<std::string>().rfind("3 material names (e.g. 'm0') not kept", 0) == 0;
+    }));
     const Scene joined = readGltf(folder / "joined.glb");
     REQUIRE(joined.materials.size() == 2);
     std::size_t coloured = 0;

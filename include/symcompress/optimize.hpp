@@ -91,6 +91,7 @@ RedundantKeys dropRedundantKeys(Scene& scene, double allowed);
 // What joinByBaseColor joined: primitives, the primitives they became, and the materials left unused and removed.
 struct BaseColorJoins {
     std::size_t primitivesJoined = 0, joinedPrimitives = 0, materialsRemoved = 0;
+    std::vector<std::string> namesLost;  // of the materials removed (the joined material has none)
 };
 
 // For each material, the first it may be joined with by base colour (joinByBaseColor): equal in everything glTF

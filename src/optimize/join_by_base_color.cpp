@@ -208,6 +208,8 @@ BaseColorJoins joinByBaseColor(Scene& scene, const std::function<double(const Pr
         for (const Primitive& primitive : mesh.primitives)
             for (const Material* material : materialsDrawnWith(scene, primitive.material))
                 keep[std::size_t(material - scene.materials.data())] = true;
+    for (std::size_t m = 0; m < keep.size(); ++m)
+        if (!keep[m] && !scene.materials[m].name.empty()) joins.namesLost.push_back(scene.materials[m].name);
     joins.materialsRemoved = removeMaterials(scene, keep);
     return joins;
 }

@@ -305,9 +305,14 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
                          variantsOf);
     // After the budget's shares: a joined primitive keeps the least of its members'. (A family's meshes have one
     // primitive each: its geometry stays shared.)
-    if (plan.joinByBaseColor)
+    if (plan.joinByBaseColor) {
         stats.baseColorJoins =
             joinByBaseColor(out, costs.quickMeshBytes ? costs.quickMeshBytes : costs.meshBytes, kMaterialBytes);
+        if (const std::vector<std::string>& names = stats.baseColorJoins.namesLost; !names.empty())
+            out.warnings.push_back(std::to_string(names.size()) + " material names (e.g. '" + names.front() +
+                                   "') not kept: their primitives are drawn as one, each vertex given its base "
+                                   "colour (--no-color-join keeps them)");
+    }
     countStoredTriangles(out, variantsOf, stats);
     for (const Mesh& mesh : out.meshes)
         for (const Primitive& primitive : mesh.primitives) {
