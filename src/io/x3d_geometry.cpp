@@ -3,6 +3,7 @@
 
 #include "symcompress/detail/triangulate_polygon.hpp"
 #include "x3d_crease_normals.hpp"
+#include "x3d_faces.hpp"
 #include "x3d_primitives.hpp"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <utility>
 
@@ -20,6 +22,20 @@ namespace {
 
 // More texture coordinate sets than a material's five textures can use are not kept (TEXCOORD_0 to _7).
 constexpr std::size_t kMaxTexcoordSets = 8;
+// The geometry nodes read as faces (readFaceSet).
+const std::set<std::string> kFaceSets = {"IndexedFaceSet",
+                                         "IndexedTriangleSet",
+                                         "TriangleSet",
+                                         "IndexedTriangleStripSet",
+                                         "IndexedTriangleFanSet",
+                                         "TriangleStripSet",
+                                         "TriangleFanSet",
+                                         "IndexedQuadSet",
+                                         "QuadSet",
+                                         "ElevationGrid",
+                                         "Extrusion"};
+// The most points an ElevationGrid or Extrusion may make (2^26, some 3 GB of primitives): more is a mistake.
+constexpr std::int64_t kMostMadePoints = std::int64_t(1) << 26;
 // A colour index where the line set's index lists hold none (a short colorIndex): not a colour of its Color node.
 constexpr std::int64_t kMissingColor = std::numeric_limits<std::int64_t>::max();
 
@@ -81,10 +97,8 @@ std::vector<Polyline> indexedPolylines(const std::vector<std::int64_t>& coordInd
 bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out,
                              std::vector<std::string>& texcoordMappings) {
     const std::string type = geometry.name();
-    if (type == "IndexedFaceSet") {
-        readFaceSet(geometry, out, true, texcoordMappings);
-    } else if (type == "IndexedTriangleSet" || type == "TriangleSet") {
-        readFaceSet(geometry, out, false, texcoordMappings);
+    if (kFaceSets.count(type)) {
+        readFaceSet(geometry, out, texcoordMappings);
     } else if (type == "Box") {
         out = x3d::tessellateBox(vector3(geometry, "size", Eigen::Vector3d(2, 2, 2)));
     } else if (type == "Sphere") {
@@ -208,13 +222,96 @@ bool X3dReader::readPointSet(const pugi::xml_node& geometry, Primitive& out) {
     return true;
 }
 
-void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces,
+std::vector<x3d::Face> X3dReader::listedFaces(const pugi::xml_node& geometry, std::size_t pointCount) {
+    const std::string type = geometry.name();
+    std::vector<std::int64_t> consecutive(pointCount);
+    for (std::size_t p = 0; p < pointCount; ++p) consecutive[p] = std::int64_t(p);
+    if (type == "IndexedFaceSet") {
+        std::vector<x3d::Face> faces(1);
+        for (std::int64_t value : integers(geometry, "coordIndex")) {
+            if (value >= 0)
+                faces.back().push_back(value);
+            else if (!faces.back().empty())
+                faces.emplace_back();
+        }
+        if (faces.back().empty()) faces.pop_back();  // the last -1 is optional
+        return faces;
+    }
+    if (type == "IndexedTriangleSet" || type == "TriangleSet") {
+        const std::vector<std::int64_t> index = type == "TriangleSet" ? consecutive : integers(geometry, "index");
+        std::vector<x3d::Face> faces;
+        for (std::size_t i = 0; i + 2 < index.size(); i += 3) faces.push_back({index[i], index[i + 1], index[i + 2]});
+        return faces;
+    }
+    if (type == "IndexedTriangleStripSet") return x3d::indexedStrips(integers(geometry, "index"));
+    if (type == "IndexedTriangleFanSet") return x3d::indexedFans(integers(geometry, "index"));
+    if (type == "IndexedQuadSet") return x3d::quads(integers(geometry, "index"));
+    if (type == "QuadSet") return x3d::quads(consecutive);
+    const bool strips = type == "TriangleStripSet";
+    const std::vector<std::int64_t> counts = integers(geometry, strips ? "stripCount" : "fanCount");
+    std::int64_t named = 0;
+    for (std::int64_t count : counts) named += std::max<std::int64_t>(count, 0);
+    if (named > std::int64_t(pointCount))
+        noteAbout(geometry, std::string(strips ? "stripCount" : "fanCount") + " names " + std::to_string(named) +
+                                " points, its Coordinate has " + std::to_string(pointCount) + "; the rest left out");
+    return strips ? x3d::countedStrips(counts, std::int64_t(pointCount))
+                  : x3d::countedFans(counts, std::int64_t(pointCount));
+}
+
+x3d::Faces X3dReader::madeFaces(const pugi::xml_node& geometry) {
+    if (std::strcmp(geometry.name(), "ElevationGrid") == 0) {
+        const std::vector<std::int64_t> x = integers(geometry, "xDimension"), z = integers(geometry, "zDimension");
+        const std::int64_t xDimension = x.empty() ? 0 : x[0], zDimension = z.empty() ? 0 : z[0];
+        const std::vector<double> height = numbers(geometry, "height");
+        if (xDimension >= 2 && zDimension >= 2) {
+            if (xDimension * zDimension > kMostMadePoints)
+                fail(geometry, std::to_string(xDimension) + " by " + std::to_string(zDimension) + " points: too many");
+            if (height.size() < std::size_t(xDimension * zDimension))
+                noteAbout(geometry, std::to_string(height.size()) + " heights for " +
+                                        std::to_string(xDimension * zDimension) + " points: the others at 0");
+        }
+        return x3d::elevationGrid(xDimension, zDimension, scalar(geometry, "xSpacing", 1),
+                                  scalar(geometry, "zSpacing", 1), height);
+    }
+    x3d::ExtrusionFields fields;
+    // A field of vectors of `size` numbers each, made by `make`; X3D's default (as `out` holds) where it is absent.
+    auto vectors = [&](const char* field, std::size_t size, auto& out, auto make) {
+        if (!geometry.attribute(field)) return;
+        const std::vector<double> values = numbers(geometry, field);
+        if (values.size() % size) fail(geometry, std::string(field) + ": not a multiple of " + std::to_string(size));
+        out.clear();
+        for (std::size_t i = 0; i < values.size(); i += size) out.push_back(make(values.data() + i));
+    };
+    vectors("spine", 3, fields.spine, [](const double* v) { return Eigen::Vector3d(v[0], v[1], v[2]); });
+    vectors("crossSection", 2, fields.crossSection, [](const double* v) { return Eigen::Vector2d(v[0], v[1]); });
+    vectors("scale", 2, fields.scale, [](const double* v) { return Eigen::Vector2d(v[0], v[1]); });
+    vectors("orientation", 4, fields.orientation,
+            [](const double* v) { return rotationField({v[0], v[1], v[2], v[3]}); });
+    if (std::int64_t(fields.spine.size() * fields.crossSection.size()) > kMostMadePoints)
+        fail(geometry, std::to_string(fields.spine.size()) + " spine points by " +
+                           std::to_string(fields.crossSection.size()) + " cross-section points: too many");
+    fields.beginCap = boolean(geometry, "beginCap", true);
+    fields.endCap = boolean(geometry, "endCap", true);
+    return x3d::extrusion(fields);
+}
+
+void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out,
                             std::vector<std::string>& texcoordMappings) {
+    const std::string type = geometry.name();
+    const bool indexLists = type == "IndexedFaceSet";  // its own normalIndex, colorIndex and texCoordIndex
     auto child = [&](std::initializer_list<const char*> types) { return geometryChild(geometry, types); };
-    const pugi::xml_node coordinate = child({"Coordinate", "CoordinateDouble"});
-    if (!coordinate) fail(geometry, "no Coordinate");
-    const std::vector<double> points = numbers(coordinate, "point");
-    if (points.size() % 3) fail(coordinate, "the number of point values is not a multiple of 3");
+    x3d::Faces made;
+    if (type == "ElevationGrid" || type == "Extrusion") {
+        made = madeFaces(geometry);
+    } else {
+        const pugi::xml_node coordinate = child({"Coordinate", "CoordinateDouble"});
+        if (!coordinate) fail(geometry, "no Coordinate");
+        made.points = numbers(coordinate, "point");
+        if (made.points.size() % 3) fail(coordinate, "the number of point values is not a multiple of 3");
+        made.faces = listedFaces(geometry, made.points.size() / 3);
+    }
+    const std::vector<double>& points = made.points;
+    const std::vector<x3d::Face>& faces = made.faces;
     const std::size_t pointCount = points.size() / 3;
     const pugi::xml_node normalNode = child({"Normal"});
     const pugi::xml_node colorNode = child({"Color", "ColorRGBA"});
@@ -245,6 +342,11 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
             texcoordMappings.push_back(resolved.attribute("mapping").value());
         }
     }
+    const bool ownTexcoords = texcoordSets.empty() && !made.texcoords.empty();  // the node's own
+    if (ownTexcoords) {
+        texcoordSets.push_back(made.texcoords);
+        texcoordMappings.emplace_back();
+    }
     // A further set of another size than the first cannot be indexed as it is: left out, and its mapping with it.
     for (std::size_t set = texcoordSets.size(); set-- > 1;)
         if (texcoordSets[set].size() != texcoordSets[0].size()) {
@@ -263,42 +365,24 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
         for (std::size_t set = 1; set < texcoordSets.size(); ++set)
             out.attributes.push_back({"TEXCOORD_" + std::to_string(set), 2, {}});
     const bool ccw = boolean(geometry, "ccw", true);
-    const bool convex = indexedFaces && boolean(geometry, "convex", true);
+    // Only an IndexedFaceSet's faces and an Extrusion's caps may be concave.
+    const bool convex = !(indexLists || type == "Extrusion") || boolean(geometry, "convex", true);
     const bool normalPerVertex = boolean(geometry, "normalPerVertex", true);
     const bool colorPerVertex = boolean(geometry, "colorPerVertex", true);
 
-    // Faces as lists of corner positions in the Coordinate node.
-    std::vector<std::vector<std::int64_t>> faces;
-    if (indexedFaces) {
-        std::vector<std::int64_t> face;
-        for (std::int64_t value : integers(geometry, "coordIndex")) {
-            if (value < 0) {
-                if (!face.empty()) faces.push_back(face);
-                face.clear();
-            } else {
-                face.push_back(value);
-            }
-        }
-        if (!face.empty()) faces.push_back(face);  // the last -1 is optional
-    } else if (std::strcmp(geometry.name(), "IndexedTriangleSet") == 0) {
-        const std::vector<std::int64_t> index = integers(geometry, "index");
-        for (std::size_t i = 0; i + 2 < index.size(); i += 3) faces.push_back({index[i], index[i + 1], index[i + 2]});
-    } else {
-        for (std::size_t i = 0; i + 2 < pointCount; i += 3)
-            faces.push_back(
-                {static_cast<std::int64_t>(i), static_cast<std::int64_t>(i + 1), static_cast<std::int64_t>(i + 2)});
-    }
-
     // Which entry of an attribute a corner uses: IndexedFaceSet has optional per-corner or per-face index
-    // lists; the triangle sets index attributes like the coordinates.
+    // lists; the other nodes index attributes like the coordinates, or by face.
     auto indexList = [&](const char* field) {
-        return indexedFaces ? integers(geometry, field) : std::vector<std::int64_t>();
+        return indexLists ? integers(geometry, field) : std::vector<std::int64_t>();
     };
     const std::vector<std::int64_t> normalIndex = indexList("normalIndex"), colorIndex = indexList("colorIndex"),
                                     texcoordIndex = indexList("texCoordIndex");
     auto attributeIndex = [&](const std::vector<std::int64_t>& ownIndex, bool perVertex, std::size_t face,
                               std::size_t cornerInCoordIndex, std::int64_t point) -> std::int64_t {
-        if (!indexedFaces) return perVertex ? point : static_cast<std::int64_t>(face);
+        if (!indexLists) {
+            if (perVertex) return point;
+            return made.attributeFace.empty() ? std::int64_t(face) : made.attributeFace[face];
+        }
         if (perVertex) {
             if (!ownIndex.empty()) return cornerInCoordIndex < ownIndex.size() ? ownIndex[cornerInCoordIndex] : -1;
             return point;
@@ -320,7 +404,10 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
     // (the triangle sets smooth across every shared point).
     std::vector<std::int64_t> madeNormalOfCorner;
     if (!normalNode && normalPerVertex) {
-        const double creaseAngle = indexedFaces ? scalar(geometry, "creaseAngle", 0) : M_PI;
+        // The triangle, strip, fan and quad sets smooth across every shared point (a QuadSet's quad has its
+        // own, as X_ITE's normal of a quad: Newell's).
+        const bool creased = indexLists || type == "ElevationGrid" || type == "Extrusion";
+        const double creaseAngle = creased ? scalar(geometry, "creaseAngle", 0) : M_PI;
         if (creaseAngle > 0) std::tie(normalValues, madeNormalOfCorner) = creasedNormals(faces, points, creaseAngle, ccw);
     }
     const bool hasNormals = !normalValues.empty(), hasColors = !colorValues.empty(),
@@ -346,7 +433,10 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
                                  ? madeNormalOfCorner[corner]
                                  : attributeIndex(normalIndex, normalPerVertex, f, cornerInCoordIndex, point);
             if (hasColors) key.color = attributeIndex(colorIndex, colorPerVertex, f, cornerInCoordIndex, point);
-            if (hasTexcoords) key.texcoord = attributeIndex(texcoordIndex, true, f, cornerInCoordIndex, point);
+            if (hasTexcoords)
+                key.texcoord = ownTexcoords && !made.texcoordOfCorner.empty()
+                                   ? made.texcoordOfCorner[corner]
+                                   : attributeIndex(texcoordIndex, true, f, cornerInCoordIndex, point);
             if (hasTangents) key.tangent = attributeIndex(normalIndex, normalPerVertex, f, cornerInCoordIndex, point);
             auto check = [&](std::int64_t index, std::size_t available, const char* what) {
                 if (index < 0 || static_cast<std::size_t>(index) >= available)
@@ -386,12 +476,11 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool
             polygon.push_back(out.positions[entry->second]);
         }
         ++cornerInCoordIndex;  // the -1 that ended the face
-        // A face of an IndexedFaceSet whose `convex` is TRUE (the default), or of a triangle set, as the browser
-        // cuts it: a fan from its first corner (X_ITE's triangulateConvexPolygon), triangles of zero area too.
-        // Where a diagonal lies matters: a non-planar quad bends along it, and the texture of a small
+        // A face of an IndexedFaceSet or an Extrusion's cap whose `convex` is TRUE (the default), or of another
+        // node, as the browser cuts it: a fan from its first corner (X_ITE's triangulateConvexPolygon), triangles of
+        // zero area too. Where a diagonal lies matters: a non-planar quad bends along it, and the texture of a small
         // alpha-blended card is sampled otherwise along it (the grass's cards: 1.5% of their pixels).
-        const std::vector<Triangle> triangles =
-            convex || !indexedFaces ? triangulateFace(polygon) : triangulatePolygon(polygon);
+        const std::vector<Triangle> triangles = convex ? triangulateFace(polygon) : triangulatePolygon(polygon);
         if (triangles.empty()) ++degenerateFaces_;
         for (const Triangle& t : triangles)
             out.triangles.push_back(ccw ? Triangle{local[t[0]], local[t[1]], local[t[2]]}

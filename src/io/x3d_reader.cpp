@@ -40,9 +40,7 @@ const std::set<std::string> kReadElsewhere = {
     "ROUTE",  "TimeSensor", "PositionInterpolator", "OrientationInterpolator", "ProtoDeclare", "ExternProtoDeclare",
     "IMPORT", "EXPORT"};
 // Geometry nodes that draw something we do not read: reported once per type.
-const std::set<std::string> kUnsupportedGeometry = {"Extrusion",
-                                                    "ElevationGrid",
-                                                    "Text",
+const std::set<std::string> kUnsupportedGeometry = {"Text",
                                                     "NurbsPatchSurface",
                                                     "NurbsTrimmedSurface",
                                                     "NurbsCurve",
@@ -56,13 +54,7 @@ const std::set<std::string> kUnsupportedGeometry = {"Extrusion",
                                                     "Polyline2D",
                                                     "Polypoint2D",
                                                     "Rectangle2D",
-                                                    "TriangleSet2D",
-                                                    "QuadSet",
-                                                    "IndexedQuadSet",
-                                                    "IndexedTriangleFanSet",
-                                                    "IndexedTriangleStripSet",
-                                                    "TriangleFanSet",
-                                                    "TriangleStripSet"};
+                                                    "TriangleSet2D"};
 
 // How deep XML elements may nest in an X3D file (readNode's limit for the scene graph, 256, and room for
 // the X3D and Scene elements and a node's fields).

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "symcompress/io.hpp"
+#include "x3d_faces.hpp"
 #include "x3d_fields.hpp"
 
 #include <Eigen/Geometry>
@@ -70,8 +71,13 @@ private:
     bool knownUse(const pugi::xml_node& node, const std::string& where);        // a USE that names no DEF: a note
     int addTexture(int& index, Texture texture);  // sets `index` (the ImageTexture's) and returns it
     bool readGeometry(const pugi::xml_node& geometry, Primitive& out, std::vector<std::string>& texcoordMappings);
-    void readFaceSet(const pugi::xml_node& geometry, Primitive& out, bool indexedFaces,
-                     std::vector<std::string>& texcoordMappings);
+    // The face sets, triangle, strip, fan and quad sets, ElevationGrid and Extrusion (kFaceSets): their faces, and
+    // the attributes of their corners.
+    void readFaceSet(const pugi::xml_node& geometry, Primitive& out, std::vector<std::string>& texcoordMappings);
+    // The faces of a face, triangle, strip, fan or quad set, over its Coordinate's `pointCount` points.
+    std::vector<x3d::Face> listedFaces(const pugi::xml_node& geometry, std::size_t pointCount);
+    // An ElevationGrid's or Extrusion's points and faces, made from its fields.
+    x3d::Faces madeFaces(const pugi::xml_node& geometry);
     // The first child of `geometry` of one of `types`, its DEF known and a USE resolved; none: a null node.
     pugi::xml_node geometryChild(const pugi::xml_node& geometry, std::initializer_list<const char*> types);
     // IndexedLineSet and LineSet (their polylines as segments), PointSet (every point drawn); false where the node

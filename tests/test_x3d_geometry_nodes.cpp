@@ -1,0 +1,443 @@
+// X3D's geometry nodes that do not list their faces one by one (triangle strips and fans, quads, ElevationGrid,
+// Extrusion) are read as the browser draws them (issue 15: never lossier): checked against what each node's
+// definition gives independently (triangles by point, a surface's area and enclosed volume, a tube's radius),
+// and rendered against the input in X_ITE.
+#include "symcompress/io.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+using namespace symcompress;
+using namespace symcompress::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string sceneX3d(const std::string& shapes) {
+    // The Full profile: X_ITE loads the CADGeometry component (the quad sets) only where the file asks for it.
+    return "<X3D profile='Full' version='3.3'><Scene>" + shapes + "</Scene></X3D>";
+}
+
+std::string shapeX3d(const std::string& geometry, const std::string& appearance = "") {
+    return "<Shape>" + appearance + geometry + "</Shape>";
+}
+
+std::string joinedWarnings(const std::vector<std::string>& warnings) {
+    std::string out;
+    for (const std::string& warning : warnings) out += warning + "\n";
+    return out;
+}
+
+Primitive readOne(const TemporaryFolder& folder, const std::string& geometry) {
+    writeTextFile(folder / "node.x3d", sceneX3d(shapeX3d(geometry)));
+    const Scene scene = readScene(folder / "node.x3d");
+    INFO(joinedWarnings(scene.warnings));
+    REQUIRE(scene.meshes.size() == 1);
+    REQUIRE(scene.meshes[0].primitives.size() == 1);
+    return scene.meshes[0].primitives[0];
+}
+
+// The triangles as the indices of the points they join (`points` in the file's order), each turned to start at
+// its least index, so that the order of corners within a triangle is compared, not where it starts.
+std::multiset<std::array<int, 3>> trianglesByPoint(const Primitive& primitive,
+                                                   const std::vector<Eigen::Vector3d>& points) {
+    std::multiset<std::array<int, 3>> out;
+    for (const Triangle& t : primitive.triangles) {
+        std::array<int, 3> corners{};
+        for (std::size_t k = 0; k < 3; ++k)
+            corners[k] = int(
+                std::find_if(points.begin(), points.end(),
+                             [&](const Eigen::Vector3d& p) { return (p - primitive.positions[t[k]]).norm() < 1e-12; }) -
+                points.begin());
+        std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
+        out.insert(corners);
+    }
+    return out;
+}
+
+// The area of the surface, and the volume it encloses (the divergence theorem: positive where the triangles
+// turn counter-clockwise seen from outside).
+std::pair<double, double> areaAndVolume(const Primitive& primitive) {
+    double area = 0, volume = 0;
+    for (const Triangle& t : primitive.triangles) {
+        const Eigen::Vector3d &a = primitive.positions[t[0]], &b = primitive.positions[t[1]],
+                              &c = primitive.positions[t[2]];
+        area += (b - a).cross(c - a).norm() / 2;
+        volume += a.dot(b.cross(c)) / 6;
+    }
+    return {area, volume};
+}
+
+std::string numbersText(const std::vector<double>& values) {
+    std::ostringstream text;
+    text.precision(17);
+    for (double v : values) text << v << ' ';
+    return text.str();
+}
+
+// The points of a regular polygon of `corners` corners and radius `radius` in the plane, closed (its first point
+// again at the end), as an Extrusion's crossSection: clockwise, as X3D's default square runs, so that the
+// surface faces out.
+std::string circleText(int corners, double radius) {
+    std::vector<double> values;
+    for (int i = 0; i <= corners; ++i) {
+        const double angle = -2 * M_PI * (i % corners) / corners;
+        values.insert(values.end(), {radius * std::cos(angle), radius * std::sin(angle)});
+    }
+    return numbersText(values);
+}
+
+}  // namespace
+
+TEST_CASE("X3D's triangle strips and fans and quad sets are cut as X_ITE cuts them", "[io][x3d][geometry-nodes]") {
+    TemporaryFolder folder;
+    const std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0},
+                                                 {2, 0, 0}, {2, 1, 0}, {3, 0, 0}};
+    const std::string coordinate = "<Coordinate point='0 0 0 0 1 0 1 0 0 1 1 0 2 0 0 2 1 0 3 0 0'/>";
+    using Triangles = std::multiset<std::array<int, 3>>;
+    SECTION("a strip's every second triangle turned back, so that all face the same way") {
+        // 0 2 4 6 along the bottom, 1 3 5 along the top: the strip 0 1 2 3 4 5 faces -z.
+        const Triangles expected = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {3, 5, 4}};
+        CHECK(trianglesByPoint(readOne(folder, "<IndexedTriangleStripSet index='0 1 2 3 4 5'>" + coordinate +
+                                                   "</IndexedTriangleStripSet>"),
+                               points) == expected);
+        CHECK(trianglesByPoint(
+                  readOne(folder, "<TriangleStripSet stripCount='6'>" + coordinate + "</TriangleStripSet>"), points) ==
+              expected);
+        // Strips end at -1; one of two corners draws nothing.
+        CHECK(trianglesByPoint(readOne(folder, "<IndexedTriangleStripSet index='0 1 2 -1 5 6 -1 3 4 5 6 -1'>" +
+                                                   coordinate + "</IndexedTriangleStripSet>"),
+                               points) == Triangles{{0, 1, 2}, {3, 4, 5}, {4, 6, 5}});
+    }
+    SECTION("a fan from its first corner, by index or by count") {
+        CHECK(trianglesByPoint(readOne(folder, "<IndexedTriangleFanSet index='0 2 3 1 -1 4 6 5'>" + coordinate +
+                                                   "</IndexedTriangleFanSet>"),
+                               points) == Triangles{{0, 2, 3}, {0, 3, 1}, {4, 6, 5}});
+        CHECK(trianglesByPoint(readOne(folder, "<TriangleFanSet fanCount='4 3'>" + coordinate + "</TriangleFanSet>"),
+                               points) == Triangles{{0, 1, 2}, {0, 2, 3}, {4, 5, 6}});
+    }
+    SECTION("quads cut from their first corner; a QuadSet's leftover corners draw nothing") {
+        CHECK(trianglesByPoint(
+                  readOne(folder, "<IndexedQuadSet index='0 2 3 1 2 4 5 3 6'>" + coordinate + "</IndexedQuadSet>"),
+                  points) == Triangles{{0, 2, 3}, {0, 3, 1}, {2, 4, 5}, {2, 5, 3}});
+        CHECK(trianglesByPoint(readOne(folder, "<QuadSet>" + coordinate + "</QuadSet>"), points) ==
+              Triangles{{0, 1, 2}, {0, 2, 3}});
+    }
+    SECTION("ccw='false' turns every triangle") {
+        CHECK(trianglesByPoint(
+                  readOne(folder, "<TriangleFanSet ccw='false' fanCount='3'>" + coordinate + "</TriangleFanSet>"),
+                  points) == Triangles{{0, 2, 1}});
+    }
+    SECTION("colours per face are per triangle of a strip or fan, per quad of a quad set") {
+        const std::string colors = "<Color color='1 0 0 0 1 0 0 0 1 1 1 0'/>";
+        const Primitive strip = readOne(folder, "<TriangleStripSet stripCount='6' colorPerVertex='false'>" +
+                                                    coordinate + colors + "</TriangleStripSet>");
+        const Primitive quad = readOne(folder, "<IndexedQuadSet index='0 2 3 1 2 4 5 3' colorPerVertex='false'>" +
+                                                   coordinate + colors + "</IndexedQuadSet>");
+        auto colorsOfTriangles = [](const Primitive& primitive) {
+            std::vector<Eigen::Vector3d> out;
+            for (const Triangle& t : primitive.triangles) {
+                for (std::uint32_t v : t) CHECK(primitive.colors[v] == primitive.colors[t[0]]);
+                out.push_back(primitive.colors[t[0]].head<3>());
+            }
+            return out;
+        };
+        // Red, green, blue, yellow, decoded from sRGB (glTF's COLOR_0 is linear): only the pattern matters here.
+        const std::vector<Eigen::Vector3d> stripColors = colorsOfTriangles(strip);
+        REQUIRE(stripColors.size() == 4);
+        CHECK(std::set<std::vector<double>>{{stripColors[0].x(), stripColors[0].y(), stripColors[0].z()},
+                                            {stripColors[1].x(), stripColors[1].y(), stripColors[1].z()},
+                                            {stripColors[2].x(), stripColors[2].y(), stripColors[2].z()},
+                                            {stripColors[3].x(), stripColors[3].y(), stripColors[3].z()}}
+                  .size() == 4);
+        const std::vector<Eigen::Vector3d> quadColors = colorsOfTriangles(quad);
+        REQUIRE(quadColors.size() == 4);
+        CHECK(quadColors[0] == quadColors[1]);
+        CHECK(quadColors[2] == quadColors[3]);
+        CHECK(quadColors[0] != quadColors[2]);
+    }
+    SECTION("counts beyond the points: the rest left out, with a warning naming the node") {
+        writeTextFile(folder / "long.x3d",
+                      sceneX3d(shapeX3d("<TriangleStripSet stripCount='5 4'>" + coordinate + "</TriangleStripSet>")));
+        const Scene scene = readScene(folder / "long.x3d");
+        REQUIRE(scene.meshes.size() == 1);
+        CHECK(scene.meshes[0].primitives[0].triangles.size() == 3);
+        CHECK_THAT(joinedWarnings(scene.warnings), Catch::Contains("long.x3d") && Catch::Contains("TriangleStripSet") &&
+                                                       Catch::Contains("names 9 points, its Coordinate has 7"));
+    }
+}
+
+TEST_CASE("An ElevationGrid is its heights over a grid, each square cut along one diagonal",
+          "[io][x3d][geometry-nodes]") {
+    TemporaryFolder folder;
+    // y = 0.5 x - 0.25 z over 4 by 3 points, spaced 2 and 3: a plane.
+    std::vector<double> heights;
+    std::vector<Eigen::Vector3d> points;
+    for (int z = 0; z < 3; ++z)
+        for (int x = 0; x < 4; ++x) {
+            heights.push_back(0.5 * (2 * x) - 0.25 * (3 * z));
+            points.emplace_back(2 * x, heights.back(), 3 * z);
+        }
+    const std::string grid =
+        "<ElevationGrid xDimension='4' zDimension='3' xSpacing='2' zSpacing='3' height='" + numbersText(heights) + "'";
+    SECTION("the triangles, facing up, along the diagonal from (x, z) to (x + 1, z + 1); texture coordinates") {
+        const Primitive primitive = readOne(folder, grid + "/>");
+        std::multiset<std::array<int, 3>> expected;
+        for (int z = 0; z < 2; ++z)
+            for (int x = 0; x < 3; ++x) {
+                const int p1 = z * 4 + x, p2 = p1 + 4, p3 = p2 + 1, p4 = p1 + 1;
+                expected.insert({p1, p2, p3});
+                expected.insert({p1, p3, p4});
+            }
+        CHECK(trianglesByPoint(primitive, points) == expected);
+        const Eigen::Vector3d up = Eigen::Vector3d(-0.5, 1, 0.25).normalized();  // the plane's normal
+        for (const Triangle& t : primitive.triangles) {
+            const Eigen::Vector3d& a = primitive.positions[t[0]];
+            CHECK((primitive.positions[t[1]] - a).cross(primitive.positions[t[2]] - a).normalized().dot(up) ==
+                  Approx(1));
+        }
+        // Flat by default (creaseAngle 0): no normals, as glTF draws a mesh without them.
+        CHECK(primitive.normals.empty());
+        // s = x / 3, t = z / 2 in X3D (t up): glTF's v = 1 - t.
+        REQUIRE(primitive.texcoords.size() == primitive.positions.size());
+        for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
+            CHECK(primitive.texcoords[v].x() == Approx(primitive.positions[v].x() / 2 / 3));
+            CHECK(primitive.texcoords[v].y() == Approx(1 - primitive.positions[v].z() / 3 / 2));
+        }
+    }
+    SECTION("smoothed where creaseAngle asks: on a plane every normal is the plane's") {
+        const Primitive primitive = readOne(folder, grid + " creaseAngle='3'/>");
+        REQUIRE(primitive.normals.size() == primitive.positions.size());
+        for (const Eigen::Vector3d& normal : primitive.normals)
+            CHECK((normal - Eigen::Vector3d(-0.5, 1, 0.25).normalized()).norm() < 1e-12);
+    }
+    SECTION("colours per square: both its triangles") {
+        const Primitive primitive = readOne(
+            folder, grid + " colorPerVertex='false'><Color color='" +
+                        numbersText({1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 0, 0, 1, 1, 1, 0, 1}) + "'/></ElevationGrid>");
+        REQUIRE(primitive.colors.size() == primitive.positions.size());
+        std::map<std::pair<int, int>, std::set<std::vector<double>>> colorsOfSquare;
+        for (const Triangle& t : primitive.triangles) {
+            const Eigen::Vector3d centre =
+                (primitive.positions[t[0]] + primitive.positions[t[1]] + primitive.positions[t[2]]) / 3;
+            for (std::uint32_t v : t)
+                colorsOfSquare[{int(centre.x() / 2), int(centre.z() / 3)}].insert(
+                    {primitive.colors[v].x(), primitive.colors[v].y(), primitive.colors[v].z()});
+        }
+        REQUIRE(colorsOfSquare.size() == 6);
+        std::set<std::vector<double>> distinct;
+        for (const auto& [square, colors] : colorsOfSquare) {
+            CHECK(colors.size() == 1);
+            distinct.insert(*colors.begin());
+        }
+        CHECK(distinct.size() == 6);
+    }
+    SECTION("a grid of one row draws nothing; missing heights are 0, with a warning") {
+        CHECK(readOne(folder, "<ElevationGrid xDimension='1' zDimension='5' height='1 2 3 4 5'/>").triangles.empty());
+        writeTextFile(folder / "short.x3d",
+                      sceneX3d(shapeX3d("<ElevationGrid xDimension='2' zDimension='2' height='1 1'/>")));
+        const Scene scene = readScene(folder / "short.x3d");
+        REQUIRE(scene.meshes.size() == 1);
+        const Primitive& primitive = scene.meshes[0].primitives[0];
+        CHECK(primitive.triangles.size() == 2);
+        for (const Eigen::Vector3d& p : primitive.positions) CHECK(p.y() == (p.z() == 0 ? 1 : 0));
+        CHECK_THAT(joinedWarnings(scene.warnings), Catch::Contains("short.x3d") && Catch::Contains("ElevationGrid") &&
+                                                       Catch::Contains("2 heights for 4 points"));
+    }
+}
+
+TEST_CASE("An Extrusion is its cross-section swept along its spine, as X3D defines it", "[io][x3d][geometry-nodes]") {
+    TemporaryFolder folder;
+    SECTION("the defaults: a closed box 2 by 1 by 2, facing out") {
+        const Primitive primitive = readOne(folder, "<Extrusion/>");
+        CHECK(primitive.triangles.size() == 12);
+        const auto [area, volume] = areaAndVolume(primitive);
+        CHECK(area == Approx(4 * 2 + 2 * 4));
+        CHECK(volume == Approx(4));
+        const Eigen::AlignedBox3d box(Eigen::Vector3d(-1, 0, -1), Eigen::Vector3d(1, 1, 1));
+        for (const Eigen::Vector3d& p : primitive.positions) CHECK(box.exteriorDistance(p) < 1e-12);
+        CHECK(primitive.normals.empty());  // creaseAngle 0: flat
+    }
+    SECTION("ccw='false' turns it inside out; no caps: open") {
+        CHECK(areaAndVolume(readOne(folder, "<Extrusion ccw='false'/>")).second == Approx(-4));
+        const Primitive open = readOne(folder, "<Extrusion beginCap='false' endCap='false'/>");
+        CHECK(open.triangles.size() == 8);
+        CHECK(areaAndVolume(open).first == Approx(8));
+    }
+    SECTION("a tube along a bent spine: every point at the cross-section's radius from the spine's arc") {
+        // A quarter of a circle of radius 3 in the xy plane, about (3, 0, 0), in 6 steps.
+        std::vector<double> spine;
+        for (int i = 0; i <= 6; ++i) {
+            const double angle = M_PI / 2 * i / 6;
+            spine.insert(spine.end(), {3 - 3 * std::cos(angle), 3 * std::sin(angle), 0});
+        }
+        const Primitive tube =
+            readOne(folder, "<Extrusion spine='" + numbersText(spine) + "' crossSection='" + circleText(12, 0.5) +
+                                "' beginCap='false' endCap='false' creaseAngle='1'/>");
+        CHECK(tube.triangles.size() == 6 * 12 * 2);
+        // The cross-sections of the spine's inner points lie across the arc (the spine's own ends take the
+        // direction of their one segment, a chord).
+        auto inner = [](const Eigen::Vector3d& p) {
+            const double angle = std::atan2(p.y(), 3 - p.x());
+            return angle > 0.1 && angle < M_PI / 2 - 0.1;
+        };
+        std::size_t checked = 0;
+        for (std::size_t v = 0; v < tube.positions.size(); ++v) {
+            const Eigen::Vector3d& p = tube.positions[v];
+            if (!inner(p)) continue;
+            ++checked;
+            // The distance from the arc's circle: from the point to the circle's nearest point.
+            const Eigen::Vector3d onArc =
+                Eigen::Vector3d(3, 0, 0) + 3 * Eigen::Vector3d(p.x() - 3, p.y(), 0).normalized();
+            CHECK((p - onArc).norm() == Approx(0.5));
+            // Smooth (creaseAngle 1 rad, above the 30 degrees between neighbouring faces): the normal points from
+            // the arc.
+            REQUIRE(tube.normals.size() == tube.positions.size());
+            CHECK((p - onArc).normalized().dot(tube.normals[v]) > 0.95);
+        }
+        CHECK(checked == 5 * 13);  // 12 points a cross-section, the seam's twice (texture coordinates 0 and 1)
+    }
+    SECTION("scale to 0: a cone of the polygon's area times a third of its height") {
+        const Primitive cone = readOne(
+            folder, "<Extrusion spine='0 0 0 0 2 0' scale='1 1 0 0' crossSection='" + circleText(16, 1) + "'/>");
+        const double base = 16 * std::sin(2 * M_PI / 16) / 2;  // a regular 16-gon of radius 1
+        CHECK(areaAndVolume(cone).second == Approx(base * 2 / 3));
+    }
+    SECTION("orientation turns each cross-section in its plane; scale stretches it") {
+        const Primitive twisted =
+            readOne(folder,
+                    "<Extrusion spine='0 0 0 0 1 0' orientation='0 1 0 0 0 1 0 0.5' scale='1 1 2 0.5' "
+                    "beginCap='false' endCap='false'/>");
+        std::set<std::vector<double>> top, expected;
+        for (const Eigen::Vector3d& p : twisted.positions)
+            if (p.y() == 1) top.insert({std::round(p.x() * 1e9) / 1e9, std::round(p.z() * 1e9) / 1e9});
+        for (const Eigen::Vector2d& c :
+             {Eigen::Vector2d(1, 1), Eigen::Vector2d(1, -1), Eigen::Vector2d(-1, -1), Eigen::Vector2d(-1, 1)}) {
+            // Scaled first, then turned about y by 0.5 rad (X3D's right hand: x towards -z).
+            const Eigen::Vector3d p =
+                Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitY()) * Eigen::Vector3d(2 * c.x(), 0, 0.5 * c.y());
+            expected.insert({std::round(p.x() * 1e9) / 1e9, std::round(p.z() * 1e9) / 1e9});
+        }
+        CHECK(top == expected);
+    }
+    SECTION("a closed spine joins its last cross-section to its first: a ring") {
+        std::vector<double> spine;
+        for (int i = 0; i <= 24; ++i) {
+            const double angle = 2 * M_PI * (i % 24) / 24;
+            spine.insert(spine.end(), {2 * std::cos(angle), 0, 2 * std::sin(angle)});
+        }
+        const Primitive ring = readOne(folder, "<Extrusion spine='" + numbersText(spine) + "' crossSection='" +
+                                                   circleText(8, 0.25) + "' beginCap='false' endCap='false'/>");
+        CHECK(ring.triangles.size() == 24 * 8 * 2);
+        // Closed: every edge between two triangles (by position).
+        std::map<std::pair<std::vector<double>, std::vector<double>>, int> edges;
+        auto key = [](const Eigen::Vector3d& p) {
+            return std::vector<double>{std::round(p.x() * 1e9), std::round(p.y() * 1e9), std::round(p.z() * 1e9)};
+        };
+        for (const Triangle& t : ring.triangles)
+            for (int k = 0; k < 3; ++k) {
+                auto a = key(ring.positions[t[std::size_t(k)]]), b = key(ring.positions[t[std::size_t((k + 1) % 3)]]);
+                ++edges[std::minmax(a, b)];
+            }
+        for (const auto& [edge, count] : edges) CHECK(count == 2);
+        // Its volume: the octagon's area swept around the ring's polygon, between the 24-gons of radius 2 - r and
+        // 2 + r, as the divergence theorem gives it; positive: facing out.
+        CHECK(areaAndVolume(ring).second > 0);
+    }
+    SECTION("a concave cap where convex='false'") {
+        // A star of 5 points, its corners counter-clockwise in the cross-section's plane (X3D's cross-sections
+        // run clockwise, as the default square does: this prism faces in). A fan over it would cover more.
+        std::vector<double> star;
+        std::vector<Eigen::Vector2d> corners;
+        for (int i = 0; i <= 10; ++i) {
+            const double radius = i % 2 ? 0.4 : 1, angle = 2 * M_PI * (i % 10) / 10;
+            corners.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+            star.insert(star.end(), {corners.back().x(), corners.back().y()});
+        }
+        double area = 0, perimeter = 0;
+        for (std::size_t i = 0; i < 10; ++i) {
+            area += (corners[i].x() * corners[i + 1].y() - corners[i + 1].x() * corners[i].y()) / 2;
+            perimeter += (corners[i + 1] - corners[i]).norm();
+        }
+        const auto [surface, volume] =
+            areaAndVolume(readOne(folder, "<Extrusion convex='false' crossSection='" + numbersText(star) + "'/>"));
+        CHECK(volume == Approx(-area));
+        CHECK(surface == Approx(perimeter * 1 + 2 * area));
+    }
+    SECTION("bad fields: a clear error naming the file and the node; empty ones draw nothing") {
+        writeTextFile(folder / "bad.x3d", sceneX3d(shapeX3d("<Extrusion DEF='pipe' spine='0 0 0 0 1'/>")));
+        CHECK_THROWS_WITH(readScene(folder / "bad.x3d"), Catch::Contains("bad.x3d") &&
+                                                             Catch::Contains("Extrusion DEF='pipe'") &&
+                                                             Catch::Contains("spine"));
+        writeTextFile(folder / "huge.x3d",
+                      sceneX3d(shapeX3d("<ElevationGrid xDimension='2000000000' zDimension='2000000000'/>")));
+        CHECK_THROWS_WITH(readScene(folder / "huge.x3d"), Catch::Contains("huge.x3d") &&
+                                                              Catch::Contains("ElevationGrid") &&
+                                                              Catch::Contains("too many"));
+        CHECK(readOne(folder, "<Extrusion spine='' crossSection=''/>").triangles.empty());
+    }
+}
+
+TEST_CASE("The new geometry nodes render in X3D output as the input does in X_ITE, and in GLB as three.js draws it",
+          "[io][x3d][geometry-nodes][renders]") {
+    if (!renderAvailable()) {
+        WARN("skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
+        return;
+    }
+    TemporaryFolder folder;
+    auto placed = [](const std::string& translation, const std::string& color, const std::string& geometry) {
+        return "<Transform translation='" + translation + "'>" +
+               shapeX3d(geometry, "<Appearance><Material diffuseColor='" + color + "'/></Appearance>") + "</Transform>";
+    };
+    std::vector<double> spine, heights;
+    for (int i = 0; i <= 5; ++i) spine.insert(spine.end(), {0.4 * i * i / 5.0, double(i) / 2, 0.3 * i});
+    for (int z = 0; z < 6; ++z)
+        for (int x = 0; x < 8; ++x) heights.push_back(0.5 * std::sin(x * 0.7) * std::cos(z * 0.5));
+    const std::string scene = sceneX3d(
+        "<Viewpoint position='1 0 22'/>" +
+        placed("-7 2 0", "1 1 1",
+               "<IndexedTriangleStripSet index='0 1 2 3 4 5'><Coordinate point='0 0 0 0 1 0 1 0 0 1 1.2 0.3 2 0 0 2 "
+               "1 0.3'/><Color color='1 0 0 0 1 0 0 0 1 1 1 0 0 1 1 1 0 1'/></IndexedTriangleStripSet>") +
+        placed("-3 2 0", "0.2 0.6 0.9",
+               "<IndexedTriangleFanSet index='0 1 2 3 4 5 6 1'><Coordinate point='0 0 0.3 1 0 0 0.5 0.87 0 -0.5 0.87 "
+               "0 -1 0 0 -0.5 -0.87 0 0.5 -0.87 0'/></IndexedTriangleFanSet>") +
+        placed("0 2 0", "0.9 0.5 0.1",
+               "<TriangleStripSet stripCount='6'><Coordinate point='0 0 0 0 1 0.2 1 0 0.3 1 1 0.5 2 0 0.4 2 1 "
+               "0.2'/></TriangleStripSet>") +
+        placed("4 2 0", "0.7 0.2 0.7",
+               "<QuadSet><Coordinate point='0 0 0 1 0 0 1 1 0.3 0 1 0 1.5 0 0 2.5 0 0 2.5 1 0 1.5 1 0'/></QuadSet>") +
+        placed("-8 -3 -2", "0.5 0.7 0.3",
+               "<ElevationGrid xDimension='8' zDimension='6' xSpacing='0.6' zSpacing='0.7' creaseAngle='1.5' "
+               "height='" +
+                   numbersText(heights) + "'/>") +
+        placed("-2 -3 0", "0.8 0.3 0.3",
+               "<Extrusion crossSection='" + circleText(16, 0.6) + "' spine='" + numbersText(spine) +
+                   "' creaseAngle='1.6' scale='1 1 0.5 0.5'/>") +
+        placed("4 -3 0", "0.3 0.3 0.8",
+               "<Extrusion crossSection='" + circleText(16, 1) +
+                   "' spine='0 0 0 0 2 0' scale='1 1 0 0' "
+                   "creaseAngle='1.6'/>"));
+    writeTextFile(folder / "nodes.x3d", scene);
+    for (const char* output : {"out.x3d", "out.glb"}) {
+        const CommandResult compressed = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "nodes.x3d") +
+                                                    " -o " + quoted(folder / output));
+        INFO(compressed.output);
+        REQUIRE(compressed.status == 0);
+        CHECK(compressed.output.find("skipped") == std::string::npos);
+    }
+    checkRendersSame(folder / "nodes.x3d", folder / "out.x3d");
+    // X_ITE and three.js light a scene otherwise: across them, the normals.
+    const CommandResult normals =
+        runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
+                   " --mode normals --views abc " + quoted(folder / "nodes.x3d") + " " + quoted(folder / "out.glb"));
+    INFO(normals.output);
+    CHECK(normals.status == 0);
+}
