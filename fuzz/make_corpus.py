@@ -270,7 +270,17 @@ x3d_primitives = X3D_HEAD + """<Switch whichChoice="1"><Shape><Box size="1 2 3"/
 <CADAssembly><CADLayer><CADPart translation="1 1 1"><CADFace><Shape><Box/></Shape></CADFace></CADPart></CADLayer></CADAssembly>
 <Shape><Extrusion/></Shape><Shape><Text string='"x"'/></Shape><ProtoInstance name="p"/><Inline url='"missing.x3d"'/>
 """ + X3D_TAIL
+x3d_made_faces = X3D_HEAD + """<Shape><IndexedTriangleStripSet index="0 1 2 3 -1 1 2 3" colorPerVertex="false"><Coordinate point="0 0 0 0 1 0 1 0 0 1 1 0"/><Color color="1 0 0 0 1 0"/></IndexedTriangleStripSet></Shape>
+<Shape><IndexedTriangleFanSet index="0 1 2 3"><Coordinate point="0 0 0 0 1 0 1 0 0 1 1 0"/></IndexedTriangleFanSet></Shape>
+<Shape><TriangleStripSet stripCount="4"><Coordinate point="0 0 0 0 1 0 1 0 0 1 1 0"/></TriangleStripSet></Shape>
+<Shape><TriangleFanSet fanCount="3 2"><Coordinate point="0 0 0 0 1 0 1 0 0 1 1 0"/></TriangleFanSet></Shape>
+<Shape><IndexedQuadSet index="0 1 3 2"><Coordinate point="0 0 0 0 1 0 1 0 0 1 1 0"/></IndexedQuadSet></Shape>
+<Shape><QuadSet normalPerVertex="false"><Coordinate point="0 0 0 0 1 0 1 1 0 1 0 0"/><Normal vector="0 0 1"/></QuadSet></Shape>
+<Shape><ElevationGrid xDimension="3" zDimension="2" xSpacing="0.5" creaseAngle="1" height="0 1 0 1 0 1"><Color color="1 0 0 0 1 0 0 0 1 1 1 1 0 0 0 1 1 0"/></ElevationGrid></Shape>
+<Shape><Extrusion spine="0 0 0 0 1 0 1 2 0 0 0 0" crossSection="1 1 1 -1 -1 -1 -1 1 1 1" scale="1 1 0 0 0.5 0.5" orientation="0 1 0 0.5" convex="false" creaseAngle="0.5" beginCap="false"/></Shape>
+""" + X3D_TAIL
 write("x3d", "faces.x3d", x3d_faces)
+write("x3d", "made_faces.x3d", x3d_made_faces)
 write("x3d", "primitives.x3d", x3d_primitives)
 write("x3d", "faces.x3dz", gzip.compress(x3d_faces.encode(), mtime=0))
 
