@@ -441,3 +441,71 @@ TEST_CASE("The new geometry nodes render in X3D output as the input does in X_IT
     INFO(normals.output);
     CHECK(normals.status == 0);
 }
+
+TEST_CASE("X3D output writes the nodes that make their own points again as they were, not their triangles",
+          "[io][x3d][geometry-nodes]") {
+    TemporaryFolder folder;
+    std::vector<double> heights;
+    for (int z = 0; z < 60; ++z)
+        for (int x = 0; x < 60; ++x) heights.push_back(std::round(300 * std::sin(x * 0.1) * std::cos(z * 0.13)) / 100);
+    // The ElevationGrid's Color is a USE of a Color an earlier shape defines: the output's node holds it whole.
+    const std::string input = sceneX3d(
+        "<Shape><Appearance><Material diffuseColor='1 1 1'/></Appearance><IndexedFaceSet coordIndex='0 1 2'>"
+        "<Coordinate point='0 0 0 1 0 0 0 1 0'/><Color DEF='tint' color='1 0 0 0 1 0 0 0 1 1 1 0'/>"
+        "</IndexedFaceSet></Shape>"
+        "<Transform translation='0 -5 0'><Shape><Appearance><Material diffuseColor='0.4 0.6 0.3'/></Appearance>"
+        "<ElevationGrid DEF='ground' xDimension='60' zDimension='60' creaseAngle='1.5' height='" +
+        numbersText(heights) +
+        "'/></Shape></Transform>"
+        "<Transform translation='0 0 70'><Shape><Appearance><Material/></Appearance><ElevationGrid xDimension='2' "
+        "zDimension='2' colorPerVertex='true' height='0 1 2 3'><Color USE='tint'/></ElevationGrid></Shape></Transform>"
+        "<Transform translation='5 0 0'><Shape><Appearance><Material/></Appearance><Extrusion spine='0 0 0 0 1 0 1 2 "
+        "0' crossSection='" +
+        circleText(12, 0.5) +
+        "' creaseAngle='1'/></Shape></Transform>"
+        "<Shape><Appearance><Material/></Appearance><Box size='1 2 3'/></Shape>"
+        "<Transform translation='9 0 0'><Shape><Appearance><Material/></Appearance><Cone/></Shape></Transform>");
+    writeTextFile(folder / "made.x3d", input);
+    const CommandResult compressed = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "made.x3d") +
+                                                " -o " + quoted(folder / "out.x3d"));
+    INFO(compressed.output);
+    REQUIRE(compressed.status == 0);
+    const std::string text = readTextFile(folder / "out.x3d");
+    CHECK_THAT(text, Catch::Contains("height=\"" + numbersText(heights).substr(0, 200)));
+    CHECK_THAT(text, Catch::Contains("<Extrusion spine=\"0 0 0 0 1 0 1 2 0\""));
+    CHECK_THAT(text, Catch::Contains("<Box size=\"1 2 3\"/>"));
+    CHECK_THAT(text, Catch::Contains("<Cone/>"));
+    CHECK_THAT(text, Catch::Contains("zDimension=\"2\" colorPerVertex=\"true\" height=\"0 1 2 3\"><Color "
+                                     "color=\"1 0 0 0 1 0 0 0 1 1 1 0\"/></ElevationGrid>"));
+    CHECK_THAT(text, !Catch::Contains("ground"));  // DEFs of their own only
+    // The file's one face set stays a face set; the rest is the nodes: far smaller than their triangles.
+    std::size_t faceSets = 0;
+    for (std::size_t at = text.find("<Indexed"); at != std::string::npos; at = text.find("<Indexed", at + 1))
+        ++faceSets;
+    CHECK(faceSets == 1);
+    CHECK(fs::file_size(folder / "out.x3d") < fs::file_size(folder / "made.x3d") + 1024);
+    const CommandResult verified = runCommand(quoted(SYMDECOMPRESS_CLI) + " " + quoted(folder / "out.x3d") + " -o " +
+                                              quoted(folder / "flat.ply") + " --verify " + quoted(folder / "made.x3d"));
+    INFO(verified.output);
+    CHECK(verified.status == 0);
+    CHECK_THAT(verified.output, Catch::Contains("max deviation 0.00e+00"));
+
+    SECTION("glTF output cuts them as any mesh; a primitive that changed is written as its triangles") {
+        const CommandResult glb = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "made.x3d") + " -o " +
+                                             quoted(folder / "out.glb"));
+        REQUIRE(glb.status == 0);
+        Scene scene = readScene(folder / "made.x3d");
+        std::size_t sources = 0;
+        for (Mesh& mesh : scene.meshes)
+            for (Primitive& primitive : mesh.primitives)
+                if (primitive.x3dSource) {
+                    ++sources;
+                    primitive.positions[0].x() += 0.5;
+                }
+        CHECK(sources == 5);
+        writeScene(scene, folder / "moved.x3d");
+        const std::string moved = readTextFile(folder / "moved.x3d");
+        CHECK_THAT(moved, !Catch::Contains("<ElevationGrid") && !Catch::Contains("<Box") &&
+                              !Catch::Contains("<Extrusion") && !Catch::Contains("<Cone"));
+    }
+}

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -205,6 +206,15 @@ enum class Topology { Triangles, Lines, Points };
 // A pair of vertex indices: one line segment.
 using Segment = std::array<std::uint32_t, 2>;
 
+// The X3D geometry node a primitive was read from, where the node makes its points from a few numbers (Box,
+// Sphere, Cylinder, Cone, ElevationGrid, Extrusion): its XML, self-contained (USEs inlined, no DEFs). X3D output
+// keeps such a primitive whole and writes the node again, far shorter than its triangles, while its triangles
+// are still those the node made (`cornerHash`: trianglePositionsHash when read).
+struct X3dGeometrySource {
+    std::string xml;
+    std::uint64_t cornerHash = 0;
+};
+
 // Lines and points are kept as they are: never tiled, classified or cut; only triangles carry the method.
 struct Primitive {
     Topology topology = Topology::Triangles;
@@ -230,6 +240,7 @@ struct Primitive {
     // The fewest COLOR_0 quantization bits, where more than the writer's (WriteOptions::colorBits): materials' base
     // colours moved into COLOR_0 (joinByBaseColor) keep their precision where 8 bits would lighten a dark one.
     int colorBits = 0;
+    std::shared_ptr<const X3dGeometrySource> x3dSource;  // X3D input only (X3dGeometrySource)
 
     bool drawsNothing() const {
         return topology == Topology::Triangles ? triangles.empty()

@@ -121,6 +121,10 @@ std::optional<std::pair<Primitive, ZeroAreaTriangles>> withoutZeroAreaTriangles(
 // nothing yet.
 void appendPrimitive(Primitive& into, const Primitive& part);
 
+// A hash of the positions of the triangles' corners, triangle by triangle: the same whatever the vertices' order
+// or their other attributes (a weld, pruned attributes), another where a triangle moved (X3dGeometrySource).
+std::uint64_t trianglePositionsHash(const Primitive& primitive);
+
 // The names and sizes of the primitive's other attributes (Primitive::attributes), as one key ("TANGENT:4;"):
 // primitives or tiles with different keys are never merged into one.
 std::string attributeSignature(const Primitive& primitive);

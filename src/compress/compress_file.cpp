@@ -155,6 +155,11 @@ CompressionReport compressRead(Scene scene, const fs::path& output, const Compre
     // X3D writes indices as text: two materials merged put their parts in one IndexedFaceSet with larger
     // indices, which costs more than the Material it saves (the cat: +2.2 KB, the house: +11 KB).
     if (formatFromExtension(output) == FileFormat::X3d) optimize.dedup = false;
+    // X3D output writes an X3D input's Box, Extrusion, ... again as they were, kept whole (X3dGeometrySource); any
+    // other output tiles, shares and cuts their triangles as every mesh's.
+    if (formatFromExtension(output) != FileFormat::X3d)
+        for (Mesh& mesh : scene.meshes)
+            for (Primitive& primitive : mesh.primitives) primitive.x3dSource.reset();
     // OBJ and PLY viewers smooth a mesh that has no normals.
     if (formatFromExtension(output) == FileFormat::Obj || formatFromExtension(output) == FileFormat::Ply)
         optimize.dropFlatNormals = false;

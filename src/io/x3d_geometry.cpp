@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <tuple>
 #include <utility>
 
@@ -119,6 +120,38 @@ bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out,
         return false;
     }
     return true;
+}
+
+std::string X3dReader::selfContainedXml(const pugi::xml_node& geometry) const {
+    pugi::xml_document document;
+    const pugi::xml_node copy = document.append_copy(geometry);
+    // Depth first: a USE becomes a copy of its DEF's node, whose own USEs are replaced in turn; a USE that names
+    // nothing known, or a node it is inside of, is left out.
+    std::set<std::string> inside;
+    auto inlineUses = [&](pugi::xml_node node, auto& self) -> void {
+        const std::string def = node.attribute("DEF").value();
+        node.remove_attribute("DEF");
+        if (!def.empty()) inside.insert(def);
+        for (pugi::xml_node child = node.first_child(); child;) {
+            const pugi::xml_node next = child.next_sibling();
+            if (child.type() == pugi::node_element) {
+                if (const pugi::xml_attribute use = child.attribute("USE")) {
+                    const auto named = definitions_.find(use.value());
+                    if (named != definitions_.end() && !inside.count(use.value()))
+                        self(node.insert_copy_before(named->second, child), self);
+                    node.remove_child(child);
+                } else {
+                    self(child, self);
+                }
+            }
+            child = next;
+        }
+        if (!def.empty()) inside.erase(def);
+    };
+    inlineUses(copy, inlineUses);
+    std::ostringstream text;
+    copy.print(text, "", pugi::format_raw);
+    return text.str();
 }
 
 pugi::xml_node X3dReader::geometryChild(const pugi::xml_node& geometry, std::initializer_list<const char*> types) {

@@ -56,6 +56,9 @@ const std::set<std::string> kUnsupportedGeometry = {"Text",
                                                     "Rectangle2D",
                                                     "TriangleSet2D"};
 
+// Geometry nodes that make their points from a few numbers: X3D output writes them again (X3dGeometrySource).
+const std::set<std::string> kMadeGeometry = {"Box", "Sphere", "Cylinder", "Cone", "ElevationGrid", "Extrusion"};
+
 // How deep XML elements may nest in an X3D file (readNode's limit for the scene graph, 256, and room for
 // the X3D and Scene elements and a node's fields).
 constexpr int kMaxXmlDepth = 300;
@@ -381,6 +384,9 @@ int X3dReader::readShape(const pugi::xml_node& shape) {
     if (material >= 0) material = withSidedness(material, !boolean(geometry, "solid", true));
     primitive.material = material;
     if (!primitive.colors.empty()) vertexColorsAsGltf(primitive);
+    if (kMadeGeometry.count(geometry.name()) && !primitive.triangles.empty())
+        primitive.x3dSource = std::make_shared<X3dGeometrySource>(
+            X3dGeometrySource{selfContainedXml(geometry), trianglePositionsHash(primitive)});
     Mesh mesh;
     mesh.name = shape.attribute("DEF").value();
     mesh.primitives.push_back(std::move(primitive));

@@ -78,6 +78,8 @@ private:
     std::vector<x3d::Face> listedFaces(const pugi::xml_node& geometry, std::size_t pointCount);
     // An ElevationGrid's or Extrusion's points and faces, made from its fields.
     x3d::Faces madeFaces(const pugi::xml_node& geometry);
+    // A geometry node's XML as a node of its own: every USE in it replaced by what it names, without DEFs.
+    std::string selfContainedXml(const pugi::xml_node& geometry) const;
     // The first child of `geometry` of one of `types`, its DEF known and a USE resolved; none: a null node.
     pugi::xml_node geometryChild(const pugi::xml_node& geometry, std::initializer_list<const char*> types);
     // IndexedLineSet and LineSet (their polylines as segments), PointSet (every point drawn); false where the node

@@ -470,6 +470,10 @@ private:
                 writeUnlitShape(primitive, depth + 1);
                 continue;
             }
+            if (primitive.x3dSource && primitive.x3dSource->cornerHash == trianglePositionsHash(primitive)) {
+                writeSourceShape(primitive, depth + 1);
+                continue;
+            }
             // Triangles of zero area apart: the browser would make their normals of nothing.
             const std::optional<std::pair<Primitive, ZeroAreaTriangles>> split = withoutZeroAreaTriangles(primitive);
             if (!split) {
@@ -601,19 +605,14 @@ private:
     // Phong's Material, its colours sRGB-encoded (x3d::phongOf), with X3D 4's texture fields where it has them.
     void writePhongMaterial(const Material& m, const x3d::MaterialTextures& textures) {
         const PhongMaterial phong = x3d::phongOf(m);
-        out_ += "<Material diffuseColor='";
-        appendVector(out_, phong.diffuseColor, 3);
-        out_ += "' specularColor='";
-        appendVector(out_, phong.specularColor, 3);
-        out_ += "' emissiveColor='";
-        appendVector(out_, phong.emissiveColor, 3);
-        out_ += "' ambientIntensity='";
-        appendShortestFloat(out_, phong.ambientIntensity);
-        out_ += "' shininess='";
-        appendShortestFloat(out_, phong.shininess);
-        out_ += "' transparency='";
-        appendShortestFloat(out_, phong.transparency);
-        out_ += "'";
+        // Fields at X3D's defaults (3.3 and 4.0 alike) are left out.
+        out_ += "<Material";
+        appendField("diffuseColor", phong.diffuseColor, Eigen::Vector3d::Constant(0.8).eval(), 3);
+        appendField("specularColor", phong.specularColor, Eigen::Vector3d::Zero().eval(), 3);
+        appendField("emissiveColor", phong.emissiveColor, Eigen::Vector3d::Zero().eval(), 3);
+        appendField("ambientIntensity", phong.ambientIntensity, 0.2);
+        appendField("shininess", phong.shininess, 0.2);
+        appendField("transparency", phong.transparency, 0.0);
         appendTextureFields(textures);
         out_ += writeTextureChildren(textures) ? "</Material>" : "/>";
     }
@@ -815,6 +814,20 @@ private:
         out_ += "</Shape>\n";
     }
 
+    // A primitive as the X3D node it was read from (X3dGeometrySource): the browser makes its triangles again.
+    void writeSourceShape(const Primitive& primitive, int depth) {
+        indent(depth);
+        out_ += "<Shape>\n";
+        writeAppearance(primitive.material, depth + 1);
+        indent(depth + 1);
+        const std::size_t geometryStart = out_.size();
+        const std::string& xml = primitive.x3dSource->xml;
+        out_ += xml + "\n";
+        shareGeometry(geometryStart, xml.substr(1, xml.find_first_of(" />") - 1));
+        indent(depth);
+        out_ += "</Shape>\n";
+    }
+
     // `count` triangles of zero area at one point, in a shape of their own: they draw nothing, and browsers count
     // them as they counted those of the input (withoutZeroAreaTriangles). One convex face of count + 2 corners,
     // which the browser cuts into a fan of `count` triangles: 2 bytes a triangle.
@@ -897,7 +910,7 @@ private:
         std::vector<std::pair<std::size_t, std::string>> defs;  // where (after the node's name), what
         for (const auto& [hash, same] : geometries_)
             for (const WrittenGeometry& g : same)
-                if (!g.def.empty()) defs.push_back({out_.find_first_of(" >", g.start), " DEF='" + g.def + "'"});
+                if (!g.def.empty()) defs.push_back({out_.find_first_of(" />", g.start), " DEF='" + g.def + "'"});
         if (defs.empty()) return std::move(out_);
         std::sort(defs.begin(), defs.end());
         std::string text;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -193,6 +194,19 @@ void appendPrimitive(Primitive& into, const Primitive& part) {
         into.attributes[a].values.insert(into.attributes[a].values.end(), part.attributes[a].values.begin(),
                                          part.attributes[a].values.end());
     for (const Triangle& t : part.triangles) into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
+std::uint64_t trianglePositionsHash(const Primitive& primitive) {
+    std::uint64_t hash = 14695981039346656037ull;  // FNV-1a over the coordinates' bits
+    for (const Triangle& t : primitive.triangles)
+        for (std::uint32_t v : t)
+            for (int c = 0; c < 3; ++c) {
+                std::uint64_t bits = 0;
+                const double x = primitive.positions[v][c];
+                std::memcpy(&bits, &x, sizeof bits);
+                for (int byte = 0; byte < 8; ++byte) hash = (hash ^ ((bits >> (8 * byte)) & 0xff)) * 1099511628211ull;
+            }
+    return hash;
 }
 
 std::string attributeSignature(const Primitive& primitive) {

@@ -175,7 +175,7 @@ bool tilesCanCarry(const Mesh& mesh, const Eigen::Matrix3d& placement) {
         return !a.isJoints() && a.name.rfind("WEIGHTS_", 0) != 0 && (even || a.name != "TANGENT");
     };
     return std::all_of(mesh.primitives.begin(), mesh.primitives.end(), [&](const Primitive& p) {
-        return p.topology == Topology::Triangles && p.targets.empty() &&
+        return p.topology == Topology::Triangles && p.targets.empty() && !p.x3dSource &&
                std::all_of(p.attributes.begin(), p.attributes.end(), carried);
     });
 }

@@ -103,7 +103,8 @@ SceneAnalysis analyzeSceneTakingGeometry(Scene& input, const AnalysisOptions& op
 
 // Whether tiles can carry everything the mesh's primitives hold where `placement` (the linear part of a node's
 // world transform) draws it: not lines or points, morph targets or skin joints and weights (a mesh that moves is
-// kept as it is), and tangents only under a placement that scales alike on every axis.
+// kept as it is), tangents only under a placement that scales alike on every axis, and no primitive that X3D output
+// writes as the node it was read from (Primitive::x3dSource).
 bool tilesCanCarry(const Mesh& mesh, const Eigen::Matrix3d& placement);
 
 // The cost model of a file written with `write`: every part measured by the format's writer (gltfMeshBytes,
