@@ -279,7 +279,17 @@ x3d_made_faces = X3D_HEAD + """<Shape><IndexedTriangleStripSet index="0 1 2 3 -1
 <Shape><ElevationGrid xDimension="3" zDimension="2" xSpacing="0.5" creaseAngle="1" height="0 1 0 1 0 1"><Color color="1 0 0 0 1 0 0 0 1 1 1 1 0 0 0 1 1 0"/></ElevationGrid></Shape>
 <Shape><Extrusion spine="0 0 0 0 1 0 1 2 0 0 0 0" crossSection="1 1 1 -1 -1 -1 -1 1 1 1" scale="1 1 0 0 0.5 0.5" orientation="0 1 0 0.5" convex="false" creaseAngle="0.5" beginCap="false"/></Shape>
 """ + X3D_TAIL
+x3d_prototypes = X3D_HEAD + """<ProtoDeclare name="P"><ProtoInterface><field name="h" type="SFFloat" accessType="initializeOnly" value="2"/>
+<field name="g" type="SFNode" accessType="initializeOnly"><Box/></field></ProtoInterface>
+<ProtoBody><Transform DEF="t"><Shape><Appearance><Material/></Appearance><IS><connect nodeField="geometry" protoField="g"/></IS></Shape>
+<Shape><Cylinder><IS><connect nodeField="height" protoField="h"/></IS></Cylinder></Shape></Transform></ProtoBody></ProtoDeclare>
+<ProtoDeclare name="Q"><ProtoBody><Group><ProtoInstance name="P"><fieldValue name="h" value="3"/></ProtoInstance></Group></ProtoBody></ProtoDeclare>
+<ExternProtoDeclare name="E" url='"missing.x3d#P"'/>
+<Transform><ProtoInstance name="Q" DEF="q"/></Transform><Transform translation="2 0 0"><ProtoInstance name="Q" USE="q"/></Transform>
+<ProtoInstance name="P"><fieldValue name="g"><Sphere/></fieldValue></ProtoInstance><ProtoInstance name="E"/>
+""" + X3D_TAIL
 write("x3d", "faces.x3d", x3d_faces)
+write("x3d", "prototypes.x3d", x3d_prototypes)
 write("x3d", "made_faces.x3d", x3d_made_faces)
 write("x3d", "primitives.x3d", x3d_primitives)
 write("x3d", "faces.x3dz", gzip.compress(x3d_faces.encode(), mtime=0))

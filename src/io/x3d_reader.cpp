@@ -10,6 +10,7 @@
 #include "symcompress/scene_ops.hpp"
 #include "x3d_fields.hpp"
 #include "x3d_primitives.hpp"
+#include "x3d_prototypes.hpp"
 
 #include <Eigen/Geometry>
 
@@ -186,6 +187,24 @@ Eigen::Matrix4d X3dReader::transformOf(const pugi::xml_node& node) const {
     return m.matrix();
 }
 
+void X3dReader::expandPrototypes() {
+    const x3d::DocumentLoader load = [](const fs::path& file, pugi::xml_document& into) {
+        std::error_code error;
+        if (!fs::is_regular_file(file, error)) return false;
+        const std::vector<unsigned char> bytes = readFileBytes(file);
+        const bool gzipped = bytes.size() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b;
+        const std::vector<unsigned char> text = gzipped ? inflateGzip(bytes, file) : bytes;
+        return bool(into.load_buffer(text.data(), text.size()));
+    };
+    try {
+        const x3d::PrototypeExpansion expansion =
+            x3d::expandPrototypes(document_.child("X3D").child("Scene"), file_.parent_path(), load);
+        notes_.insert(expansion.notes.begin(), expansion.notes.end());
+    } catch (const std::length_error& error) {
+        throw FileError(file_, error.what());
+    }
+}
+
 std::vector<int> X3dReader::read() {
     const std::vector<unsigned char> bytes = readFileBytes(file_);
     if (bytes.empty()) throw FileError(file_, "the file is empty");
@@ -206,6 +225,11 @@ std::vector<int> X3dReader::read() {
     document_.traverse(limit);
     if (limit.tooDeep)
         throw FileError(file_, "XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels");
+    expandPrototypes();
+    document_.traverse(limit);
+    if (limit.tooDeep)
+        throw FileError(
+            file_, "prototypes expand to XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels");
     // What the file says about itself (file_metadata.hpp), and symcompress's digest of the original, for
     // symdecompress (see the X3D writer); the generator is the writer's to say.
     nlohmann::json extras;
@@ -292,7 +316,7 @@ int X3dReader::readNode(const pugi::xml_node& source, int depth) {
         if (kUnsupportedGeometry.count(type))
             ++skippedGeometry_[type];
         else if (type == "ProtoInstance")
-            ++skippedGeometry_["ProtoInstance (prototypes are not supported)"];
+            ++skippedGeometry_["ProtoInstance (its prototype not found, or nested too deep)"];
         else if (!kReadElsewhere.count(type) && type.compare(0, 8, "Metadata") != 0)
             ++notKept_[type];
         return -1;

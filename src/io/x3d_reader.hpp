@@ -96,6 +96,8 @@ private:
     // A shape's Color values as glTF's COLOR_0, once its material is known (docs/scene-model.md, "Colour spaces").
     void vertexColorsAsGltf(Primitive& primitive);
     void readInline(const pugi::xml_node& node, std::vector<int>& into);
+    // Every ProtoInstance replaced by what it stands for (x3d_prototypes.hpp), before the scene is read.
+    void expandPrototypes();
     void readAnimations();
     int readViewpoint(const pugi::xml_node& viewpoint);
     int readLight(const pugi::xml_node& light, int depth);
