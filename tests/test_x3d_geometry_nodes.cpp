@@ -509,3 +509,81 @@ TEST_CASE("X3D output writes the nodes that make their own points again as they 
                               !Catch::Contains("<Extrusion") && !Catch::Contains("<Cone"));
     }
 }
+
+TEST_CASE("Box, Sphere, Cylinder and Cone are cut as X_ITE cuts them", "[io][x3d][geometry-nodes]") {
+    TemporaryFolder folder;
+    // The area of a regular polygon of n corners on a circle of radius r.
+    auto polygonArea = [](int n, double r) { return n * r * r * std::sin(2 * M_PI / n) / 2; };
+    SECTION("their triangles (X_ITE's counts: 20 sides, a sphere of 32 by 15 points), closed and facing out") {
+        const Primitive box = readOne(folder, "<Box size='2 4 6'/>");
+        CHECK(box.triangles.size() == 12);
+        CHECK(areaAndVolume(box).second == Approx(48));
+        const Primitive cylinder = readOne(folder, "<Cylinder radius='2' height='3'/>");
+        CHECK(cylinder.triangles.size() == 20 * 2 + 2 * 18);
+        CHECK(areaAndVolume(cylinder).second == Approx(polygonArea(20, 2) * 3));
+        const Primitive cone = readOne(folder, "<Cone bottomRadius='2' height='3'/>");
+        CHECK(cone.triangles.size() == 20 + 18);
+        CHECK(areaAndVolume(cone).second == Approx(polygonArea(20, 2) * 3 / 3));
+        const Primitive sphere = readOne(folder, "<Sphere radius='2'/>");
+        CHECK(sphere.triangles.size() == 32 + 12 * 32 * 2 + 32);
+        for (const Eigen::Vector3d& p : sphere.positions) CHECK(p.norm() == Approx(2));
+        const double volume = areaAndVolume(sphere).second;
+        CHECK(volume < 4 * M_PI * 8 / 3);
+        CHECK(volume > 0.97 * 4 * M_PI * 8 / 3);
+    }
+    SECTION("their normals: the cone's across its slant side, the cylinder's and sphere's from their axis and centre") {
+        const Primitive cone = readOne(folder, "<Cone bottomRadius='2' height='3'/>");
+        for (std::size_t v = 0; v < cone.positions.size(); ++v) {
+            const Eigen::Vector3d &p = cone.positions[v], &n = cone.normals[v];
+            CHECK(n.norm() == Approx(1));
+            if (n.y() > -0.5)  // the side: along the slant from the rim to the apex, the normal is square to it
+                CHECK(std::abs(n.dot(Eigen::Vector3d(-n.x(), 0, -n.z()).normalized() * 2 + Eigen::Vector3d(0, 3, 0))) <
+                      1e-9);
+            else
+                CHECK(p.y() == Approx(-1.5));
+        }
+        const Primitive sphere = readOne(folder, "<Sphere/>");
+        for (std::size_t v = 0; v < sphere.positions.size(); ++v)
+            CHECK(sphere.normals[v].dot(sphere.positions[v]) > 0.99);
+    }
+}
+
+TEST_CASE("The geometric primitives render in GLB output as X_ITE draws them, textures too",
+          "[io][x3d][geometry-nodes][renders]") {
+    if (!renderAvailable()) {
+        WARN("skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
+        return;
+    }
+    TemporaryFolder folder;
+    fs::copy_file(modelPath("pbr/box_specgloss/CesiumLogoFlat.png"), folder / "logo.png");
+    std::string shapes;
+    for (const auto& [translation, geometry] :
+         std::vector<std::pair<std::string, std::string>>{{"0 0 0", "<Sphere/>"},
+                                                          {"3 0 0", "<Cylinder/>"},
+                                                          {"-3 0 0", "<Cone/>"},
+                                                          {"0 3 0", "<Box size='1 2 3'/>"},
+                                                          {"3 3 0", "<Cone bottomRadius='0.5' height='3'/>"}})
+        shapes += "<Transform translation='" + translation +
+                  "'><Shape><Appearance><Material/><ImageTexture url='\"logo.png\"'/></Appearance>" + geometry +
+                  "</Shape></Transform>";
+    writeTextFile(folder / "primitives.x3d", sceneX3d(shapes));
+    const CommandResult compressed = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "primitives.x3d") +
+                                                " -o " + quoted(folder / "out.glb"));
+    INFO(compressed.output);
+    REQUIRE(compressed.status == 0);
+    // X_ITE and three.js light a scene otherwise: across them, the normals; the textures through X3D again, which
+    // has no node to write again once the shapes are in GLB.
+    const CommandResult normals = runCommand(
+        "PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
+        " --mode normals --views abc " + quoted(folder / "primitives.x3d") + " " + quoted(folder / "out.glb"));
+    INFO(normals.output);
+    CHECK(normals.status == 0);
+    const CommandResult back = runCommand(quoted(SYMCOMPRESS_CLI) + " convert " + quoted(folder / "out.glb") + " -o " +
+                                          quoted(folder / "back.x3d"));
+    REQUIRE(back.status == 0);
+    const CommandResult lit =
+        runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
+                   " --mode lit --views abc " + quoted(folder / "primitives.x3d") + " " + quoted(folder / "back.x3d"));
+    INFO(lit.output);
+    CHECK(lit.status == 0);
+}

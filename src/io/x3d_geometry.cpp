@@ -106,11 +106,11 @@ bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out,
         out = x3d::tessellateSphere(scalar(geometry, "radius", 1));
     } else if (type == "Cylinder") {
         const double radius = scalar(geometry, "radius", 1);
-        out = x3d::tessellateCylinder(radius, radius, scalar(geometry, "height", 2), boolean(geometry, "side", true),
+        out = x3d::tessellateCylinder(radius, scalar(geometry, "height", 2), boolean(geometry, "side", true),
                                       boolean(geometry, "bottom", true), boolean(geometry, "top", true));
     } else if (type == "Cone") {
-        out = x3d::tessellateCylinder(scalar(geometry, "bottomRadius", 1), 0, scalar(geometry, "height", 2),
-                                      boolean(geometry, "side", true), boolean(geometry, "bottom", true), false);
+        out = x3d::tessellateCone(scalar(geometry, "bottomRadius", 1), scalar(geometry, "height", 2),
+                                  boolean(geometry, "side", true), boolean(geometry, "bottom", true));
     } else if (type == "IndexedLineSet" || type == "LineSet") {
         return readLineSet(geometry, out, type == "IndexedLineSet");
     } else if (type == "PointSet") {

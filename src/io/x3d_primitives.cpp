@@ -1,103 +1,182 @@
 #include "x3d_primitives.hpp"
 
+#include "x3d_crease_normals.hpp"
+
 #include <Eigen/Geometry>
 
+#include <array>
 #include <cmath>
+#include <map>
+#include <vector>
 
 namespace symcompress::x3d {
 
 namespace {
 
-std::uint32_t addVertex(Primitive& out, const Eigen::Vector3d& position, const Eigen::Vector3d& normal,
-                        const Eigen::Vector2d& texcoord) {
-    out.positions.push_back(position);
-    out.normals.push_back(normal);
-    out.texcoords.push_back(texcoord);
-    return static_cast<std::uint32_t>(out.positions.size() - 1);
+// A primitive built face by face, as X_ITE builds its geometric primitives from IndexedFaceSets: each face a
+// fan from its first corner, a vertex for each distinct position, normal and texture coordinate.
+class FaceBuilder {
+public:
+    struct Corner {
+        Eigen::Vector3d position, normal;
+        Eigen::Vector2d texcoord;  // X3D's, t up
+    };
+    void addFace(const std::vector<Corner>& corners) {
+        std::vector<std::uint32_t> vertices;
+        for (const Corner& c : corners) {
+            const std::array<double, 8> key{c.position.x(), c.position.y(), c.position.z(), c.normal.x(),
+                                            c.normal.y(),   c.normal.z(),   c.texcoord.x(), c.texcoord.y()};
+            auto [entry, added] = vertexOf_.try_emplace(key, std::uint32_t(out_.positions.size()));
+            if (added) {
+                out_.positions.push_back(c.position);
+                out_.normals.push_back(c.normal);
+                out_.texcoords.emplace_back(c.texcoord.x(), 1 - c.texcoord.y());  // glTF's v points down
+            }
+            vertices.push_back(entry->second);
+        }
+        for (std::size_t k = 1; k + 1 < vertices.size(); ++k)
+            out_.triangles.push_back({vertices[0], vertices[k], vertices[k + 1]});
+    }
+    Primitive take() { return std::move(out_); }
+
+private:
+    Primitive out_;
+    std::map<std::array<double, 8>, std::uint32_t> vertexOf_;
+};
+
+// X_ITE's circle of `dimension` points: the i-th at angle 2 pi i / dimension, from -z turning towards -x.
+Eigen::Vector3d aroundY(int i, int dimension, double radius, double y) {
+    const double theta = 2 * M_PI * i / dimension;
+    return {-radius * std::sin(theta), y, -radius * std::cos(theta)};
+}
+
+// A cap's texture coordinate at the i-th point of the circle (X_ITE's: the bottom's mirrored from the top's).
+Eigen::Vector2d capTexcoord(int i, int dimension, bool top) {
+    const double theta = 2 * M_PI * i / dimension;
+    return {(1 - std::sin(theta)) / 2, top ? (1 + std::cos(theta)) / 2 : (1 - std::cos(theta)) / 2};
+}
+
+// A disc at height y facing down (the bottom: its points turned back) or up, one face of `dimension` corners.
+void addCap(FaceBuilder& faces, int dimension, double radius, double y, bool top) {
+    std::vector<FaceBuilder::Corner> corners;
+    for (int k = 0; k < dimension; ++k) {
+        const int i = top ? k : dimension - 1 - k;
+        corners.push_back(
+            {aroundY(i, dimension, radius, y), Eigen::Vector3d(0, top ? 1 : -1, 0), capTexcoord(i, dimension, top)});
+    }
+    faces.addFace(corners);
 }
 
 }  // namespace
 
 Primitive tessellateBox(const Eigen::Vector3d& size) {
-    Primitive out;
-    const Eigen::Vector3d half = size / 2;
-    for (int axis = 0; axis < 3; ++axis)
-        for (int sign : {-1, 1}) {
-            Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-            normal[axis] = sign;
-            // Two tangents such that (u, v, normal) is right-handed, so that the face is counter-clockwise.
-            Eigen::Vector3d u = Eigen::Vector3d::Zero();
-            u[(axis + 1) % 3] = 1;
-            Eigen::Vector3d v = normal.cross(u);
-            const std::uint32_t base = static_cast<std::uint32_t>(out.positions.size());
-            const double corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-            for (const auto& c : corners)
-                addVertex(out, (normal + c[0] * u + c[1] * v).cwiseProduct(half), normal,
-                          Eigen::Vector2d((c[0] + 1) / 2, 1 - (c[1] + 1) / 2));
-            out.triangles.push_back({base, base + 1, base + 2});
-            out.triangles.push_back({base, base + 2, base + 3});
-        }
-    return out;
+    // X_ITE's box: its corners, and each face's by them (front, back, left, right, top, bottom), every face's
+    // texture from (1, 1) at its first corner round to (1, 0).
+    const double corners[8][3] = {{1, 1, 1},  {-1, 1, 1},  {-1, -1, 1},  {1, -1, 1},
+                                  {1, 1, -1}, {-1, 1, -1}, {-1, -1, -1}, {1, -1, -1}};
+    const int faces[6][4] = {{0, 1, 2, 3}, {5, 4, 7, 6}, {1, 5, 6, 2}, {4, 0, 3, 7}, {4, 5, 1, 0}, {3, 2, 6, 7}};
+    const Eigen::Vector2d texcoords[4] = {{1, 1}, {0, 1}, {0, 0}, {1, 0}};
+    FaceBuilder out;
+    for (const auto& face : faces) {
+        auto corner = [&](int k) -> Eigen::Vector3d {
+            const double* c = corners[face[k]];
+            return Eigen::Vector3d(c[0], c[1], c[2]).cwiseProduct(size / 2);
+        };
+        const Eigen::Vector3d normal = (corner(1) - corner(0)).cross(corner(2) - corner(0)).normalized();
+        std::vector<FaceBuilder::Corner> built;
+        for (int k = 0; k < 4; ++k) built.push_back({corner(k), normal, texcoords[k]});
+        out.addFace(built);
+    }
+    return out.take();
 }
 
-Primitive tessellateSphere(double radius, int slices, int stacks) {
-    Primitive out;
-    for (int i = 0; i <= stacks; ++i) {
-        const double theta = M_PI * i / stacks;  // from the north pole (+y)
-        for (int j = 0; j <= slices; ++j) {
-            const double phi = 2 * M_PI * j / slices;
-            const Eigen::Vector3d normal(-std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
-            addVertex(out, radius * normal, normal, Eigen::Vector2d(double(j) / slices, double(i) / stacks));
+Primitive tessellateSphere(double radius) {
+    // X_ITE's quad sphere: 32 points around, 15 from pole to pole; faces from each pole, quads between.
+    constexpr int around = 32, rings = 13;  // rings of points between the poles
+    std::vector<double> points{0, radius, 0};
+    for (int v = 1; v <= rings; ++v) {
+        const double polar = M_PI * v / (rings + 1);
+        for (int u = 0; u < around; ++u) {
+            const Eigen::Vector3d p = aroundY(u, around, radius * std::sin(polar), radius * std::cos(polar));
+            points.insert(points.end(), {p.x(), p.y(), p.z()});
         }
     }
-    const auto index = [&](int i, int j) { return static_cast<std::uint32_t>(i * (slices + 1) + j); };
-    for (int i = 0; i < stacks; ++i)
-        for (int j = 0; j < slices; ++j) {
-            if (i > 0) out.triangles.push_back({index(i, j), index(i + 1, j), index(i, j + 1)});
-            if (i + 1 < stacks) out.triangles.push_back({index(i, j + 1), index(i + 1, j), index(i + 1, j + 1)});
+    points.insert(points.end(), {0, -radius, 0});
+    const std::int64_t south = std::int64_t(points.size() / 3 - 1);
+    auto point = [&](int v, int u) { return std::int64_t(1 + (v - 1) * around + (u % around)); };  // v in 1..rings
+    // Faces by point, and each corner's texture coordinate (u / 32 across, 1 at the north pole to 0 at the south;
+    // a pole's at the middle of its face).
+    std::vector<std::vector<std::int64_t>> faces;
+    std::vector<std::vector<Eigen::Vector2d>> texcoords;
+    auto ringTexcoord = [&](int v, int u) { return Eigen::Vector2d(double(u) / around, 1 - double(v) / (rings + 1)); };
+    for (int u = 0; u < around; ++u) {
+        faces.push_back({0, point(1, u), point(1, u + 1)});
+        texcoords.push_back({{(u + 0.5) / around, 1}, ringTexcoord(1, u), ringTexcoord(1, u + 1)});
+    }
+    for (int v = 1; v < rings; ++v)
+        for (int u = 0; u < around; ++u) {
+            faces.push_back({point(v, u), point(v + 1, u), point(v + 1, u + 1), point(v, u + 1)});
+            texcoords.push_back(
+                {ringTexcoord(v, u), ringTexcoord(v + 1, u), ringTexcoord(v + 1, u + 1), ringTexcoord(v, u + 1)});
         }
-    return out;
+    for (int u = 0; u < around; ++u) {
+        faces.push_back({south, point(rings, u + 1), point(rings, u)});
+        texcoords.push_back({{(u + 0.5) / around, 0}, ringTexcoord(rings, u + 1), ringTexcoord(rings, u)});
+    }
+    // Smoothed at every point, as X_ITE's face set with a creaseAngle of pi.
+    const auto [normals, normalOfCorner] = creasedNormals(faces, points, M_PI, true);
+    FaceBuilder out;
+    std::size_t corner = 0;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        std::vector<FaceBuilder::Corner> corners;
+        for (std::size_t k = 0; k < faces[f].size(); ++k, ++corner) {
+            const std::int64_t p = faces[f][k], n = normalOfCorner[corner];
+            corners.push_back({Eigen::Vector3d(points[3 * p], points[3 * p + 1], points[3 * p + 2]),
+                               Eigen::Vector3d(normals[3 * n], normals[3 * n + 1], normals[3 * n + 2]),
+                               texcoords[f][k]});
+        }
+        out.addFace(corners);
+    }
+    return out.take();
 }
 
-Primitive tessellateCylinder(double bottomRadius, double topRadius, double height, bool side, bool bottom, bool top,
-                             int slices) {
-    Primitive out;
+Primitive tessellateCylinder(double radius, double height, bool side, bool bottom, bool top) {
+    constexpr int dimension = 20;  // X_ITE's
     const double h = height / 2;
-    auto ring = [&](double radius, double y, int j) {
-        const double phi = 2 * M_PI * j / slices;
-        return Eigen::Vector3d(-radius * std::sin(phi), y, -radius * std::cos(phi));
-    };
+    FaceBuilder out;
+    if (side)
+        for (int i = 0; i < dimension; ++i) {
+            const Eigen::Vector3d n0 = aroundY(i, dimension, 1, 0), n1 = aroundY(i + 1, dimension, 1, 0);
+            const double u0 = double(i) / dimension, u1 = double(i + 1) / dimension;
+            out.addFace({{aroundY(i, dimension, radius, -h), n0, {u0, 0}},
+                         {aroundY(i + 1, dimension, radius, -h), n1, {u1, 0}},
+                         {aroundY(i + 1, dimension, radius, h), n1, {u1, 1}},
+                         {aroundY(i, dimension, radius, h), n0, {u0, 1}}});
+        }
+    if (bottom) addCap(out, dimension, radius, -h, false);
+    if (top) addCap(out, dimension, radius, h, true);
+    return out.take();
+}
+
+Primitive tessellateCone(double bottomRadius, double height, bool side, bool bottom) {
+    constexpr int dimension = 20;  // X_ITE's
+    const double h = height / 2;
+    FaceBuilder out;
     if (side) {
-        // The side's normal tilts with the slope of a cone.
-        const double slope = (bottomRadius - topRadius) / height;
-        for (int j = 0; j < slices; ++j) {
-            const Eigen::Vector3d b0 = ring(bottomRadius, -h, j), b1 = ring(bottomRadius, -h, j + 1);
-            const Eigen::Vector3d t0 = ring(topRadius, h, j), t1 = ring(topRadius, h, j + 1);
-            auto normalAt = [&](int k) {
-                const Eigen::Vector3d radial = ring(1, 0, k);
-                return Eigen::Vector3d(radial.x(), slope, radial.z()).normalized();
-            };
-            const double u0 = double(j) / slices, u1 = double(j + 1) / slices;
-            const std::uint32_t a = addVertex(out, b0, normalAt(j), {u0, 1}), b = addVertex(out, b1, normalAt(j + 1), {u1, 1});
-            const std::uint32_t c = addVertex(out, t1, normalAt(j + 1), {u1, 0}), d = addVertex(out, t0, normalAt(j), {u0, 0});
-            out.triangles.push_back({a, b, c});
-            if (topRadius > 0) out.triangles.push_back({a, c, d});
-        }
+        // The side's normal tilts up by the slope's angle; at the apex, each triangle's at its middle.
+        const double tilt = std::atan2(bottomRadius, height);
+        auto normalAt = [&](double i) {
+            const double theta = 2 * M_PI * i / dimension;
+            return Eigen::Vector3d(-std::sin(theta) * std::cos(tilt), std::sin(tilt),
+                                   -std::cos(theta) * std::cos(tilt));
+        };
+        for (int i = 0; i < dimension; ++i)
+            out.addFace({{aroundY(i, dimension, bottomRadius, -h), normalAt(i), {double(i) / dimension, 0}},
+                         {aroundY(i + 1, dimension, bottomRadius, -h), normalAt(i + 1), {double(i + 1) / dimension, 0}},
+                         {Eigen::Vector3d(0, h, 0), normalAt(i + 0.5), {(i + 0.5) / dimension, 1}}});
     }
-    auto cap = [&](double radius, double y, const Eigen::Vector3d& normal) {
-        if (radius <= 0) return;
-        const std::uint32_t centre = addVertex(out, Eigen::Vector3d(0, y, 0), normal, {0.5, 0.5});
-        std::vector<std::uint32_t> rim;
-        for (int j = 0; j <= slices; ++j) {
-            const Eigen::Vector3d p = ring(radius, y, j);
-            rim.push_back(addVertex(out, p, normal, {0.5 + p.x() / (2 * radius), 0.5 + p.z() / (2 * radius)}));
-        }
-        for (int j = 0; j < slices; ++j)
-            out.triangles.push_back(normal.y() > 0 ? Triangle{centre, rim[j], rim[j + 1]} : Triangle{centre, rim[j + 1], rim[j]});
-    };
-    if (bottom) cap(bottomRadius, -h, {0, -1, 0});
-    if (top) cap(topRadius, h, {0, 1, 0});
-    return out;
+    if (bottom) addCap(out, dimension, bottomRadius, -h, false);
+    return out.take();
 }
 
 }  // namespace symcompress::x3d

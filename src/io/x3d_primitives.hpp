@@ -7,9 +7,11 @@
 namespace symcompress::x3d {
 
 Primitive tessellateBox(const Eigen::Vector3d& size);
-Primitive tessellateSphere(double radius, int slices = 32, int stacks = 16);
-// Along y from -height/2 to height/2. A cone is a cylinder whose top radius is 0.
-Primitive tessellateCylinder(double bottomRadius, double topRadius, double height, bool side, bool bottom, bool top,
-                             int slices = 32);
+// As X_ITE draws them (its default options): the sphere of 32 points around and 15 from pole to pole, smoothed as a
+// face set with a creaseAngle of pi; the cylinder and cone of 20 sides, their normals those of the smooth surface;
+// along y from -height/2 to height/2.
+Primitive tessellateSphere(double radius);
+Primitive tessellateCylinder(double radius, double height, bool side, bool bottom, bool top);
+Primitive tessellateCone(double bottomRadius, double height, bool side, bool bottom);
 
 }  // namespace symcompress::x3d
