@@ -378,9 +378,7 @@ TEST_CASE("Hundreds of small parts verify within the budget: the area may change
         if (renderAvailable()) {
             checkRendersSame(input, folder / "close.glb");
             // The scene's budget alone: 1.2 to 1.5% of the blobs' pixels differ (2.7% of their normals' colours).
-            const CommandResult coarseRender =
-                runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
-                           " --views a " + quoted(input) + " " + quoted(folder / "small.glb"));
+            const CommandResult coarseRender = renderCompare(input, folder / "small.glb", "lit", "a");
             CHECK(coarseRender.status != 0);
         }
     }

@@ -109,13 +109,19 @@ inline bool renderAvailable() {
            runCommand("command -v chromium").status == 0;
 }
 
+// Renders `reference` and `output` with ../shared/bench/render (three.js for glTF, X_ITE for X3D) in `mode` from
+// `views`, and compares them (render_compare.sh: status 0 where they draw the same).
+inline CommandResult renderCompare(const std::filesystem::path& reference, const std::filesystem::path& output,
+                                   const std::string& mode, const std::string& views) {
+    return runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") + " --mode " +
+                      mode + " --views " + views + " " + quoted(reference) + " " + quoted(output));
+}
+
 // `compressed` renders as `reference` does (render_compare.sh, lit and normals modes, its default limits).
 inline void checkRendersSame(const std::filesystem::path& reference, const std::filesystem::path& compressed,
                              const std::string& views = "abc") {
     for (const char* mode : {"lit", "normals"}) {
-        const CommandResult result =
-            runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") + " --mode " +
-                       mode + " --views " + views + " " + quoted(reference) + " " + quoted(compressed));
+        const CommandResult result = renderCompare(reference, compressed, mode, views);
         INFO(mode << ": " << result.output);
         CHECK(result.status == 0);
     }

@@ -172,9 +172,7 @@ TEST_CASE("Vertex colours as X3D render in X_ITE as the glTF's in three.js", "[i
     writeScene(scene, folder / "colours.glb", plain);
     writeScene(readScene(folder / "colours.glb"), folder / "colours.x3d");
     CHECK_THAT(readTextFile(folder / "colours.x3d"), Catch::Contains("<UnlitMaterial"));
-    const CommandResult there =
-        runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
-                   " --mode lit --views d " + quoted(folder / "colours.glb") + " " + quoted(folder / "colours.x3d"));
+    const CommandResult there = renderCompare(folder / "colours.glb", folder / "colours.x3d", "lit", "d");
     INFO(there.output);
     CHECK(there.status == 0);
 }

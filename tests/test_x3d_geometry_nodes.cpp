@@ -435,9 +435,7 @@ TEST_CASE("The new geometry nodes render in X3D output as the input does in X_IT
     }
     checkRendersSame(folder / "nodes.x3d", folder / "out.x3d");
     // X_ITE and three.js light a scene otherwise: across them, the normals.
-    const CommandResult normals =
-        runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
-                   " --mode normals --views abc " + quoted(folder / "nodes.x3d") + " " + quoted(folder / "out.glb"));
+    const CommandResult normals = renderCompare(folder / "nodes.x3d", folder / "out.glb", "normals", "abc");
     INFO(normals.output);
     CHECK(normals.status == 0);
 }
@@ -573,17 +571,13 @@ TEST_CASE("The geometric primitives render in GLB output as X_ITE draws them, te
     REQUIRE(compressed.status == 0);
     // X_ITE and three.js light a scene otherwise: across them, the normals; the textures through X3D again, which
     // has no node to write again once the shapes are in GLB.
-    const CommandResult normals = runCommand(
-        "PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
-        " --mode normals --views abc " + quoted(folder / "primitives.x3d") + " " + quoted(folder / "out.glb"));
+    const CommandResult normals = renderCompare(folder / "primitives.x3d", folder / "out.glb", "normals", "abc");
     INFO(normals.output);
     CHECK(normals.status == 0);
     const CommandResult back = runCommand(quoted(SYMCOMPRESS_CLI) + " convert " + quoted(folder / "out.glb") + " -o " +
                                           quoted(folder / "back.x3d"));
     REQUIRE(back.status == 0);
-    const CommandResult lit =
-        runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") +
-                   " --mode lit --views abc " + quoted(folder / "primitives.x3d") + " " + quoted(folder / "back.x3d"));
+    const CommandResult lit = renderCompare(folder / "primitives.x3d", folder / "back.x3d", "lit", "abc");
     INFO(lit.output);
     CHECK(lit.status == 0);
 }

@@ -399,13 +399,6 @@ TEST_CASE("Broken X3D material nodes are warned about, naming the file and the n
     }
 }
 
-// Renders REFERENCE and OUTPUT with ../shared/bench/render (three.js for glTF, X_ITE for X3D) in `mode`.
-CommandResult renderCompare(const fs::path& reference, const fs::path& output, const std::string& mode,
-                            const std::string& views) {
-    return runCommand("PATH=/usr/bin:$PATH " + quoted(sharedDir() / "bench/render/render_compare.sh") + " --mode " +
-                      mode + " --views " + views + " " + quoted(reference) + " " + quoted(output));
-}
-
 TEST_CASE("A glTF with normal and metallic-roughness textures, as X3D, renders in X_ITE as X_ITE draws the glTF",
           "[io][x3d][materials][models]") {
     if (!renderAvailable()) {
