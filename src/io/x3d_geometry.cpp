@@ -257,8 +257,11 @@ bool X3dReader::readPointSet(const pugi::xml_node& geometry, Primitive& out) {
 
 std::vector<x3d::Face> X3dReader::listedFaces(const pugi::xml_node& geometry, std::size_t pointCount) {
     const std::string type = geometry.name();
-    std::vector<std::int64_t> consecutive(pointCount);
-    for (std::size_t p = 0; p < pointCount; ++p) consecutive[p] = std::int64_t(p);
+    auto consecutive = [&] {  // the points in their order (TriangleSet, QuadSet)
+        std::vector<std::int64_t> all(pointCount);
+        for (std::size_t p = 0; p < pointCount; ++p) all[p] = std::int64_t(p);
+        return all;
+    };
     if (type == "IndexedFaceSet") {
         std::vector<x3d::Face> faces(1);
         for (std::int64_t value : integers(geometry, "coordIndex")) {
@@ -271,7 +274,7 @@ std::vector<x3d::Face> X3dReader::listedFaces(const pugi::xml_node& geometry, st
         return faces;
     }
     if (type == "IndexedTriangleSet" || type == "TriangleSet") {
-        const std::vector<std::int64_t> index = type == "TriangleSet" ? consecutive : integers(geometry, "index");
+        const std::vector<std::int64_t> index = type == "TriangleSet" ? consecutive() : integers(geometry, "index");
         std::vector<x3d::Face> faces;
         for (std::size_t i = 0; i + 2 < index.size(); i += 3) faces.push_back({index[i], index[i + 1], index[i + 2]});
         return faces;
@@ -279,7 +282,7 @@ std::vector<x3d::Face> X3dReader::listedFaces(const pugi::xml_node& geometry, st
     if (type == "IndexedTriangleStripSet") return x3d::indexedStrips(integers(geometry, "index"));
     if (type == "IndexedTriangleFanSet") return x3d::indexedFans(integers(geometry, "index"));
     if (type == "IndexedQuadSet") return x3d::quads(integers(geometry, "index"));
-    if (type == "QuadSet") return x3d::quads(consecutive);
+    if (type == "QuadSet") return x3d::quads(consecutive());
     const bool strips = type == "TriangleStripSet";
     const std::vector<std::int64_t> counts = integers(geometry, strips ? "stripCount" : "fanCount");
     std::int64_t named = 0;
