@@ -581,3 +581,90 @@ TEST_CASE("The geometric primitives render in GLB output as X_ITE draws them, te
     INFO(lit.output);
     CHECK(lit.status == 0);
 }
+
+TEST_CASE("X3D's 2D geometry is drawn in the z = 0 plane as X_ITE draws it, its surfaces from both sides",
+          "[io][x3d][geometry-nodes]") {
+    TemporaryFolder folder;
+    auto polygonArea = [](int n, double r) { return n * r * r * std::sin(2 * M_PI / n) / 2; };
+    auto doubleSided = [&](const std::string& geometry) {
+        writeTextFile(folder / "sided.x3d", sceneX3d(shapeX3d(geometry, "<Appearance><Material/></Appearance>")));
+        const Scene scene = readScene(folder / "sided.x3d");
+        return scene.materials[std::size_t(scene.meshes[0].primitives[0].material)].doubleSided;
+    };
+    SECTION("surfaces: their areas, facing +z, double-sided unless solid") {
+        const Primitive rectangle = readOne(folder, "<Rectangle2D size='3 2'/>");
+        CHECK(rectangle.triangles.size() == 2);
+        CHECK(areaAndVolume(rectangle).first == Approx(6));
+        const Primitive disk = readOne(folder, "<Disk2D outerRadius='2'/>");
+        CHECK(disk.triangles.size() == 40);
+        CHECK(areaAndVolume(disk).first == Approx(polygonArea(40, 2)));
+        const Primitive ring = readOne(folder, "<Disk2D innerRadius='1' outerRadius='2'/>");
+        CHECK(ring.triangles.size() == 80);
+        CHECK(areaAndVolume(ring).first == Approx(polygonArea(40, 2) - polygonArea(40, 1)));
+        const Primitive triangles = readOne(folder, "<TriangleSet2D vertices='0 0 2 0 1 1 0 0 -1 -1 0 -1'/>");
+        CHECK(triangles.triangles.size() == 2);
+        for (const Primitive* p : {&rectangle, &disk, &ring, &triangles})
+            for (const Triangle& t : p->triangles) {
+                const Eigen::Vector3d &a = p->positions[t[0]], &b = p->positions[t[1]], &c = p->positions[t[2]];
+                CHECK((b - a).cross(c - a).z() > 0);
+                CHECK(a.z() == 0);
+            }
+        // The 2D triangle set's texture across its box's longer side (3 wide, 2 high, from (-1, -1)).
+        for (std::size_t v = 0; v < triangles.positions.size(); ++v) {
+            CHECK(triangles.texcoords[v].x() == Approx((triangles.positions[v].x() + 1) / 3));
+            CHECK(triangles.texcoords[v].y() == Approx(1 - (triangles.positions[v].y() + 1) / 3));
+        }
+        CHECK(doubleSided("<Rectangle2D/>"));
+        CHECK_FALSE(doubleSided("<Rectangle2D solid='true'/>"));
+        CHECK_FALSE(doubleSided("<Box/>"));
+    }
+    SECTION("lines and points: a circle of 40 segments, an arc of its share of them, a polyline, points") {
+        const Primitive circle = readOne(folder, "<Circle2D radius='2'/>");
+        CHECK(circle.topology == Topology::Lines);
+        CHECK(circle.lines.size() == 40);
+        for (const Eigen::Vector3d& p : circle.positions) CHECK(p.norm() == Approx(2));
+        const Primitive arc = readOne(folder, "<Arc2D radius='1' startAngle='0.5' endAngle='2'/>");
+        CHECK(arc.lines.size() == std::size_t(std::floor(1.5 * 40 / (2 * M_PI))));
+        CHECK((arc.positions.front() - Eigen::Vector3d(std::cos(0.5), std::sin(0.5), 0)).norm() < 1e-12);
+        CHECK((arc.positions.back() - Eigen::Vector3d(std::cos(2.0), std::sin(2.0), 0)).norm() < 1e-12);
+        const Primitive polyline = readOne(folder, "<Polyline2D lineSegments='0 0 1 1 2 0 3 1'/>");
+        CHECK(polyline.lines.size() == 3);
+        const Primitive points = readOne(folder, "<Polypoint2D point='0 0 1 0 2 0'/>");
+        CHECK(points.topology == Topology::Points);
+        CHECK(points.positions.size() == 3);
+    }
+    SECTION("ArcClose2D is not read: a warning naming it") {
+        writeTextFile(folder / "closed.x3d", sceneX3d(shapeX3d("<ArcClose2D/>")));
+        CHECK_THAT(joinedWarnings(readScene(folder / "closed.x3d").warnings),
+                   Catch::Contains("closed.x3d: 1 ArcClose2D node skipped (not supported)"));
+    }
+}
+
+TEST_CASE("X3D's 2D surfaces render in GLB as X_ITE draws them", "[io][x3d][geometry-nodes][renders]") {
+    if (!renderAvailable()) {
+        WARN("skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
+        return;
+    }
+    TemporaryFolder folder;
+    std::string shapes = "<Viewpoint position='0 0 12'/>";
+    for (const auto& [translation, geometry] : std::vector<std::pair<std::string, std::string>>{
+             {"-4 0 0", "<Rectangle2D size='2 1'/>"},
+             {"0 0 0", "<Disk2D outerRadius='1'/>"},
+             {"4 0 0", "<Disk2D innerRadius='0.5' outerRadius='1.2'/>"},
+             {"0 -3 0", "<TriangleSet2D vertices='0 0 2 0 1 1.5 -1 0 -0.5 -1 0 -1'/>"}})
+        shapes += "<Transform translation='" + translation + "'>" +
+                  shapeX3d(geometry, "<Appearance><Material diffuseColor='0.8 0.3 0.3'/></Appearance>") +
+                  "</Transform>";
+    // Turned off the axes: a view along the plane would see nothing.
+    writeTextFile(folder / "flat.x3d", sceneX3d("<Transform rotation='1 1 0 0.6'>" + shapes + "</Transform>"));
+    for (const char* output : {"out.glb", "out.x3d"}) {
+        const CommandResult compressed = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "flat.x3d") +
+                                                    " -o " + quoted(folder / output));
+        INFO(compressed.output);
+        REQUIRE(compressed.status == 0);
+    }
+    checkRendersSame(folder / "flat.x3d", folder / "out.x3d");
+    const CommandResult normals = renderCompare(folder / "flat.x3d", folder / "out.glb", "normals", "abc");
+    INFO(normals.output);
+    CHECK(normals.status == 0);
+}

@@ -111,6 +111,22 @@ bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out,
     } else if (type == "Cone") {
         out = x3d::tessellateCone(scalar(geometry, "bottomRadius", 1), scalar(geometry, "height", 2),
                                   boolean(geometry, "side", true), boolean(geometry, "bottom", true));
+    } else if (type == "Rectangle2D") {
+        const std::vector<double> size = numbers(geometry, "size");
+        out = x3d::tessellateRectangle2D(size.size() == 2 ? Eigen::Vector2d(size[0], size[1]) : Eigen::Vector2d(2, 2));
+    } else if (type == "Disk2D") {
+        out = x3d::tessellateDisk2D(scalar(geometry, "innerRadius", 0), scalar(geometry, "outerRadius", 1));
+    } else if (type == "TriangleSet2D") {
+        out = x3d::triangleSet2D(points2D(geometry, "vertices"));
+    } else if (type == "Circle2D") {
+        out = x3d::arc2D(scalar(geometry, "radius", 1), 0, 0);
+    } else if (type == "Arc2D") {
+        out = x3d::arc2D(scalar(geometry, "radius", 1), scalar(geometry, "startAngle", 0),
+                         scalar(geometry, "endAngle", M_PI / 2));
+    } else if (type == "Polyline2D") {
+        out = x3d::polyline2D(points2D(geometry, "lineSegments"));
+    } else if (type == "Polypoint2D") {
+        out = x3d::polypoint2D(points2D(geometry, "point"));
     } else if (type == "IndexedLineSet" || type == "LineSet") {
         return readLineSet(geometry, out, type == "IndexedLineSet");
     } else if (type == "PointSet") {
@@ -152,6 +168,14 @@ std::string X3dReader::selfContainedXml(const pugi::xml_node& geometry) const {
     std::ostringstream text;
     copy.print(text, "", pugi::format_raw);
     return text.str();
+}
+
+std::vector<Eigen::Vector2d> X3dReader::points2D(const pugi::xml_node& geometry, const char* field) const {
+    const std::vector<double> values = numbers(geometry, field);
+    if (values.size() % 2) fail(geometry, std::string(field) + ": not a multiple of 2");
+    std::vector<Eigen::Vector2d> points;
+    for (std::size_t i = 0; i + 1 < values.size(); i += 2) points.emplace_back(values[i], values[i + 1]);
+    return points;
 }
 
 pugi::xml_node X3dReader::geometryChild(const pugi::xml_node& geometry, std::initializer_list<const char*> types) {

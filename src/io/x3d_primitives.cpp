@@ -179,4 +179,93 @@ Primitive tessellateCone(double bottomRadius, double height, bool side, bool bot
     return out.take();
 }
 
+Primitive tessellateRectangle2D(const Eigen::Vector2d& size) {
+    const Eigen::Vector2d half = size.cwiseAbs() / 2;
+    FaceBuilder out;
+    const Eigen::Vector3d up(0, 0, 1);
+    out.addFace({{Eigen::Vector3d(half.x(), half.y(), 0), up, {1, 1}},
+                 {Eigen::Vector3d(-half.x(), half.y(), 0), up, {0, 1}},
+                 {Eigen::Vector3d(-half.x(), -half.y(), 0), up, {0, 0}},
+                 {Eigen::Vector3d(half.x(), -half.y(), 0), up, {1, 0}}});
+    return out.take();
+}
+
+namespace {
+
+constexpr int kCircleDimension = 40;  // X_ITE's segments of a whole turn (Geometry2D)
+
+Eigen::Vector2d onCircle(double radius, double theta) {
+    return radius * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+}
+
+}  // namespace
+
+Primitive tessellateDisk2D(double innerRadius, double outerRadius) {
+    const double inner = std::min(std::abs(innerRadius), std::abs(outerRadius));
+    const double outer = std::max(std::abs(innerRadius), std::abs(outerRadius));
+    if (inner == outer) return arc2D(outer, 0, 0);  // a circle (X_ITE draws a point where both are 0)
+    FaceBuilder out;
+    const Eigen::Vector3d up(0, 0, 1);
+    // The texture across the outer circle's box.
+    auto corner = [&](double radius, double theta) -> FaceBuilder::Corner {
+        const Eigen::Vector2d p = onCircle(radius, theta);
+        return {Eigen::Vector3d(p.x(), p.y(), 0), up, Eigen::Vector2d::Constant(0.5) + p / (2 * outer)};
+    };
+    for (int n = 0; n < kCircleDimension; ++n) {
+        const double theta1 = 2 * M_PI * n / kCircleDimension, theta2 = 2 * M_PI * (n + 1) / kCircleDimension;
+        if (inner == 0) {
+            out.addFace({corner(0, 0), corner(outer, theta1), corner(outer, theta2)});
+        } else {
+            out.addFace({corner(inner, theta1), corner(outer, theta1), corner(outer, theta2)});
+            out.addFace({corner(inner, theta1), corner(outer, theta2), corner(inner, theta2)});
+        }
+    }
+    return out.take();
+}
+
+Primitive triangleSet2D(const std::vector<Eigen::Vector2d>& vertices) {
+    Eigen::AlignedBox2d box;
+    for (const Eigen::Vector2d& v : vertices) box.extend(v);
+    const double side = box.isEmpty() ? 0 : box.sizes().maxCoeff();
+    FaceBuilder out;
+    for (std::size_t i = 0; i + 2 < vertices.size(); i += 3) {
+        std::vector<FaceBuilder::Corner> corners;
+        for (std::size_t k = i; k < i + 3; ++k)
+            corners.push_back({Eigen::Vector3d(vertices[k].x(), vertices[k].y(), 0), Eigen::Vector3d::UnitZ(),
+                               side > 0 ? Eigen::Vector2d((vertices[k] - box.min()) / side) : Eigen::Vector2d::Zero()});
+        out.addFace(corners);
+    }
+    return out.take();
+}
+
+Primitive arc2D(double radius, double startAngle, double endAngle) {
+    // The sweep from start to end, each within [0, 2 pi); a whole turn where they are equal.
+    auto wrapped = [](double angle) { return angle - 2 * M_PI * std::floor(angle / (2 * M_PI)); };
+    const double start = wrapped(startAngle), end = wrapped(endAngle);
+    const double sweep = start == end ? 2 * M_PI : start > end ? 2 * M_PI - (start - end) : end - start;
+    const int steps = std::max(3, int(std::floor(sweep * kCircleDimension / (2 * M_PI))));
+    Primitive out;
+    out.topology = Topology::Lines;
+    for (int n = 0; n <= steps; ++n) {
+        const Eigen::Vector2d p = onCircle(std::abs(radius), startAngle + sweep * n / steps);
+        out.positions.emplace_back(p.x(), p.y(), 0);
+        if (n) out.lines.push_back({std::uint32_t(n - 1), std::uint32_t(n)});
+    }
+    return out;
+}
+
+Primitive polyline2D(const std::vector<Eigen::Vector2d>& points) {
+    Primitive out = polypoint2D(points);
+    out.topology = Topology::Lines;
+    for (std::size_t i = 1; i < points.size(); ++i) out.lines.push_back({std::uint32_t(i - 1), std::uint32_t(i)});
+    return out;
+}
+
+Primitive polypoint2D(const std::vector<Eigen::Vector2d>& points) {
+    Primitive out;
+    out.topology = Topology::Points;
+    for (const Eigen::Vector2d& p : points) out.positions.emplace_back(p.x(), p.y(), 0);
+    return out;
+}
+
 }  // namespace symcompress::x3d

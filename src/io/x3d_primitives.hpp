@@ -4,6 +4,8 @@
 
 #include "symcompress/scene.hpp"
 
+#include <vector>
+
 namespace symcompress::x3d {
 
 Primitive tessellateBox(const Eigen::Vector3d& size);
@@ -13,5 +15,16 @@ Primitive tessellateBox(const Eigen::Vector3d& size);
 Primitive tessellateSphere(double radius);
 Primitive tessellateCylinder(double radius, double height, bool side, bool bottom, bool top);
 Primitive tessellateCone(double bottomRadius, double height, bool side, bool bottom);
+
+// X3D's Geometry2D nodes in the z = 0 plane, as X_ITE draws them: the rectangle a quad from (1, 1) round, the disk a
+// fan of 40 triangles (a ring of 40 quads' two triangles where innerRadius > 0), its texture across its box; the
+// circle and the arc lines of 40 segments to the whole turn (at least 3); a 2D triangle set facing +z, its texture
+// across its box's longer side. Lines and points as their Topology.
+Primitive tessellateRectangle2D(const Eigen::Vector2d& size);
+Primitive tessellateDisk2D(double innerRadius, double outerRadius);
+Primitive triangleSet2D(const std::vector<Eigen::Vector2d>& vertices);
+Primitive arc2D(double radius, double startAngle, double endAngle);  // a whole circle where the angles are equal
+Primitive polyline2D(const std::vector<Eigen::Vector2d>& points);
+Primitive polypoint2D(const std::vector<Eigen::Vector2d>& points);
 
 }  // namespace symcompress::x3d

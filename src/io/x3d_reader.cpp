@@ -48,17 +48,12 @@ const std::set<std::string> kUnsupportedGeometry = {"Text",
                                                     "NurbsSweptSurface",
                                                     "NurbsSwungSurface",
                                                     "GeoElevationGrid",
-                                                    "Arc2D",
-                                                    "ArcClose2D",
-                                                    "Circle2D",
-                                                    "Disk2D",
-                                                    "Polyline2D",
-                                                    "Polypoint2D",
-                                                    "Rectangle2D",
-                                                    "TriangleSet2D"};
-
+                                                    "ArcClose2D"};
+// The Geometry2D surfaces, which X3D draws from both sides unless `solid` says otherwise.
+const std::set<std::string> kSurfaces2D = {"Rectangle2D", "Disk2D", "TriangleSet2D", "ArcClose2D"};
 // Geometry nodes that make their points from a few numbers: X3D output writes them again (X3dGeometrySource).
-const std::set<std::string> kMadeGeometry = {"Box", "Sphere", "Cylinder", "Cone", "ElevationGrid", "Extrusion"};
+const std::set<std::string> kMadeGeometry = {"Box",           "Sphere",    "Cylinder",    "Cone",
+                                             "ElevationGrid", "Extrusion", "Rectangle2D", "Disk2D"};
 
 // How deep XML elements may nest in an X3D file (readNode's limit for the scene graph, 256, and room for
 // the X3D and Scene elements and a node's fields).
@@ -405,7 +400,8 @@ int X3dReader::readShape(const pugi::xml_node& shape) {
     // Double-sidedness is the geometry's (solid='false'): a material shared with shapes of the other kind is
     // drawn from a copy that differs in it alone, so that a solid shape's back faces stay culled (the Chevy's
     // roof rails, drawn with a material that a box with solid='false' also uses).
-    if (material >= 0) material = withSidedness(material, !boolean(geometry, "solid", true));
+    if (material >= 0)
+        material = withSidedness(material, !boolean(geometry, "solid", !kSurfaces2D.count(geometry.name())));
     primitive.material = material;
     if (!primitive.colors.empty()) vertexColorsAsGltf(primitive);
     if (kMadeGeometry.count(geometry.name()) && !primitive.triangles.empty())

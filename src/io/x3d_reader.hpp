@@ -78,6 +78,8 @@ private:
     std::vector<x3d::Face> listedFaces(const pugi::xml_node& geometry, std::size_t pointCount);
     // An ElevationGrid's or Extrusion's points and faces, made from its fields.
     x3d::Faces madeFaces(const pugi::xml_node& geometry);
+    // An MFVec2f field's points (Geometry2D).
+    std::vector<Eigen::Vector2d> points2D(const pugi::xml_node& geometry, const char* field) const;
     // A geometry node's XML as a node of its own: every USE in it replaced by what it names, without DEFs.
     std::string selfContainedXml(const pugi::xml_node& geometry) const;
     // The first child of `geometry` of one of `types`, its DEF known and a USE resolved; none: a null node.
