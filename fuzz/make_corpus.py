@@ -278,7 +278,7 @@ x3d_made_faces = X3D_HEAD + """<Shape><IndexedTriangleStripSet index="0 1 2 3 -1
 <Shape><QuadSet normalPerVertex="false"><Coordinate point="0 0 0 0 1 0 1 1 0 1 0 0"/><Normal vector="0 0 1"/></QuadSet></Shape>
 <Shape><ElevationGrid xDimension="3" zDimension="2" xSpacing="0.5" creaseAngle="1" height="0 1 0 1 0 1"><Color color="1 0 0 0 1 0 0 0 1 1 1 1 0 0 0 1 1 0"/></ElevationGrid></Shape>
 <Shape><Rectangle2D size="2 1"/></Shape><Shape><Disk2D innerRadius="0.5"/></Shape><Shape><TriangleSet2D vertices="0 0 1 0 0 1"/></Shape>
-<Shape><Circle2D/></Shape><Shape><Arc2D startAngle="4" endAngle="1"/></Shape><Shape><Polyline2D lineSegments="0 0 1 1 2 0"/></Shape><Shape><Polypoint2D point="0 0 1 1"/></Shape>
+<Shape><Circle2D/></Shape><Shape><Arc2D startAngle="4" endAngle="1"/></Shape><Shape><Polyline2D lineSegments="0 0 1 1 2 0"/></Shape><Shape><Polypoint2D point="0 0 1 1"/></Shape><Shape><ArcClose2D closureType="CHORD" endAngle="7"/></Shape>
 <Shape><Extrusion spine="0 0 0 0 1 0 1 2 0 0 0 0" crossSection="1 1 1 -1 -1 -1 -1 1 1 1" scale="1 1 0 0 0.5 0.5" orientation="0 1 0 0.5" convex="false" creaseAngle="0.5" beginCap="false"/></Shape>
 """ + X3D_TAIL
 x3d_prototypes = X3D_HEAD + """<ProtoDeclare name="P"><ProtoInterface><field name="h" type="SFFloat" accessType="initializeOnly" value="2"/>

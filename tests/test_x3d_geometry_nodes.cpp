@@ -633,10 +633,17 @@ TEST_CASE("X3D's 2D geometry is drawn in the z = 0 plane as X_ITE draws it, its 
         CHECK(points.topology == Topology::Points);
         CHECK(points.positions.size() == 3);
     }
-    SECTION("ArcClose2D is not read: a warning naming it") {
-        writeTextFile(folder / "closed.x3d", sceneX3d(shapeX3d("<ArcClose2D/>")));
-        CHECK_THAT(joinedWarnings(readScene(folder / "closed.x3d").warnings),
-                   Catch::Contains("closed.x3d: 1 ArcClose2D node skipped (not supported)"));
+    SECTION("ArcClose2D: a pie from the centre, or a fan from the arc's first point closed by its chord") {
+        // 3.2 rad: 20 of the 40 steps to the turn (floor(3.2 * 40 / 2 pi)), 20 points from start to end.
+        const Primitive pie = readOne(folder, "<ArcClose2D radius='2' startAngle='0' endAngle='3.2'/>");
+        CHECK(pie.triangles.size() == 19);
+        CHECK(areaAndVolume(pie).first == Approx(19 * 4 * std::sin(3.2 / 19) / 2));
+        const Primitive chord =
+            readOne(folder, "<ArcClose2D closureType='CHORD' radius='2' startAngle='0' endAngle='3.2'/>");
+        CHECK(chord.triangles.size() == 18);
+        // The polygon of the arc's points: the pie's sectors and the triangle between the chord and the centre.
+        CHECK(areaAndVolume(chord).first == Approx(areaAndVolume(pie).first + 4 * std::sin(-3.2) / 2));
+        CHECK(doubleSided("<ArcClose2D/>"));
     }
 }
 
@@ -651,7 +658,9 @@ TEST_CASE("X3D's 2D surfaces render in GLB as X_ITE draws them", "[io][x3d][geom
              {"-4 0 0", "<Rectangle2D size='2 1'/>"},
              {"0 0 0", "<Disk2D outerRadius='1'/>"},
              {"4 0 0", "<Disk2D innerRadius='0.5' outerRadius='1.2'/>"},
-             {"0 -3 0", "<TriangleSet2D vertices='0 0 2 0 1 1.5 -1 0 -0.5 -1 0 -1'/>"}})
+             {"0 -3 0", "<TriangleSet2D vertices='0 0 2 0 1 1.5 -1 0 -0.5 -1 0 -1'/>"},
+             {"4 -3 0", "<ArcClose2D closureType='CHORD' endAngle='4'/>"},
+             {"-4 -3 0", "<ArcClose2D startAngle='1' endAngle='5'/>"}})
         shapes += "<Transform translation='" + translation + "'>" +
                   shapeX3d(geometry, "<Appearance><Material diffuseColor='0.8 0.3 0.3'/></Appearance>") +
                   "</Transform>";

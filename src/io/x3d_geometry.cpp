@@ -23,6 +23,8 @@ namespace {
 
 // More texture coordinate sets than a material's five textures can use are not kept (TEXCOORD_0 to _7).
 constexpr std::size_t kMaxTexcoordSets = 8;
+// Arc2D's and ArcClose2D's default endAngle, the SFFloat nearest a quarter turn as X3D writes it.
+constexpr double kQuarterTurn = 1.570796;
 // The geometry nodes read as faces (readFaceSet).
 const std::set<std::string> kFaceSets = {"IndexedFaceSet",
                                          "IndexedTriangleSet",
@@ -122,7 +124,11 @@ bool X3dReader::readGeometry(const pugi::xml_node& geometry, Primitive& out,
         out = x3d::arc2D(scalar(geometry, "radius", 1), 0, 0);
     } else if (type == "Arc2D") {
         out = x3d::arc2D(scalar(geometry, "radius", 1), scalar(geometry, "startAngle", 0),
-                         scalar(geometry, "endAngle", M_PI / 2));
+                         scalar(geometry, "endAngle", kQuarterTurn));
+    } else if (type == "ArcClose2D") {
+        out = x3d::tessellateArcClose2D(scalar(geometry, "radius", 1), scalar(geometry, "startAngle", 0),
+                                        scalar(geometry, "endAngle", kQuarterTurn),
+                                        std::string(geometry.attribute("closureType").value()) == "CHORD");
     } else if (type == "Polyline2D") {
         out = x3d::polyline2D(points2D(geometry, "lineSegments"));
     } else if (type == "Polypoint2D") {

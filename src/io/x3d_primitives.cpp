@@ -198,6 +198,18 @@ Eigen::Vector2d onCircle(double radius, double theta) {
     return radius * Eigen::Vector2d(std::cos(theta), std::sin(theta));
 }
 
+// The angle an arc sweeps from start to end, each taken within [0, 2 pi): a whole turn where they are equal.
+double sweepOf(double startAngle, double endAngle) {
+    auto wrapped = [](double angle) { return angle - 2 * M_PI * std::floor(angle / (2 * M_PI)); };
+    const double start = wrapped(startAngle), end = wrapped(endAngle);
+    return start == end ? 2 * M_PI : start > end ? 2 * M_PI - (start - end) : end - start;
+}
+
+// The steps an arc of `sweep` takes: its share of a whole turn's, at least `fewest`.
+int stepsOf(double sweep, int fewest) {
+    return std::max(fewest, int(std::floor(sweep * kCircleDimension / (2 * M_PI))));
+}
+
 }  // namespace
 
 Primitive tessellateDisk2D(double innerRadius, double outerRadius) {
@@ -239,11 +251,8 @@ Primitive triangleSet2D(const std::vector<Eigen::Vector2d>& vertices) {
 }
 
 Primitive arc2D(double radius, double startAngle, double endAngle) {
-    // The sweep from start to end, each within [0, 2 pi); a whole turn where they are equal.
-    auto wrapped = [](double angle) { return angle - 2 * M_PI * std::floor(angle / (2 * M_PI)); };
-    const double start = wrapped(startAngle), end = wrapped(endAngle);
-    const double sweep = start == end ? 2 * M_PI : start > end ? 2 * M_PI - (start - end) : end - start;
-    const int steps = std::max(3, int(std::floor(sweep * kCircleDimension / (2 * M_PI))));
+    const double sweep = sweepOf(startAngle, endAngle);
+    const int steps = stepsOf(sweep, 3);
     Primitive out;
     out.topology = Topology::Lines;
     for (int n = 0; n <= steps; ++n) {
@@ -252,6 +261,23 @@ Primitive arc2D(double radius, double startAngle, double endAngle) {
         if (n) out.lines.push_back({std::uint32_t(n - 1), std::uint32_t(n)});
     }
     return out;
+}
+
+Primitive tessellateArcClose2D(double radius, double startAngle, double endAngle, bool chord) {
+    const double sweep = sweepOf(startAngle, endAngle);
+    const int points = stepsOf(sweep, 4);  // X_ITE's: from start to end, both ends included
+    const Eigen::Vector3d up(0, 0, 1);
+    auto corner = [&](int n) -> FaceBuilder::Corner {
+        const double theta = startAngle + sweep * n / (points - 1);
+        const Eigen::Vector2d p = onCircle(std::abs(radius), theta);
+        return {Eigen::Vector3d(p.x(), p.y(), 0), up, Eigen::Vector2d::Constant(0.5) + onCircle(0.5, theta)};
+    };
+    // A chord: a fan from the arc's first point; a pie: from the centre.
+    const FaceBuilder::Corner centre{Eigen::Vector3d::Zero(), up, Eigen::Vector2d::Constant(0.5)};
+    FaceBuilder out;
+    for (int n = chord ? 1 : 0; n + 1 < points; ++n)
+        out.addFace({chord ? corner(0) : centre, corner(n), corner(n + 1)});
+    return out.take();
 }
 
 Primitive polyline2D(const std::vector<Eigen::Vector2d>& points) {

@@ -24,6 +24,8 @@ Primitive tessellateRectangle2D(const Eigen::Vector2d& size);
 Primitive tessellateDisk2D(double innerRadius, double outerRadius);
 Primitive triangleSet2D(const std::vector<Eigen::Vector2d>& vertices);
 Primitive arc2D(double radius, double startAngle, double endAngle);  // a whole circle where the angles are equal
+// An arc closed by its chord (a fan from its first point) or as a pie (from the centre), of 40 triangles to the turn.
+Primitive tessellateArcClose2D(double radius, double startAngle, double endAngle, bool chord);
 Primitive polyline2D(const std::vector<Eigen::Vector2d>& points);
 Primitive polypoint2D(const std::vector<Eigen::Vector2d>& points);
 

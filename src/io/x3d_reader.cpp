@@ -47,13 +47,12 @@ const std::set<std::string> kUnsupportedGeometry = {"Text",
                                                     "NurbsCurve",
                                                     "NurbsSweptSurface",
                                                     "NurbsSwungSurface",
-                                                    "GeoElevationGrid",
-                                                    "ArcClose2D"};
+                                                    "GeoElevationGrid"};
 // The Geometry2D surfaces, which X3D draws from both sides unless `solid` says otherwise.
 const std::set<std::string> kSurfaces2D = {"Rectangle2D", "Disk2D", "TriangleSet2D", "ArcClose2D"};
 // Geometry nodes that make their points from a few numbers: X3D output writes them again (X3dGeometrySource).
-const std::set<std::string> kMadeGeometry = {"Box",           "Sphere",    "Cylinder",    "Cone",
-                                             "ElevationGrid", "Extrusion", "Rectangle2D", "Disk2D"};
+const std::set<std::string> kMadeGeometry = {"Box",       "Sphere",      "Cylinder", "Cone",      "ElevationGrid",
+                                             "Extrusion", "Rectangle2D", "Disk2D",   "ArcClose2D"};
 
 // How deep XML elements may nest in an X3D file (readNode's limit for the scene graph, 256, and room for
 // the X3D and Scene elements and a node's fields).
