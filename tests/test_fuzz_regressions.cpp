@@ -563,3 +563,17 @@ TEST_CASE("glTF: a zero-area point written as zeros reads back from a file whose
         CHECK(worldMesh(readScene(folder / "out.glb")).triangles.size() == worldMesh(scene).triangles.size());
     }
 }
+
+TEST_CASE("X3D: a prototype's IS connect to a field whose name is no name is left out, and the output reads back",
+          "[io][fuzz]") {
+    // Found by fuzz_x3d: nodeField='>height' became an attribute the X3D writer wrote as it was, which no XML
+    // reader reads.
+    const Scene scene = readScene(regressionInput("x3d_prototype_field_not_a_name.x3d"));
+    CHECK(std::any_of(scene.warnings.begin(), scene.warnings.end(), [](const std::string& warning) {
+        return warning.find("an IS connect to the field '>height', which is no field's name, left out") !=
+               std::string::npos;
+    }));
+    TemporaryFolder folder;
+    writeScene(scene, folder / "written.x3d");
+    CHECK(readScene(folder / "written.x3d").meshes.size() == scene.meshes.size());
+}

@@ -2,6 +2,8 @@
 
 #include "x3d_fields.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -15,6 +17,14 @@ constexpr int kMostNestedInstances = 32;                         // prototypes w
 constexpr std::size_t kMostMadeElements = std::size_t(1) << 20;  // elements the expansion may copy in all
 
 bool named(const pugi::xml_node& node, const char* name) { return std::strcmp(node.name(), name) == 0; }
+
+// Whether `name` can be a field's name, and so an XML attribute's: a letter or _ first, then letters, digits, _.
+bool isFieldName(const std::string& name) {
+    auto letter = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+    return !name.empty() && letter(name[0]) && std::all_of(name.begin(), name.end(), [&](char c) {
+        return letter(c) || std::isdigit(static_cast<unsigned char>(c));
+    });
+}
 
 bool isDeclaration(const pugi::xml_node& node) {
     return named(node, "ProtoDeclare") || named(node, "ExternProtoDeclare");
@@ -169,7 +179,11 @@ private:
             for (pugi::xml_node link : node.child("IS").children("connect")) {
                 const std::string field = link.attribute("nodeField").value();
                 const auto value = values.find(link.attribute("protoField").value());
-                if (field.empty() || value == values.end()) continue;
+                if (value == values.end()) continue;
+                if (!isFieldName(field)) {
+                    out_.notes.insert("an IS connect to the field '" + field + "', which is no field's name, left out");
+                    continue;
+                }
                 const pugi::xml_attribute text = value->second.attribute("value");
                 if (named(node, "ProtoInstance")) {
                     for (pugi::xml_node old = node.find_child_by_attribute("fieldValue", "name", field.c_str()); old;
