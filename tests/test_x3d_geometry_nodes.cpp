@@ -95,6 +95,25 @@ std::string circleText(int corners, double radius) {
     return numbersText(values);
 }
 
+// The area of a regular polygon of `corners` corners on a circle of radius `radius`.
+double polygonArea(int corners, double radius) { return corners * radius * radius * std::sin(2 * M_PI / corners) / 2; }
+
+// `input` compressed to `output` by the command-line tool, which must succeed; what it printed.
+std::string compressWithTool(const fs::path& input, const fs::path& output) {
+    const CommandResult compressed =
+        runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(input) + " -o " + quoted(output));
+    INFO(compressed.output);
+    REQUIRE(compressed.status == 0);
+    return compressed.output;
+}
+
+// `output` renders as `reference` in one `mode` (render_compare.sh, views a, b and c).
+void checkRendersIn(const std::string& mode, const fs::path& reference, const fs::path& output) {
+    const CommandResult result = renderCompare(reference, output, mode, "abc");
+    INFO(mode << ": " << result.output);
+    CHECK(result.status == 0);
+}
+
 }  // namespace
 
 TEST_CASE("X3D's triangle strips and fans and quad sets are cut as X_ITE cuts them", "[io][x3d][geometry-nodes]") {
@@ -427,17 +446,11 @@ TEST_CASE("The new geometry nodes render in X3D output as the input does in X_IT
                    "creaseAngle='1.6'/>"));
     writeTextFile(folder / "nodes.x3d", scene);
     for (const char* output : {"out.x3d", "out.glb"}) {
-        const CommandResult compressed = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "nodes.x3d") +
-                                                    " -o " + quoted(folder / output));
-        INFO(compressed.output);
-        REQUIRE(compressed.status == 0);
-        CHECK(compressed.output.find("skipped") == std::string::npos);
+        CHECK(compressWithTool(folder / "nodes.x3d", folder / output).find("skipped") == std::string::npos);
     }
     checkRendersSame(folder / "nodes.x3d", folder / "out.x3d");
     // X_ITE and three.js light a scene otherwise: across them, the normals.
-    const CommandResult normals = renderCompare(folder / "nodes.x3d", folder / "out.glb", "normals", "abc");
-    INFO(normals.output);
-    CHECK(normals.status == 0);
+    checkRendersIn("normals", folder / "nodes.x3d", folder / "out.glb");
 }
 
 TEST_CASE("X3D output writes the nodes that make their own points again as they were, not their triangles",
@@ -464,10 +477,7 @@ TEST_CASE("X3D output writes the nodes that make their own points again as they 
         "<Shape><Appearance><Material/></Appearance><Box size='1 2 3'/></Shape>"
         "<Transform translation='9 0 0'><Shape><Appearance><Material/></Appearance><Cone/></Shape></Transform>");
     writeTextFile(folder / "made.x3d", input);
-    const CommandResult compressed = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "made.x3d") +
-                                                " -o " + quoted(folder / "out.x3d"));
-    INFO(compressed.output);
-    REQUIRE(compressed.status == 0);
+    compressWithTool(folder / "made.x3d", folder / "out.x3d");
     const std::string text = readTextFile(folder / "out.x3d");
     CHECK_THAT(text, Catch::Contains("height=\"" + numbersText(heights).substr(0, 200)));
     CHECK_THAT(text, Catch::Contains("<Extrusion spine=\"0 0 0 0 1 0 1 2 0\""));
@@ -489,9 +499,7 @@ TEST_CASE("X3D output writes the nodes that make their own points again as they 
     CHECK_THAT(verified.output, Catch::Contains("max deviation 0.00e+00"));
 
     SECTION("glTF output cuts them as any mesh; a primitive that changed is written as its triangles") {
-        const CommandResult glb = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "made.x3d") + " -o " +
-                                             quoted(folder / "out.glb"));
-        REQUIRE(glb.status == 0);
+        compressWithTool(folder / "made.x3d", folder / "out.glb");
         Scene scene = readScene(folder / "made.x3d");
         std::size_t sources = 0;
         for (Mesh& mesh : scene.meshes)
@@ -511,7 +519,6 @@ TEST_CASE("X3D output writes the nodes that make their own points again as they 
 TEST_CASE("Box, Sphere, Cylinder and Cone are cut as X_ITE cuts them", "[io][x3d][geometry-nodes]") {
     TemporaryFolder folder;
     // The area of a regular polygon of n corners on a circle of radius r.
-    auto polygonArea = [](int n, double r) { return n * r * r * std::sin(2 * M_PI / n) / 2; };
     SECTION("their triangles (X_ITE's counts: 20 sides, a sphere of 32 by 15 points), closed and facing out") {
         const Primitive box = readOne(folder, "<Box size='2 4 6'/>");
         CHECK(box.triangles.size() == 12);
@@ -565,27 +572,19 @@ TEST_CASE("The geometric primitives render in GLB output as X_ITE draws them, te
                   "'><Shape><Appearance><Material/><ImageTexture url='\"logo.png\"'/></Appearance>" + geometry +
                   "</Shape></Transform>";
     writeTextFile(folder / "primitives.x3d", sceneX3d(shapes));
-    const CommandResult compressed = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "primitives.x3d") +
-                                                " -o " + quoted(folder / "out.glb"));
-    INFO(compressed.output);
-    REQUIRE(compressed.status == 0);
+    compressWithTool(folder / "primitives.x3d", folder / "out.glb");
     // X_ITE and three.js light a scene otherwise: across them, the normals; the textures through X3D again, which
     // has no node to write again once the shapes are in GLB.
-    const CommandResult normals = renderCompare(folder / "primitives.x3d", folder / "out.glb", "normals", "abc");
-    INFO(normals.output);
-    CHECK(normals.status == 0);
+    checkRendersIn("normals", folder / "primitives.x3d", folder / "out.glb");
     const CommandResult back = runCommand(quoted(SYMCOMPRESS_CLI) + " convert " + quoted(folder / "out.glb") + " -o " +
                                           quoted(folder / "back.x3d"));
     REQUIRE(back.status == 0);
-    const CommandResult lit = renderCompare(folder / "primitives.x3d", folder / "back.x3d", "lit", "abc");
-    INFO(lit.output);
-    CHECK(lit.status == 0);
+    checkRendersIn("lit", folder / "primitives.x3d", folder / "back.x3d");
 }
 
 TEST_CASE("X3D's 2D geometry is drawn in the z = 0 plane as X_ITE draws it, its surfaces from both sides",
           "[io][x3d][geometry-nodes]") {
     TemporaryFolder folder;
-    auto polygonArea = [](int n, double r) { return n * r * r * std::sin(2 * M_PI / n) / 2; };
     auto doubleSided = [&](const std::string& geometry) {
         writeTextFile(folder / "sided.x3d", sceneX3d(shapeX3d(geometry, "<Appearance><Material/></Appearance>")));
         const Scene scene = readScene(folder / "sided.x3d");
@@ -667,13 +666,8 @@ TEST_CASE("X3D's 2D surfaces render in GLB as X_ITE draws them", "[io][x3d][geom
     // Turned off the axes: a view along the plane would see nothing.
     writeTextFile(folder / "flat.x3d", sceneX3d("<Transform rotation='1 1 0 0.6'>" + shapes + "</Transform>"));
     for (const char* output : {"out.glb", "out.x3d"}) {
-        const CommandResult compressed = runCommand(quoted(SYMCOMPRESS_CLI) + " -q " + quoted(folder / "flat.x3d") +
-                                                    " -o " + quoted(folder / output));
-        INFO(compressed.output);
-        REQUIRE(compressed.status == 0);
+        compressWithTool(folder / "flat.x3d", folder / output);
     }
     checkRendersSame(folder / "flat.x3d", folder / "out.x3d");
-    const CommandResult normals = renderCompare(folder / "flat.x3d", folder / "out.glb", "normals", "abc");
-    INFO(normals.output);
-    CHECK(normals.status == 0);
+    checkRendersIn("normals", folder / "flat.x3d", folder / "out.glb");
 }
