@@ -11,7 +11,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 packages=(build-essential clang libclang-rt-14-dev cmake pkg-config libtinygltf-dev libdraco-dev libmeshoptimizer-dev libeigen3-dev
-          libpugixml-dev catch2 libcli11-dev nlohmann-json3-dev libtbb-dev zlib1g-dev chromium python3-pil)
+          libpugixml-dev catch2 libcli11-dev nlohmann-json3-dev libtbb-dev zlib1g-dev libpng-dev chromium python3-pil)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

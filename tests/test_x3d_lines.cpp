@@ -113,7 +113,12 @@ TEST_CASE("X3D IndexedLineSet, LineSet and PointSet are read as lines and points
     CHECK(points.colors[0].isApprox(Eigen::Vector4d(1, 0, 0, 1)));
     CHECK(points.colors[1].isApprox(Eigen::Vector4d(0, 1, 0, 0.5)));
     CHECK(points.colors[2].isApprox(Eigen::Vector4d(kHalfDecoded, kHalfDecoded, kHalfDecoded, 1)));
-    CHECK(points.material == -1);
+    // No Appearance: unlit white (a material of its own), blended where a colour is translucent, as X_ITE blends
+    // a ColorRGBA.
+    REQUIRE(points.material >= 0);
+    const Material& white = scene.materials[std::size_t(points.material)];
+    CHECK(white.baseColorFactor == Eigen::Vector4d(1, 1, 1, 1));
+    CHECK(white.alphaMode == Material::AlphaMode::Blend);
 }
 
 TEST_CASE("An IndexedLineSet's colour per polyline and colorIndex: a point on two polylines gets two vertices",

@@ -479,3 +479,161 @@ TEST_CASE("Unlit glTF materials as X3D render in X_ITE as in three.js", "[io][x3
     INFO(there.output);
     CHECK(there.status == 0);
 }
+
+namespace {
+
+bool hasUnlitExtension(const Material& m) {
+    return std::any_of(m.extensions.begin(), m.extensions.end(),
+                       [](const MaterialExtension& e) { return e.name == "KHR_materials_unlit"; });
+}
+
+const Material& materialOf(const Scene& scene, const Mesh& mesh) {
+    REQUIRE(mesh.primitives.size() == 1);
+    REQUIRE(mesh.primitives[0].material >= 0);
+    return scene.materials[std::size_t(mesh.primitives[0].material)];
+}
+
+// A quad facing +z in X3D with `appearance` (XML) and `colour` (a Color or ColorRGBA node, or nothing), at x.
+std::string quadAt(double x, const std::string& appearance, const std::string& colour = "") {
+    return "<Transform translation='" + std::to_string(x) + " 0 0'><Shape>" + appearance +
+           "<IndexedFaceSet solid='false' coordIndex='0 1 2 3 -1' texCoordIndex='0 1 2 3 -1'>"
+           "<Coordinate point='-1 -1 0 1 -1 0 1 1 0 -1 1 0'/><TextureCoordinate point='0 0 1 0 1 1 0 1'/>" +
+           colour + "</IndexedFaceSet></Shape></Transform>";
+}
+
+}  // namespace
+
+TEST_CASE("A Shape without an Appearance, or an Appearance without a material, is unlit white and is written so",
+          "[io][x3d][materials]") {
+    // X3D 4.0 12.4.1 (as 3.3): no Appearance, or no material in it, turns lighting off; the colour is white, or
+    // the texture's. Before, both were glTF's lit default material (and one-sided where solid='false').
+    TemporaryFolder folder;
+    fs::copy_file(modelPath("pbr/box_specgloss/CesiumLogoFlat.png"), folder / "logo.png");
+    writeTextFile(folder / "in.x3d",
+                  "<X3D version='3.3'><Scene><Transform><Transform translation='-3 0 0'><Shape><Box/></Shape>"
+                  "</Transform>" +
+                      quadAt(0, "") +
+                      "<Transform translation='3 0 0'><Shape><Appearance><ImageTexture url='\"logo.png\"'/>"
+                      "</Appearance><Sphere/></Shape></Transform></Transform></Scene></X3D>");
+    const Scene scene = readScene(folder / "in.x3d");
+    REQUIRE(scene.meshes.size() == 3);
+    for (const Mesh& mesh : scene.meshes) {
+        const Material& m = materialOf(scene, mesh);
+        CHECK(hasUnlitExtension(m));
+        CHECK(m.baseColorFactor == Eigen::Vector4d(1, 1, 1, 1));
+        CHECK(m.alphaMode == Material::AlphaMode::Opaque);  // the logo's pixels are all opaque
+    }
+    const Material& box = materialOf(scene, scene.meshes[0]);
+    const Material& quad = materialOf(scene, scene.meshes[1]);
+    const Material& sphere = materialOf(scene, scene.meshes[2]);
+    CHECK(!box.doubleSided);
+    CHECK(quad.doubleSided);
+    CHECK(sphere.baseColorTexture.texture >= 0);
+
+    // X3D again: as it was (3.3, no Material, an Appearance for the texture alone), drawn the same by X_ITE.
+    writeScene(scene, folder / "out.x3d");
+    const std::string text = readTextFile(folder / "out.x3d");
+    CHECK_THAT(text, Catch::Contains("version='3.3'"));
+    CHECK_THAT(text, !Catch::Contains("Material"));
+    CHECK(count(text, "<Appearance") == 1);
+    CHECK_THAT(text, Catch::Contains("'><ImageTexture DEF='texture0'"));
+    CHECK_THAT(text, Catch::Contains("solid='false'"));
+    // glTF: KHR_materials_unlit, double-sided where the quad was.
+    writeScene(scene, folder / "out.glb");
+    const Scene glb = readScene(folder / "out.glb");
+    REQUIRE(glb.materials.size() >= 2);
+    for (const Material& m : glb.materials) CHECK(hasUnlitExtension(m));
+    CHECK(std::any_of(glb.materials.begin(), glb.materials.end(), [](const Material& m) { return m.doubleSided; }));
+    if (!renderAvailable()) {
+        WARN("render check skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
+        return;
+    }
+    const CommandResult rendered = renderCompare(folder / "in.x3d", folder / "out.x3d", "lit", "abc");
+    INFO(rendered.output);
+    CHECK(rendered.status == 0);
+}
+
+TEST_CASE(
+    "X3D's AUTO alpha mode blends translucent textures and colours, and the writer states a mode where "
+    "AUTO would draw another",
+    "[io][x3d][materials]") {
+    TemporaryFolder folder;
+    // The grass's flowers are cut out by their alpha; Cesium's logo is opaque.
+    fs::copy_file(modelPath("cge_grass_flowers/textures/flower111.png"), folder / "flower.png");
+    fs::copy_file(modelPath("pbr/box_specgloss/CesiumLogoFlat.png"), folder / "logo.png");
+    const std::string flower = "<ImageTexture url='\"flower.png\"'/>", logo = "<ImageTexture url='\"logo.png\"'/>";
+    SECTION("read: AUTO decides by the texture's pixels and the colours' alpha, X3D 4's alphaMode as it says") {
+        writeTextFile(folder / "in.x3d",
+                      "<X3D version='4.0'><Scene>" + quadAt(0, "<Appearance><Material/>" + flower + "</Appearance>") +
+                          quadAt(3, "<Appearance><Material/>" + logo + "</Appearance>") +
+                          quadAt(6, "<Appearance><Material/></Appearance>",
+                                 "<ColorRGBA color='1 0 0 0.5 0 1 0 1 0 0 1 1 1 1 1 1'/>") +
+                          quadAt(9, "<Appearance><Material/></Appearance>",
+                                 "<ColorRGBA color='1 0 0 1 0 1 0 1 0 0 1 1 1 1 1 1'/>") +
+                          quadAt(12, "<Appearance alphaMode='OPAQUE'><Material/>" + flower + "</Appearance>") +
+                          "</Scene></X3D>");
+        const Scene scene = readScene(folder / "in.x3d");
+        REQUIRE(scene.meshes.size() == 5);
+        const Material::AlphaMode expected[] = {Material::AlphaMode::Blend, Material::AlphaMode::Opaque,
+                                                Material::AlphaMode::Blend, Material::AlphaMode::Opaque,
+                                                Material::AlphaMode::Opaque};
+        for (std::size_t k = 0; k < 5; ++k) {
+            INFO("quad " << k);
+            CHECK(materialOf(scene, scene.meshes[k]).alphaMode == expected[k]);
+        }
+    }
+    SECTION("written: alphaMode only where AUTO would differ, and X3D 3.3 where none is stated") {
+        Scene scene;
+        for (const char* image : {"flower.png", "logo.png"}) {
+            Texture texture;
+            texture.uri = image;
+            texture.mimeType = "image/png";
+            const std::string bytes = readTextFile(folder / image);
+            texture.bytes.assign(bytes.begin(), bytes.end());
+            scene.textures.push_back(texture);
+        }
+        const auto add = [&](Material::AlphaMode mode, int texture, double alpha) {
+            Material m;
+            m.metallicFactor = 0;
+            m.alphaMode = mode;
+            m.alphaCutoff = 0.25;
+            m.baseColorFactor[3] = alpha;
+            m.baseColorTexture.texture = texture;
+            scene.materials.push_back(m);
+            Primitive quad;
+            quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+            quad.texcoords = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+            quad.triangles = {{0, 1, 2}, {0, 2, 3}};
+            quad.material = int(scene.materials.size()) - 1;
+            scene.meshes.push_back({"", {quad}, "", {}});
+            Node node;
+            node.mesh = int(scene.meshes.size()) - 1;
+            scene.nodes.push_back(node);
+            scene.roots.push_back(int(scene.nodes.size()) - 1);
+        };
+        add(Material::AlphaMode::Blend, 0, 1);   // AUTO blends the flower: nothing stated
+        add(Material::AlphaMode::Opaque, 1, 1);  // AUTO draws the logo opaque: nothing stated
+        add(Material::AlphaMode::Blend, -1, 0.5);
+        writeScene(scene, folder / "auto.x3d");
+        const std::string autoText = readTextFile(folder / "auto.x3d");
+        CHECK_THAT(autoText, Catch::Contains("version='3.3'"));
+        CHECK_THAT(autoText, !Catch::Contains("alphaMode"));
+
+        add(Material::AlphaMode::Opaque, 0, 1);  // AUTO would blend the flower
+        add(Material::AlphaMode::Blend, 1, 1);   // AUTO would draw the logo opaque
+        add(Material::AlphaMode::Mask, 0, 1);    // AUTO never cuts out
+        writeScene(scene, folder / "stated.x3d");
+        const std::string stated = readTextFile(folder / "stated.x3d");
+        CHECK_THAT(stated, Catch::Contains("version='4.0'"));
+        CHECK(count(stated, "alphaMode=") == 3);
+        CHECK_THAT(stated, Catch::Contains("alphaMode='OPAQUE'"));
+        CHECK_THAT(stated, Catch::Contains("alphaMode='BLEND'"));
+        CHECK_THAT(stated, Catch::Contains("alphaMode='MASK' alphaCutoff='0.25'"));
+        const Scene back = readScene(folder / "stated.x3d");
+        REQUIRE(back.materials.size() == scene.materials.size());
+        for (std::size_t k = 0; k < scene.materials.size(); ++k) {
+            INFO("material " << k);
+            CHECK(back.materials[k].alphaMode == scene.materials[k].alphaMode);
+        }
+    }
+}

@@ -244,13 +244,19 @@ Material X3dReader::unlitMaterial(const Material& read, bool physical, bool colo
 
 int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings,
                             const Primitive& geometry) {
+    // A Shape without an Appearance (or whose Appearance is a USE of nothing) is drawn as one without a material:
+    // unlit white (X3D 4.0 12.4.1, as 3.3), and double-sided where its geometry is not solid; a material of
+    // its own says so, where none would be glTF's lit default, one-sided.
     pugi::xml_node appearance = shape.child("Appearance");
-    if (!appearance || !knownUse(appearance, "a Shape's Appearance")) return -1;
+    if (appearance && !knownUse(appearance, "a Shape's Appearance")) appearance = pugi::xml_node();
     if (const pugi::xml_attribute def = appearance.attribute("DEF")) definitions_[def.value()] = appearance;
-    appearance = resolve(appearance);
+    if (appearance) appearance = resolve(appearance);
     const bool unlitGeometry = geometry.topology != Topology::Triangles;
     const int lighting = unlitGeometry ? (geometry.colors.empty() ? 1 : 2) : 0;
-    auto [entry, inserted] = materialOfAppearance_.try_emplace({appearance.internal_object(), lighting}, -1);
+    const bool translucentColors = std::any_of(geometry.colors.begin(), geometry.colors.end(),
+                                               [](const Eigen::Vector4d& color) { return color[3] < 1; });
+    auto [entry, inserted] =
+        materialOfAppearance_.try_emplace({appearance.internal_object(), lighting, translucentColors}, -1);
     if (!inserted) return entry->second;
     Material material;
     material.name = appearance.attribute("DEF").value();
@@ -304,8 +310,9 @@ int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::
         material.extensions.push_back({"KHR_materials_unlit", "{}", {}, false});
         if (material.name.empty()) material.name = unlit.attribute("DEF").value();
     } else {
-        // An Appearance without a material is unlit white in X3D.
+        // An Appearance without a material is unlit white in X3D, its texture drawn as it is.
         material.metallicFactor = 0;
+        material.extensions.push_back({"KHR_materials_unlit", "{}", {}, false});
     }
     if (material.baseColorFactor[3] < 1) material.alphaMode = Material::AlphaMode::Blend;
     // X3D 4's Appearance holds glTF's alpha modes (AUTO, the default, as X3D 3 decides: blend when transparent).
@@ -324,6 +331,11 @@ int X3dReader::readMaterial(const pugi::xml_node& shape, const std::vector<std::
             readMaterialTextures(phong ? phong : physical ? physical : unlit, material, texcoordMappings);
         if (material.baseColorTexture.texture < 0) material.baseColorTexture.texture = readTexture(appearance);
     }
+    // AUTO (X3D 3's only rule) blends a shape whose material is transparent (above), whose base texture has
+    // translucent pixels or whose vertex colours are translucent, as X_ITE decides (Shape's set_transparent__).
+    if ((alphaMode.empty() || alphaMode == "AUTO") && material.alphaMode == Material::AlphaMode::Opaque &&
+        (translucentColors || translucentTexture_(material.baseColorTexture.texture)))
+        material.alphaMode = Material::AlphaMode::Blend;
     // Appearances written out one per Shape, with the same Material and texture USEd in each, are one
     // material (else every Shape would look like its own part). Double-sidedness comes from the geometry
     // (solid="false" makes the material double-sided, below in readShape), so it is not compared.

@@ -13,6 +13,20 @@ bool isUnlit(const Material& material) {
                                           [](const MaterialExtension& e) { return e.name == "KHR_materials_unlit"; });
 }
 
+bool drawnWithoutMaterial(const Material& material) {
+    if (!isUnlit(material) || material.baseColorFactor != Eigen::Vector4d::Ones()) return false;
+    const auto refs = material.textureRefs();
+    return std::none_of(refs.begin() + 1, refs.end(), [](const TextureRef* use) { return use->texture >= 0; });
+}
+
+std::optional<Material::AlphaMode> statedAlphaMode(const Material& material, bool translucentBaseTexture) {
+    const bool autoBlends = material.baseColorFactor[3] < 1 || translucentBaseTexture;
+    if (material.alphaMode == Material::AlphaMode::Mask ||
+        (material.alphaMode == Material::AlphaMode::Blend) != autoBlends)
+        return material.alphaMode;
+    return std::nullopt;
+}
+
 bool needsPhysicalMaterial(const Material& material) {
     if (material.phong || isUnlit(material)) return false;
     const auto refs = material.textureRefs();
@@ -47,7 +61,8 @@ PhongMaterial unlitPhongOf(const Material& material) {
 
 MaterialTextures materialTextures(const Material& material) {
     MaterialTextures out;
-    const bool physical = needsPhysicalMaterial(material), unlit = isUnlit(material);
+    const bool physical = needsPhysicalMaterial(material);
+    const bool unlit = isUnlit(material) && !drawnWithoutMaterial(material);  // else the Appearance's texture
     struct Slot {
         const char* physicalField;
         const char* phongField;  // nullptr: Phong's Material has no such field
@@ -101,7 +116,8 @@ MaterialTextures materialTextures(const Material& material) {
 }
 
 bool needsX3d4(const Material& material) {
-    return needsPhysicalMaterial(material) || isUnlit(material) || materialTextures(material).x3d4Fields;
+    return needsPhysicalMaterial(material) || (isUnlit(material) && !drawnWithoutMaterial(material)) ||
+           materialTextures(material).x3d4Fields;
 }
 
 namespace {

@@ -15,6 +15,15 @@ namespace symcompress::x3d {
 // texture are the colour drawn (sRGB-encoded, as Phong's: X_ITE draws it so).
 bool isUnlit(const Material& material);
 
+// An unlit white material whose only texture, if any, is the base colour's: X3D's Appearance without a material
+// (X3D 3.3), or no Appearance at all where it has no texture and no alpha mode to state; as X3D draws those.
+bool drawnWithoutMaterial(const Material& material);
+
+// The alpha mode an Appearance must state (X3D 4's alphaMode) where X3D's AUTO, X3D 3's only rule, would draw
+// the material otherwise: AUTO blends where the material is transparent or its base texture has translucent
+// pixels (`translucentBaseTexture`, imageHasTranslucentPixels), and never cuts out.
+std::optional<Material::AlphaMode> statedAlphaMode(const Material& material, bool translucentBaseTexture);
+
 // A PhysicalMaterial where Phong cannot draw the material (and it is not unlit): no Phong fields kept from an X3D
 // input, and metal, or a texture other than the base colour's. Otherwise X3D 3.3's Material, as symcompress always
 // wrote it.

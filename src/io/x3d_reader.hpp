@@ -3,6 +3,7 @@
 // x3d_geometry.cpp: geometry nodes) and what they share.
 #pragma once
 
+#include "common/image_alpha.hpp"
 #include "symcompress/io.hpp"
 #include "x3d_faces.hpp"
 #include "x3d_fields.hpp"
@@ -14,6 +15,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -113,8 +115,10 @@ private:
     std::map<std::string, pugi::xml_node> definitions_;
     std::map<std::string, std::vector<int>> nodesOfTransform_;  // a DEF'd Transform's scene nodes (one per USE)
     std::map<const void*, int> meshOfShape_, textureOfNode_;
-    // An Appearance's material for surfaces (0), and for lines and points, unlit (1; 2 with vertex colours).
-    std::map<std::pair<const void*, int>, int> materialOfAppearance_;
+    // An Appearance's material for surfaces (0), and for lines and points, unlit (1; 2 with vertex colours); on
+    // geometry with translucent vertex colours or not (X3D's alpha mode AUTO blends those).
+    std::map<std::tuple<const void*, int, bool>, int> materialOfAppearance_;
+    TranslucentTextures translucentTexture_{scene_.textures};
     std::set<int> physicalMaterials_;  // materials read from a PhysicalMaterial (vertexColorsAsGltf)
     std::set<int> usedMaterials_;      // materials a shape draws (withSidedness)
     std::map<std::string, int> skippedGeometry_;

@@ -5,6 +5,7 @@
 // (any affine matrix, mirrors included, through rotation, scale and scaleOrientation); animations become a TimeSensor,
 // interpolators and ROUTEs. `.x3dz` is the same, gzip-compressed.
 #include "common/color_space.hpp"
+#include "common/image_alpha.hpp"
 #include "common/markup_text.hpp"
 #include "common/number_text.hpp"
 #include "file_metadata.hpp"
@@ -253,14 +254,22 @@ public:
     std::string write() {
         // X3D 4.0 only where a material needs it (x3d_materials.hpp); X3D 3.3 otherwise, as before.
         bool physical = false;
+        // Each material surfaces draw (lines and points are drawn with X3D 3.3's Material whatever theirs:
+        // writeUnlitShape), and whether every surface drawing it has translucent vertex colours: AUTO blends those
+        // (writeColors writes them as a ColorRGBA).
+        std::map<int, bool> allTranslucent;
         for (const Mesh& mesh : scene_.meshes)
             for (const Primitive& primitive : mesh.primitives)
-                // Lines and points are drawn with X3D 3.3's Material whatever theirs (writeUnlitShape).
-                if (primitive.material >= 0 && primitive.topology == Topology::Triangles && !primitive.drawsNothing()) {
-                    const Material& material = scene_.materials[std::size_t(primitive.material)];
-                    version4_ = version4_ || x3d::needsX3d4(material);
-                    physical = physical || x3d::needsPhysicalMaterial(material);
-                }
+                if (primitive.material >= 0 && primitive.topology == Topology::Triangles && !primitive.drawsNothing())
+                    allTranslucent.try_emplace(primitive.material, true).first->second &=
+                        hasTranslucentCorner(primitive);
+        for (const auto& [index, translucent] : allTranslucent)
+            if (translucent) blendedByColors_.insert(index);
+        for (const auto& [index, translucent] : allTranslucent) {
+            const Material& material = scene_.materials[std::size_t(index)];
+            version4_ = version4_ || x3d::needsX3d4(material) || statedAlphaMode(index);
+            physical = physical || x3d::needsPhysicalMaterial(material);
+        }
         out_ += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
         if (version4_)
             out_ +=
@@ -288,8 +297,6 @@ public:
         if (!options_.extrasJson.empty())
             out_ += "<meta name='symcompress' content='" + escapedMarkup(options_.extrasJson) + "'/>\n";
         out_ += "</head>\n<Scene>\n";
-        if (!options_.extrasJson.empty())
-            out_ += "<MetadataString name='symcompress' value='\"" + escapedMarkup(escapeQuotes(options_.extrasJson)) + "\"'/>\n";
         for (const std::string& node : scene_.x3dEnvironment) out_ += " " + node + "\n";
         written_.assign(scene_.meshes.size(), false);
         for (const Animation& animation : scene_.animations)
@@ -301,13 +308,11 @@ public:
     }
 
 private:
-    static std::string escapeQuotes(const std::string& text) {
-        std::string out;
-        for (char c : text) {
-            if (c == '"' || c == '\\') out += '\\';
-            out += c;
-        }
-        return out;
+    static bool hasTranslucentCorner(const Primitive& primitive) {
+        if (primitive.colors.empty()) return false;
+        return std::any_of(primitive.triangles.begin(), primitive.triangles.end(), [&](const Triangle& t) {
+            return std::any_of(t.begin(), t.end(), [&](std::uint32_t v) { return primitive.colors[v][3] != 1; });
+        });
     }
 
     void indent(int depth) { out_.append(static_cast<std::size_t>(depth), ' '); }
@@ -487,7 +492,18 @@ private:
         out_ += "</Group>\n";
     }
 
+    std::optional<Material::AlphaMode> statedAlphaMode(int material) {
+        const Material& m = scene_.materials[std::size_t(material)];
+        return x3d::statedAlphaMode(
+            m, translucentTexture_(m.baseColorTexture.texture) || blendedByColors_.count(material) > 0);
+    }
+
     void writeAppearance(int material, int depth) {
+        // X3D draws a Shape without an Appearance unlit white.
+        if (material >= 0) {
+            const Material& m = scene_.materials[std::size_t(material)];
+            if (x3d::drawnWithoutMaterial(m) && m.baseColorTexture.texture < 0 && !statedAlphaMode(material)) return;
+        }
         indent(depth);
         if (material < 0) {
             out_ += "<Appearance><Material/></Appearance>\n";
@@ -501,23 +517,29 @@ private:
         const Material& m = scene_.materials[material];
         const x3d::MaterialTextures textures = x3d::materialTextures(m);
         out_ += "<Appearance DEF='" + def + "'";
-        if (x3d::needsPhysicalMaterial(m) || x3d::isUnlit(m)) {
-            // glTF's alpha modes, which X3D 4's Appearance has (its AUTO would blend a texture's alpha).
-            if (m.alphaMode == Material::AlphaMode::Mask) {
-                out_ += " alphaMode='MASK' alphaCutoff='";
+        // glTF's alpha modes, which X3D 4's Appearance has, where AUTO would draw another.
+        if (const auto stated = statedAlphaMode(material)) {
+            out_ += stated == Material::AlphaMode::Opaque  ? " alphaMode='OPAQUE'"
+                    : stated == Material::AlphaMode::Blend ? " alphaMode='BLEND'"
+                                                           : " alphaMode='MASK'";
+            if (stated == Material::AlphaMode::Mask) {
+                out_ += " alphaCutoff='";
                 appendShortestFloat(out_, m.alphaCutoff);
                 out_ += "'";
-            } else if (m.alphaMode == Material::AlphaMode::Opaque && m.baseColorTexture.texture >= 0) {
-                out_ += " alphaMode='OPAQUE'";
             }
-            out_ += ">";
+        }
+        if (x3d::drawnWithoutMaterial(m) && textures.fields.empty()) {
+            out_ += "/>\n";
+            return;
+        }
+        out_ += ">";
+        if (!x3d::drawnWithoutMaterial(m)) {  // else its texture alone, unlit
             if (x3d::isUnlit(m))
                 writeUnlitMaterial(m, textures);
-            else
+            else if (x3d::needsPhysicalMaterial(m))
                 writePhysicalMaterial(m, textures);
-        } else {
-            out_ += ">";
-            writePhongMaterial(m, textures);
+            else
+                writePhongMaterial(m, textures);
         }
         for (const x3d::TextureField& field : textures.fields)
             if (std::string(field.field) == "texture") writeImageTexture(field.use->texture, "");
@@ -962,6 +984,8 @@ private:
     std::string out_;
     std::vector<bool> written_;
     std::set<int> materialWritten_, unlitMaterialWritten_;
+    TranslucentTextures translucentTexture_{scene_.textures};
+    std::set<int> blendedByColors_;  // materials AUTO blends for their vertex colours (write)
     struct WrittenGeometry {
         std::size_t start, length;  // in out_
         std::string def;            // where a later Shape USEs it
