@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <random>
@@ -665,6 +666,44 @@ TEST_CASE("An X3D or OBJ texture that is not found keeps its reference, relative
     CHECK_THAT(readTextFile(folder / "out" / "scene.mtl"), Catch::Contains("map_Kd ../maps/missing.png"));
     writeScene(scene, folder / "out" / "scene.gltf");
     CHECK(gltfJson(folder / "out" / "scene.gltf")["images"][0]["uri"] == "../maps/missing.png");
+}
+
+TEST_CASE("An MTL's norm and map_Ke fill glTF's normal and emissive slots; maps without a slot are warned about",
+          "[materials]") {
+    TemporaryFolder folder;
+    for (const char* image : {"base.png", "glow.png", "normal.png"})
+        fs::copy_file(modelPath("pbr/texture_transform/Arrow.png"), folder / image);
+    writeTextFile(folder / "part.mtl",
+                  "newmtl lit\nKd 1 1 1\nKe 1 0.5 0\nmap_Kd -s 2 2 1 base.png\nmap_Ke glow.png\n"
+                  "norm -bm 0.5 normal.png\nmap_Bump -bm 1 height.png\nmap_d alpha.png\nmap_Ks shine.png\n");
+    writeTextFile(folder / "part.obj",
+                  "mtllib part.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                  "usemtl lit\nf 1/1 2/2 3/3\n");
+    const Scene scene = readScene(folder / "part.obj");
+    REQUIRE(scene.materials.size() == 1);
+    const Material& m = scene.materials[0];
+    const auto uriOf = [&](const TextureRef& use) {
+        return use.texture < 0 ? std::string() : scene.textures[std::size_t(use.texture)].uri;
+    };
+    CHECK(uriOf(m.baseColorTexture) == "base.png");
+    CHECK(uriOf(m.emissiveTexture) == "glow.png");
+    CHECK(uriOf(m.normalTexture) == "normal.png");
+    CHECK(m.normalTexture.scale == 0.5);
+    // Ke is sRGB-encoded (as Kd): 0.5 decodes to ((0.5 + 0.055) / 1.055)^2.4 (IEC 61966-2-1).
+    CHECK(m.emissiveFactor.isApprox(Eigen::Vector3d(1, std::pow(0.555 / 1.055, 2.4), 0)));
+    CHECK(m.metallicRoughnessTexture.texture < 0);
+    CHECK(m.occlusionTexture.texture < 0);
+    const auto warning = std::find_if(scene.warnings.begin(), scene.warnings.end(), [](const std::string& text) {
+        return text.find("part.mtl: map_Bump, map_Ks, map_d left out") != std::string::npos;
+    });
+    CHECK(warning != scene.warnings.end());
+    // Through GLB: the slots with their images and scale.
+    writeScene(scene, folder / "part.glb");
+    const Scene back = readScene(folder / "part.glb");
+    REQUIRE(back.materials.size() == 1);
+    CHECK(back.materials[0].normalTexture.scale == 0.5);
+    CHECK(back.materials[0].emissiveTexture.texture >= 0);
+    CHECK(back.textures.at(std::size_t(back.materials[0].normalTexture.texture)).bytes == scene.textures[2].bytes);
 }
 
 TEST_CASE("X3D output refers to an image file where it was read, and embeds an image that came embedded",

@@ -8,7 +8,10 @@
 #include "text_scanner.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 namespace symcompress {
@@ -30,6 +33,17 @@ bool clampedToUnit(Eigen::Ref<Eigen::Vector3d> color) {
     return was;
 }
 
+// A map statement's -bm option (its bump multiplier), 1 where it has none or it is no finite number.
+double bumpMultiplier(std::string_view statement) {
+    const std::size_t at = statement.find("-bm");
+    if (at == std::string_view::npos) return 1;
+    std::string_view after = statement.substr(at + 3);
+    while (!after.empty() && (after.front() == ' ' || after.front() == '\t')) after.remove_prefix(1);
+    double value = 1;
+    const auto [end, error] = std::from_chars(after.data(), after.data() + after.size(), value);
+    return error == std::errc() && std::isfinite(value) ? value : 1;
+}
+
 // Reads a .mtl library into `scene`; returns the material index of every name.
 std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& scene) {
     std::map<std::string, int> byName;
@@ -42,7 +56,32 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
     TextScanner scanner(library, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
     Material* current = nullptr;
     std::map<std::string, int> textureOfFile;
-    bool clamped = false;  // a colour component outside [0, 1]
+    bool clamped = false;              // a colour component outside [0, 1]
+    std::set<std::string> notCarried;  // texture statements without a glTF slot
+    // The texture a map statement names: its file is the last word (options such as -s or -o precede it).
+    const auto texture = [&](std::string_view statement) {
+        std::string name = rest(statement);
+        const std::size_t space = name.find_last_of(" \t");
+        if (space != std::string::npos && name[0] == '-') name = name.substr(space + 1);
+        std::replace(name.begin(), name.end(), '\\', '/');  // paths written on Windows
+        auto [entry, inserted] = textureOfFile.try_emplace(name, static_cast<int>(scene.textures.size()));
+        if (inserted) {
+            Texture texture;
+            texture.uri = name;
+            const fs::path image = library.parent_path() / name;
+            texture.mimeType = imageMimeType(image.string());
+            if (fs::is_regular_file(image, error))
+                texture.bytes = readFileBytes(image);
+            else {
+                // Where it was looked for: the writers refer to it relative to their output.
+                texture.uri = image.lexically_normal().string();
+                scene.warnings.push_back(library.filename().string() + ": texture '" + name +
+                                         "' not found; its reference is kept");
+            }
+            scene.textures.push_back(std::move(texture));
+        }
+        return entry->second;
+    };
     while (!scanner.atEnd()) {
         std::string_view line = scanner.nextLine();
         const std::string_view keyword = nextWord(line);
@@ -83,31 +122,29 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
             current->phong->transparency = 1 - opacity;
             if (opacity < 1) current->alphaMode = Material::AlphaMode::Blend;
         } else if (keyword == "map_Kd") {
-            // Options such as -s or -o precede the file name, which is the last word.
-            std::string name = rest(line);
-            const std::size_t space = name.find_last_of(" \t");
-            if (space != std::string::npos && name[0] == '-') name = name.substr(space + 1);
-            std::replace(name.begin(), name.end(), '\\', '/');  // paths written on Windows
-            auto [entry, inserted] = textureOfFile.try_emplace(name, static_cast<int>(scene.textures.size()));
-            if (inserted) {
-                Texture texture;
-                texture.uri = name;
-                const fs::path image = library.parent_path() / name;
-                texture.mimeType = imageMimeType(image.string());
-                if (fs::is_regular_file(image, error))
-                    texture.bytes = readFileBytes(image);
-                else {
-                    // Where it was looked for: the writers refer to it relative to their output.
-                    texture.uri = image.lexically_normal().string();
-                    scene.warnings.push_back(library.filename().string() + ": texture '" + name +
-                                             "' not found; its reference is kept");
-                }
-                scene.textures.push_back(std::move(texture));
-            }
-            current->baseColorTexture.texture = entry->second;
+            current->baseColorTexture.texture = texture(line);
+        } else if (keyword == "map_Ke") {
+            // As three.js's MTLLoader draws it: the texture times Ke (black where the material gives none).
+            current->emissiveTexture.texture = texture(line);
+        } else if (keyword == "norm") {
+            // A normal map (three.js's MTLLoader: normalMap), its -bm the normal scale.
+            current->normalTexture.texture = texture(line);
+            current->normalTexture.scale = bumpMultiplier(line);
+        } else if ((keyword.size() > 4 && keyword.substr(0, 4) == "map_") || keyword == "bump" || keyword == "disp" ||
+                   keyword == "decal" || keyword == "refl") {
+            // map_Ks, map_Ns, map_d, map_Bump (a height map or, from Blender, a normal map: the file does not
+            // say which), ...: glTF's material has no slot that draws them so.
+            notCarried.insert(std::string(keyword));
         }
     }
-    if (clamped) scene.warnings.push_back(library.filename().string() + ": colour components outside [0, 1] clamped");
+    const std::string name = library.filename().string();
+    if (clamped) scene.warnings.push_back(name + ": colour components outside [0, 1] clamped");
+    if (!notCarried.empty()) {
+        std::string list;
+        for (const std::string& keyword : notCarried) list += (list.empty() ? "" : ", ") + keyword;
+        scene.warnings.push_back(name + ": " + list +
+                                 " left out (glTF's material has no slot that draws them as an OBJ viewer does)");
+    }
     return byName;
 }
 
