@@ -19,8 +19,8 @@ bool drawnWithoutMaterial(const Material& material) {
     return std::none_of(refs.begin() + 1, refs.end(), [](const TextureRef* use) { return use->texture >= 0; });
 }
 
-std::optional<Material::AlphaMode> statedAlphaMode(const Material& material, bool translucentBaseTexture) {
-    const bool autoBlends = material.baseColorFactor[3] < 1 || translucentBaseTexture;
+std::optional<Material::AlphaMode> statedAlphaMode(const Material& material, bool translucentContent) {
+    const bool autoBlends = material.baseColorFactor[3] < 1 || translucentContent;
     if (material.alphaMode == Material::AlphaMode::Mask ||
         (material.alphaMode == Material::AlphaMode::Blend) != autoBlends)
         return material.alphaMode;

@@ -20,9 +20,10 @@ bool isUnlit(const Material& material);
 bool drawnWithoutMaterial(const Material& material);
 
 // The alpha mode an Appearance must state (X3D 4's alphaMode) where X3D's AUTO, X3D 3's only rule, would draw
-// the material otherwise: AUTO blends where the material is transparent or its base texture has translucent
-// pixels (`translucentBaseTexture`, imageHasTranslucentPixels), and never cuts out.
-std::optional<Material::AlphaMode> statedAlphaMode(const Material& material, bool translucentBaseTexture);
+// the material otherwise: AUTO blends where the material is transparent or what it draws is translucent
+// (`translucentContent`: its base texture's pixels, imageHasTranslucentPixels, or every shape's vertex colours),
+// and never cuts out.
+std::optional<Material::AlphaMode> statedAlphaMode(const Material& material, bool translucentContent);
 
 // A PhysicalMaterial where Phong cannot draw the material (and it is not unlit): no Phong fields kept from an X3D
 // input, and metal, or a texture other than the base colour's. Otherwise X3D 3.3's Material, as symcompress always
