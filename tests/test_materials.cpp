@@ -668,7 +668,7 @@ TEST_CASE("An X3D or OBJ texture that is not found keeps its reference, relative
     CHECK(gltfJson(folder / "out" / "scene.gltf")["images"][0]["uri"] == "../maps/missing.png");
 }
 
-TEST_CASE("An MTL's norm and map_Ke fill glTF's normal and emissive slots; maps without a slot are warned about",
+TEST_CASE("An MTL's norm and map_Ke fill glTF's normal and emissive slots, and maps without a slot are warned about",
           "[materials]") {
     TemporaryFolder folder;
     for (const char* image : {"base.png", "glow.png", "normal.png"})

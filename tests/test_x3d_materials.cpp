@@ -637,3 +637,57 @@ TEST_CASE(
         }
     }
 }
+
+TEST_CASE("An Appearance's TextureTransform is baked into the texture coordinates it applies to, as X_ITE draws it",
+          "[io][x3d][materials]") {
+    TemporaryFolder folder;
+    fs::copy_file(modelPath("pbr/box_specgloss/CesiumLogoFlat.png"), folder / "logo.png");
+    SECTION("every set: Tc' = -C S R C T Tc, worked out by hand") {
+        // translation (0.25, 0), center (0.5, 0.5), a quarter turn, scale (2, 1). Corner (s, t) = (0, 0): + T + C
+        // = (0.75, 0.5); turned, (x, y) -> (-y, x): (-0.5, 0.75); scaled (-1, 0.75); - C: (-1.5, 0.25), glTF's v
+        // = 1 - t = 0.75. Corner (1, 0): (1.75, 0.5) -> (-0.5, 1.75) -> (-1, 1.75) -> (-1.5, 1.25), v = -0.25.
+        writeTextFile(folder / "in.x3d",
+                      "<X3D version='3.3'><Scene><Transform>" +
+                          quadAt(0,
+                                 "<Appearance><ImageTexture url='\"logo.png\"'/><TextureTransform "
+                                 "translation='0.25 0' center='0.5 0.5' rotation='1.5707963267948966' "
+                                 "scale='2 1'/></Appearance>") +
+                          "<Transform translation='3 0 0'><Shape><Appearance><ImageTexture url='\"logo.png\"'/>"
+                          "<TextureTransform rotation='0.3' scale='1 2'/></Appearance><Box/></Shape></Transform>"
+                          "</Transform></Scene></X3D>");
+        const Scene scene = readScene(folder / "in.x3d");
+        REQUIRE(scene.meshes.size() == 2);
+        const Primitive& quad = scene.meshes[0].primitives.at(0);
+        const auto uvAt = [&](const Eigen::Vector3d& position) {
+            for (std::size_t v = 0; v < quad.positions.size(); ++v)
+                if (quad.positions[v].isApprox(position)) return quad.texcoords.at(v);
+            FAIL("no vertex at " << position.transpose());
+            return Eigen::Vector2d();
+        };
+        CHECK(uvAt({-1, -1, 0}).isApprox(Eigen::Vector2d(-1.5, 0.75), 1e-12));
+        CHECK(uvAt({1, -1, 0}).isApprox(Eigen::Vector2d(-1.5, -0.25), 1e-12));
+        // X3D again: the box's triangles with their coordinates, not the Box node (which would draw its own).
+        writeScene(scene, folder / "out.x3d");
+        CHECK_THAT(readTextFile(folder / "out.x3d"), !Catch::Contains("<Box"));
+        CHECK_THAT(readTextFile(folder / "out.x3d"), !Catch::Contains("TextureTransform"));
+        if (!renderAvailable()) {
+            WARN("render check skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
+            return;
+        }
+        const CommandResult rendered = renderCompare(folder / "in.x3d", folder / "out.x3d", "lit", "abc");
+        INFO(rendered.output);
+        CHECK(rendered.status == 0);
+    }
+    SECTION("X3D 4's mapping: the set it names alone") {
+        writeTextFile(folder / "in.x3d", quadWith("<Appearance><Material/><TextureTransform mapping='uvB' "
+                                                  "translation='1 0'/></Appearance>"));
+        const Scene scene = readScene(folder / "in.x3d");
+        const Primitive& quad = scene.meshes.at(0).primitives.at(0);
+        // uvA unchanged: (0, 0) at the first corner, glTF's v = 1 - t.
+        CHECK(quad.texcoords.at(0).isApprox(Eigen::Vector2d(0, 1)));
+        REQUIRE(quad.attributes.size() == 1);
+        CHECK(quad.attributes[0].name == "TEXCOORD_1");
+        CHECK(quad.attributes[0].values[0] == Approx(1.5));  // 0.5 + 1
+        CHECK(quad.attributes[0].values[1] == Approx(0.5));
+    }
+}

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <cstring>
 #include <iterator>
 
@@ -221,6 +222,58 @@ void X3dReader::readMaterialTextures(const pugi::xml_node& node, Material& mater
     }
     if (material.normalTexture.texture >= 0) material.normalTexture.scale = scalar(node, "normalScale", 1);
     if (material.occlusionTexture.texture >= 0) material.occlusionTexture.scale = scalar(node, "occlusionStrength", 1);
+}
+
+// X3D's TextureTransform (X3D 4.0 18.4.10): Tc' = -C × S × R × C × T × Tc on X3D's (s, t), t up, where glTF's v
+// points down: baked into every texture coordinate set, or into the set its `mapping` names, as X_ITE draws it.
+// Exact for any transform (KHR_texture_transform, which scales before it turns, has no place for S × R).
+bool X3dReader::applyTextureTransform(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings,
+                                      Primitive& primitive) {
+    pugi::xml_node appearance = shape.child("Appearance");
+    if (!appearance || !knownUse(appearance, "a Shape's Appearance")) return false;
+    appearance = resolve(appearance);
+    pugi::xml_node transform = appearance.child("TextureTransform");
+    if (!transform) {
+        if (appearance.child("MultiTextureTransform")) notes_.insert("MultiTextureTransform not carried through");
+        return false;
+    }
+    if (!knownUse(transform, "an Appearance's TextureTransform")) return false;
+    if (const pugi::xml_attribute def = transform.attribute("DEF")) definitions_[def.value()] = transform;
+    transform = resolve(transform);
+    const Eigen::Vector2d translation = vector2(transform, "translation", Eigen::Vector2d::Zero());
+    const Eigen::Vector2d center = vector2(transform, "center", Eigen::Vector2d::Zero());
+    const Eigen::Vector2d scale = vector2(transform, "scale", Eigen::Vector2d::Ones());
+    const double rotation = scalar(transform, "rotation", 0);
+    if (translation.isZero(0) && scale == Eigen::Vector2d::Ones() && rotation == 0) return false;
+    const Eigen::Matrix2d turn = Eigen::Rotation2Dd(rotation).toRotationMatrix();
+    const auto transformed = [&](const Eigen::Vector2d& uv) -> Eigen::Vector2d {
+        const Eigen::Vector2d st(uv.x(), 1 - uv.y());
+        const Eigen::Vector2d out = (turn * (st + translation + center)).cwiseProduct(scale) - center;
+        return {out.x(), 1 - out.y()};
+    };
+    // The sets it applies to: all, or the one its mapping names (0 is Primitive::texcoords, n TEXCOORD_n).
+    const std::string mapping = transform.attribute("mapping").value();
+    const auto named = std::find(texcoordMappings.begin(), texcoordMappings.end(), mapping);
+    if (!mapping.empty() && named == texcoordMappings.end()) {
+        notes_.insert("a TextureTransform's mapping '" + mapping + "' names no texture coordinates of its geometry; " +
+                      "left out");
+        return false;
+    }
+    const auto applies = [&](int set) { return mapping.empty() || set == int(named - texcoordMappings.begin()); };
+    bool changed = false;
+    if (applies(0))
+        for (Eigen::Vector2d& uv : primitive.texcoords) uv = transformed(uv), changed = true;
+    for (VertexAttribute& attribute : primitive.attributes) {
+        if (attribute.name.rfind("TEXCOORD_", 0) != 0 || attribute.components != 2) continue;
+        if (!applies(std::atoi(attribute.name.c_str() + 9))) continue;
+        for (std::size_t v = 0; v + 1 < attribute.values.size(); v += 2) {
+            const Eigen::Vector2d uv = transformed({attribute.values[v], attribute.values[v + 1]});
+            attribute.values[v] = uv.x();
+            attribute.values[v + 1] = uv.y();
+            changed = true;
+        }
+    }
+    return changed;
 }
 
 // X3D draws lines and points unlit (X3D 3.3's line and point sets: "lines are not lit"): in the Material's

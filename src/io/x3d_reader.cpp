@@ -136,6 +136,14 @@ std::vector<std::int64_t> X3dReader::integers(const pugi::xml_node& node, const 
     return out;
 }
 
+Eigen::Vector2d X3dReader::vector2(const pugi::xml_node& node, const char* field,
+                                   const Eigen::Vector2d& fallback) const {
+    const std::vector<double> values = numbers(node, field);
+    if (values.empty()) return fallback;
+    if (values.size() != 2) fail(node, std::string(field) + " needs 2 numbers");
+    return {values[0], values[1]};
+}
+
 Eigen::Vector3d X3dReader::vector3(const pugi::xml_node& node, const char* field,
                                    const Eigen::Vector3d& fallback) const {
     const std::vector<double> values = numbers(node, field);
@@ -403,7 +411,9 @@ int X3dReader::readShape(const pugi::xml_node& shape) {
         material = withSidedness(material, !boolean(geometry, "solid", !kSurfaces2D.count(geometry.name())));
     primitive.material = material;
     if (!primitive.colors.empty()) vertexColorsAsGltf(primitive);
-    if (kMadeGeometry.count(geometry.name()) && !primitive.triangles.empty())
+    // A node written again as it was would draw its own texture coordinates, not the transformed ones.
+    const bool transformed = applyTextureTransform(shape, texcoordMappings, primitive);
+    if (kMadeGeometry.count(geometry.name()) && !primitive.triangles.empty() && !transformed)
         primitive.x3dSource = std::make_shared<X3dGeometrySource>(
             X3dGeometrySource{selfContainedXml(geometry), trianglePositionsHash(primitive)});
     Mesh mesh;

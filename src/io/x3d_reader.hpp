@@ -50,6 +50,7 @@ private:
     pugi::xml_node resolve(const pugi::xml_node& node) const;
     std::vector<double> numbers(const pugi::xml_node& node, const char* field) const;
     std::vector<std::int64_t> integers(const pugi::xml_node& node, const char* field) const;
+    Eigen::Vector2d vector2(const pugi::xml_node& node, const char* field, const Eigen::Vector2d& fallback) const;
     Eigen::Vector3d vector3(const pugi::xml_node& node, const char* field, const Eigen::Vector3d& fallback) const;
     double scalar(const pugi::xml_node& node, const char* field, double fallback) const;
     bool boolean(const pugi::xml_node& node, const char* field, bool fallback) const;
@@ -63,6 +64,9 @@ private:
     // X3D draws unlit (unlitMaterial).
     int readMaterial(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings,
                      const Primitive& geometry);
+    // The Appearance's TextureTransform baked into the texture coordinates it applies to; whether it changed them.
+    bool applyTextureTransform(const pugi::xml_node& shape, const std::vector<std::string>& texcoordMappings,
+                               Primitive& primitive);
     // The material of an Appearance as lines and points draw it: unlit, in the colour the browser gives them.
     Material unlitMaterial(const Material& read, bool physical, bool colored) const;
     void readMaterialTextures(const pugi::xml_node& node, Material& material,
