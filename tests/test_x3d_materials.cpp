@@ -501,6 +501,17 @@ std::string quadAt(double x, const std::string& appearance, const std::string& c
            colour + "</IndexedFaceSet></Shape></Transform>";
 }
 
+// `output` lit as `input` is (render_compare.sh, views a-c), where the renderer is set up.
+void checkLitAlike(const fs::path& input, const fs::path& output) {
+    if (!renderAvailable()) {
+        WARN("render check skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
+        return;
+    }
+    const CommandResult rendered = renderCompare(input, output, "lit", "abc");
+    INFO(rendered.output);
+    CHECK(rendered.status == 0);
+}
+
 }  // namespace
 
 TEST_CASE("A Shape without an Appearance, or an Appearance without a material, is unlit white and is written so",
@@ -544,13 +555,7 @@ TEST_CASE("A Shape without an Appearance, or an Appearance without a material, i
     REQUIRE(glb.materials.size() >= 2);
     for (const Material& m : glb.materials) CHECK(hasUnlitExtension(m));
     CHECK(std::any_of(glb.materials.begin(), glb.materials.end(), [](const Material& m) { return m.doubleSided; }));
-    if (!renderAvailable()) {
-        WARN("render check skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
-        return;
-    }
-    const CommandResult rendered = renderCompare(folder / "in.x3d", folder / "out.x3d", "lit", "abc");
-    INFO(rendered.output);
-    CHECK(rendered.status == 0);
+    checkLitAlike(folder / "in.x3d", folder / "out.x3d");
 }
 
 TEST_CASE(
@@ -670,13 +675,7 @@ TEST_CASE("An Appearance's TextureTransform is baked into the texture coordinate
         writeScene(scene, folder / "out.x3d");
         CHECK_THAT(readTextFile(folder / "out.x3d"), !Catch::Contains("<Box"));
         CHECK_THAT(readTextFile(folder / "out.x3d"), !Catch::Contains("TextureTransform"));
-        if (!renderAvailable()) {
-            WARN("render check skipped: needs Node.js, chromium and ../shared/bench/render (npm ci)");
-            return;
-        }
-        const CommandResult rendered = renderCompare(folder / "in.x3d", folder / "out.x3d", "lit", "abc");
-        INFO(rendered.output);
-        CHECK(rendered.status == 0);
+        checkLitAlike(folder / "in.x3d", folder / "out.x3d");
     }
     SECTION("X3D 4's mapping: the set it names alone") {
         writeTextFile(folder / "in.x3d", quadWith("<Appearance><Material/><TextureTransform mapping='uvB' "
