@@ -706,6 +706,49 @@ TEST_CASE("An MTL's norm and map_Ke fill glTF's normal and emissive slots, and m
     CHECK(back.textures.at(std::size_t(back.materials[0].normalTexture.texture)).bytes == scene.textures[2].bytes);
 }
 
+TEST_CASE("A PLY's TextureFile comment and MeshLab's texture coordinates per corner give a textured mesh",
+          "[materials]") {
+    TemporaryFolder folder;
+    fs::copy_file(modelPath("pbr/box_specgloss/CesiumLogoFlat.png"), folder / "tex.png");
+    const std::string head =
+        "ply\nformat ascii 1.0\ncomment TextureFile tex.png\nelement vertex 4\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 2\n"
+        "property list uchar int vertex_indices\nproperty list uchar float texcoord\nend_header\n"
+        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+    SECTION("the first corner has two pairs of coordinates: two vertices") {
+        writeTextFile(folder / "quad.ply", head + "3 0 1 2 6 0 0 1 0 1 1\n3 0 2 3 6 0.5 0.5 1 1 0 1\n");
+        const Scene scene = readScene(folder / "quad.ply");
+        const Primitive& quad = scene.meshes.at(0).primitives.at(0);
+        CHECK(quad.positions.size() == 5);
+        REQUIRE(quad.triangles.size() == 2);
+        // glTF's v points down: v = 1 - t.
+        CHECK(quad.texcoords.at(quad.triangles[0][0]) == Eigen::Vector2d(0, 1));
+        CHECK(quad.texcoords.at(quad.triangles[1][0]) == Eigen::Vector2d(0.5, 0.5));
+        CHECK(quad.positions.at(quad.triangles[1][0]) == Eigen::Vector3d(0, 0, 0));
+        CHECK(quad.texcoords.at(quad.triangles[1][2]) == Eigen::Vector2d(0, 0));
+        REQUIRE(quad.material == 0);
+        REQUIRE(scene.textures.size() == 1);
+        CHECK(scene.textures[0].bytes.size() == fs::file_size(folder / "tex.png"));
+        CHECK(scene.materials.at(0).baseColorTexture.texture == 0);
+        CHECK(scene.warnings.empty());
+    }
+    SECTION("a list of the wrong length, or a texture that is not there: warned about") {
+        writeTextFile(folder / "short.ply", head + "3 0 1 2 4 0 0 1 0\n3 0 2 3 6 0.5 0.5 1 1 0 1\n");
+        const Scene scene = readScene(folder / "short.ply");
+        CHECK(scene.meshes.at(0).primitives.at(0).texcoords.empty());
+        CHECK(scene.materials.empty());
+        REQUIRE(scene.warnings.size() == 1);
+        CHECK_THAT(scene.warnings[0], Catch::Contains("short.ply: a face's texcoord list"));
+        fs::remove(folder / "tex.png");
+        writeTextFile(folder / "missing.ply", head + "3 0 1 2 6 0 0 1 0 1 1\n3 0 2 3 6 0.5 0.5 1 1 0 1\n");
+        const Scene missing = readScene(folder / "missing.ply");
+        REQUIRE(missing.textures.size() == 1);
+        CHECK(missing.textures[0].bytes.empty());
+        REQUIRE(missing.warnings.size() == 1);
+        CHECK_THAT(missing.warnings[0], Catch::Contains("texture 'tex.png' not found; its reference is kept"));
+    }
+}
+
 TEST_CASE("X3D output refers to an image file where it was read, and embeds an image that came embedded",
           "[materials][x3d]") {
     TemporaryFolder folder;

@@ -1,7 +1,7 @@
 // Wavefront OBJ reader with its .mtl materials. Each o/g group becomes a node with its own mesh (one
 // primitive per material); vertices are split per distinct (v, vt, vn) triple; polygons are triangulated.
 #include "common/color_space.hpp"
-#include "common/mime_type.hpp"
+#include "image_file.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/detail/triangulate_polygon.hpp"
 #include "symcompress/io.hpp"
@@ -63,22 +63,13 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
         std::string name = rest(statement);
         const std::size_t space = name.find_last_of(" \t");
         if (space != std::string::npos && name[0] == '-') name = name.substr(space + 1);
-        std::replace(name.begin(), name.end(), '\\', '/');  // paths written on Windows
         auto [entry, inserted] = textureOfFile.try_emplace(name, static_cast<int>(scene.textures.size()));
         if (inserted) {
-            Texture texture;
-            texture.uri = name;
-            const fs::path image = library.parent_path() / name;
-            texture.mimeType = imageMimeType(image.string());
-            if (fs::is_regular_file(image, error))
-                texture.bytes = readFileBytes(image);
-            else {
-                // Where it was looked for: the writers refer to it relative to their output.
-                texture.uri = image.lexically_normal().string();
+            bool found = false;
+            scene.textures.push_back(textureOfImageFile(library.parent_path(), name, found));
+            if (!found)
                 scene.warnings.push_back(library.filename().string() + ": texture '" + name +
                                          "' not found; its reference is kept");
-            }
-            scene.textures.push_back(std::move(texture));
         }
         return entry->second;
     };

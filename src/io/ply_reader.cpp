@@ -1,6 +1,7 @@
 // PLY reader: ASCII, binary little and big endian; any scalar property types; faces as lists of any
 // length (polygons triangulated); properties we do not use are skipped.
 #include "common/color_space.hpp"
+#include "image_file.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/detail/triangulate_polygon.hpp"
 #include "symcompress/io.hpp"
@@ -10,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <tuple>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -121,6 +124,30 @@ int propertyIndex(const Element& element, std::initializer_list<const char*> nam
     return -1;
 }
 
+// `primitive` with a vertex for each point and corner texture coordinates (s, t per corner of each face, PLY's
+// t up) that faces name, the faces renumbered; the point's other attributes copied to each of its vertices.
+Primitive withCornerTexcoords(Primitive primitive, std::vector<std::vector<std::uint32_t>>& faces,
+                              const std::vector<std::vector<double>>& faceTexcoords) {
+    Primitive out;
+    out.topology = primitive.topology;
+    std::map<std::tuple<std::uint32_t, double, double>, std::uint32_t> vertexOf;
+    for (std::size_t f = 0; f < faces.size(); ++f)
+        for (std::size_t k = 0; k < faces[f].size(); ++k) {
+            const std::uint32_t point = faces[f][k];
+            const double s = faceTexcoords[f][2 * k], t = faceTexcoords[f][2 * k + 1];
+            const auto [entry, added] =
+                vertexOf.try_emplace({point, s, t}, static_cast<std::uint32_t>(out.positions.size()));
+            if (added) {
+                out.positions.push_back(primitive.positions[point]);
+                if (!primitive.normals.empty()) out.normals.push_back(primitive.normals[point]);
+                if (!primitive.colors.empty()) out.colors.push_back(primitive.colors[point]);
+                out.texcoords.emplace_back(s, 1 - t);
+            }
+            faces[f][k] = entry->second;
+        }
+    return out;
+}
+
 }  // namespace
 
 Scene readPly(const fs::path& file) {
@@ -133,6 +160,7 @@ Scene readPly(const fs::path& file) {
         throw FileError(file, "not a PLY file (no 'ply' magic line)");
     PlyBody::Encoding encoding = PlyBody::Encoding::Ascii;
     std::vector<Element> elements;
+    std::string textureFile;  // MeshLab's "comment TextureFile NAME" (photogrammetry tools write it too)
     bool sawFormat = false, sawEnd = false;
     while (!header.atEnd() && !sawEnd) {
         std::string_view line = header.nextLine();
@@ -163,6 +191,10 @@ Scene readPly(const fs::path& file) {
             elements.back().properties.push_back(property);
         } else if (keyword == "end_header") {
             sawEnd = true;
+        } else if (keyword == "comment" && nextWord(line) == "TextureFile" && textureFile.empty()) {
+            textureFile = std::string(line);
+            textureFile.erase(0, textureFile.find_first_not_of(" \t"));
+            textureFile.erase(textureFile.find_last_not_of(" \t\r") + 1);
         } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
             header.fail("unexpected '" + std::string(keyword) + "' in the header");
         }
@@ -171,6 +203,7 @@ Scene readPly(const fs::path& file) {
 
     Primitive primitive;
     std::vector<std::vector<std::uint32_t>> faces;
+    std::vector<std::vector<double>> faceTexcoords;  // MeshLab's per-corner "texcoord" list: s, t for each corner
     std::size_t skippedPolygons = 0, otherElements = 0;
     PlyBody body(file, bytes, header.offset(), encoding);
     for (const Element& element : elements) {
@@ -183,6 +216,7 @@ Scene readPly(const fs::path& file) {
         const int s = propertyIndex(element, {"s", "u", "texture_u", "texture_s"}),
                   t = propertyIndex(element, {"t", "v", "texture_v", "texture_t"});
         const int indices = propertyIndex(element, {"vertex_indices", "vertex_index"});
+        const int cornerTexcoords = isFace ? propertyIndex(element, {"texcoord"}) : -1;
         if (isVertex && (x < 0 || y < 0 || z < 0)) throw FileError(file, "vertex element without x, y and z");
         if (isFace && (indices < 0 || !element.properties[indices].isList))
             throw FileError(file, "face element without a vertex_indices list");
@@ -199,6 +233,7 @@ Scene readPly(const fs::path& file) {
         std::vector<double> values(element.properties.size());
         for (std::size_t item = 0; item < element.count; ++item) {
             std::vector<std::uint32_t> face;
+            std::vector<double> texcoords;
             for (std::size_t p = 0; p < element.properties.size(); ++p) {
                 const Property& property = element.properties[p];
                 if (!property.isList) {
@@ -214,6 +249,7 @@ Scene readPly(const fs::path& file) {
                             throw FileError(file, "face " + std::to_string(item) + ": negative or invalid vertex index");
                         face.push_back(static_cast<std::uint32_t>(value));
                     }
+                    if (static_cast<int>(p) == cornerTexcoords) texcoords.push_back(value);
                 }
             }
             if (isVertex) {
@@ -236,6 +272,7 @@ Scene readPly(const fs::path& file) {
                 }
             } else if (isFace) {
                 faces.push_back(std::move(face));
+                if (cornerTexcoords >= 0) faceTexcoords.push_back(std::move(texcoords));
             }
         }
     }
@@ -245,6 +282,21 @@ Scene readPly(const fs::path& file) {
             if (index >= primitive.positions.size())
                 throw FileError(file, "face " + std::to_string(f) + ": vertex index " + std::to_string(index) +
                                           " out of range (" + std::to_string(primitive.positions.size()) + " vertices)");
+    }
+    std::vector<std::string> warnings;
+    // Texture coordinates per corner: a vertex for each point and pair of coordinates, as OBJ's.
+    if (!faceTexcoords.empty()) {
+        bool whole = true;
+        for (std::size_t f = 0; f < faces.size(); ++f) whole = whole && faceTexcoords[f].size() == 2 * faces[f].size();
+        if (whole)
+            primitive = withCornerTexcoords(std::move(primitive), faces, faceTexcoords);
+        else
+            warnings.push_back(
+                file.filename().string() +
+                ": a face's texcoord list is not two numbers a corner; the texture coordinates left out");
+    }
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& face = faces[f];
         if (face.size() == 3) {
             primitive.triangles.push_back({face[0], face[1], face[2]});
             continue;
@@ -255,7 +307,6 @@ Scene readPly(const fs::path& file) {
         if (triangles.empty()) ++skippedPolygons;
         for (const Triangle& local : triangles) primitive.triangles.push_back({face[local[0]], face[local[1]], face[local[2]]});
     }
-    std::vector<std::string> warnings;
     auto dropIfNotFinite = [&](auto& attribute, const char* name) {
         for (const auto& value : attribute)
             if (!value.allFinite()) {
@@ -275,7 +326,26 @@ Scene readPly(const fs::path& file) {
                            " elements other than vertex and face ignored");
     // Vertices without faces: a point cloud (a scan), drawn as points, as three.js's PLYLoader gives it.
     if (faces.empty()) primitive.topology = Topology::Points;
+    // The texture the header names, drawn through the texture coordinates (MeshLab draws it so; three.js's
+    // PLYLoader reads no texture).
+    std::vector<Texture> textures;
+    if (!textureFile.empty() && !primitive.texcoords.empty()) {
+        bool found = false;
+        textures.push_back(textureOfImageFile(file.parent_path(), textureFile, found));
+        if (!found)
+            warnings.push_back(file.filename().string() + ": texture '" + textureFile +
+                               "' not found; its reference is kept");
+        primitive.material = 0;
+    }
     Scene scene = sceneOfOneMesh(file.stem().string(), std::move(primitive));
+    if (!textures.empty()) {
+        Material material;
+        material.name = fs::path(textureFile).stem().string();
+        material.metallicFactor = 0;
+        material.baseColorTexture.texture = 0;
+        scene.materials.push_back(material);
+        scene.textures = std::move(textures);
+    }
     scene.warnings = std::move(warnings);
     return scene;
 }
