@@ -370,6 +370,10 @@ for order, name in (("<", "binary_little_endian"), (">", "binary_big_endian")):
 write("ply", "double_uint.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
       "property double z\nelement face 1\nproperty list uint uint vertex_index\nend_header\n".encode() +
       struct.pack("<9d", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<4I", 3, 0, 1, 2))
+write("ply", "corner_texcoords.ply", "ply\nformat ascii 1.0\ncomment TextureFile tex.png\nelement vertex 4\n"
+      "property float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+      "property list uchar float texcoord\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 6 0 0 1 0 1 1\n"
+      "3 0 2 3 6 0.5 0.5 1 1 0 1\n")
 
 # --- STL --------------------------------------------------------------------------------------------------
 write("stl", "ascii.stl", "solid seed\n" + "".join(
