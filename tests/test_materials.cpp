@@ -739,6 +739,10 @@ TEST_CASE("A PLY's TextureFile comment and MeshLab's texture coordinates per cor
         CHECK(scene.materials.empty());
         REQUIRE(scene.warnings.size() == 1);
         CHECK_THAT(scene.warnings[0], Catch::Contains("short.ply: a face's texcoord list"));
+        writeTextFile(folder / "nan.ply", head + "3 0 1 2 6 0 0 1 0 1 nan\n3 0 2 3 6 0.5 0.5 1 1 0 1\n");
+        const Scene notFinite = readScene(folder / "nan.ply");
+        CHECK(notFinite.meshes.at(0).primitives.at(0).texcoords.empty());
+        CHECK(notFinite.warnings.size() == 1);
         fs::remove(folder / "tex.png");
         writeTextFile(folder / "missing.ply", head + "3 0 1 2 6 0 0 1 0 1 1\n3 0 2 3 6 0.5 0.5 1 1 0 1\n");
         const Scene missing = readScene(folder / "missing.ply");

@@ -287,13 +287,15 @@ Scene readPly(const fs::path& file) {
     // Texture coordinates per corner: a vertex for each point and pair of coordinates, as OBJ's.
     if (!faceTexcoords.empty()) {
         bool whole = true;
-        for (std::size_t f = 0; f < faces.size(); ++f) whole = whole && faceTexcoords[f].size() == 2 * faces[f].size();
+        for (std::size_t f = 0; f < faces.size(); ++f)
+            whole = whole && faceTexcoords[f].size() == 2 * faces[f].size() &&
+                    std::all_of(faceTexcoords[f].begin(), faceTexcoords[f].end(),
+                                [](double value) { return std::isfinite(value); });
         if (whole)
-            primitive = withCornerTexcoords(std::move(primitive), faces, faceTexcoords);
+            primitive = withCornerTexcoords(primitive, faces, faceTexcoords);
         else
-            warnings.push_back(
-                file.filename().string() +
-                ": a face's texcoord list is not two numbers a corner; the texture coordinates left out");
+            warnings.push_back(file.filename().string() + ": a face's texcoord list is not two finite numbers a " +
+                               "corner; the texture coordinates left out");
     }
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
