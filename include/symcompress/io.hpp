@@ -59,6 +59,10 @@ struct WriteOptions {
     // sets each skinned primitive's weightBits from it. 0: weights kept as read (float32).
     double skinWeightError = 0;
     int weightBits = 0;  // Draco's quantization of WEIGHTS_n; 0: none (float32 as read)
+    // Draco's sequential coding, which keeps the triangles in their order (edgebreaker reorders them): the glTF
+    // writer sets it for each blended, double-sided primitive, whose triangles viewers draw over each other in
+    // their order (drawnBlended).
+    bool keepTriangleOrder = false;
     // > 0: how far (a distance) the rounding of animations' key values may move a vertex in any pose (glTF with
     // meshopt: its filters, gltf_animation_keys.hpp). 0: key values kept as read (float32).
     double animationKeyError = 0;

@@ -165,6 +165,11 @@ Eigen::Vector2d baseColorTexcoord(const Scene& scene, const Primitive& primitive
 // (Material::variants), each once; none for -1 (the default material).
 std::vector<const Material*> materialsDrawnWith(const Scene& scene, int m);
 
+// Whether a primitive of material `m` is drawn blended, under some variant: viewers sort blended objects back to
+// front, each as a whole, and draw an object's triangles in their order without writing depth (three.js, X_ITE),
+// so such a primitive must stay one object as the input drew it: one tile, merged with no other, never batched.
+bool drawnBlended(const Scene& scene, int m);
+
 // What an input node says about itself (its name, extras and the extensions passed through), given to a node of the
 // output that draws what it drew.
 void copyNodeNotes(const Node& from, Node& to);

@@ -25,6 +25,9 @@ struct Tile {
 struct TileOptions {
     // Positions closer than this, relative to the soup's bounding-box diagonal, are one vertex.
     double weldTolerance = 1e-6;
+    // Materials (by index) whose every primitive, as one node draws it, is one tile however its triangles connect,
+    // and shares no tile with another: those viewers draw blended (drawnBlended), which they sort as wholes.
+    std::vector<bool> wholePrimitiveMaterials;
 };
 
 // Welds positions within the tolerance, then groups triangles that share an edge (two welded vertices),

@@ -275,10 +275,12 @@ GpuInstancingPlan planGpuInstancing(const Scene& scene, const std::vector<int>& 
         const Node& node = scene.nodes[std::size_t(n)];
         if (fixed[std::size_t(n)] || !plainLeaf(node) || meshIndex[std::size_t(node.mesh)] < 0) return false;
         const Mesh& mesh = scene.meshes[std::size_t(node.mesh)];
-        // three.js instances no lines or points (its loader draws such a node once).
+        // three.js instances no lines or points (its loader draws such a node once), and sorts no instances:
+        // blended ones would be drawn in the batch's order, not back to front as nodes of their own are.
         return morphTargetCount(mesh) == 0 &&
-               std::all_of(mesh.primitives.begin(), mesh.primitives.end(),
-                           [](const Primitive& p) { return p.topology == Topology::Triangles; });
+               std::all_of(mesh.primitives.begin(), mesh.primitives.end(), [&](const Primitive& p) {
+                   return p.topology == Topology::Triangles && !drawnBlended(scene, p.material);
+               });
     };
     // Groups by parent, mesh and handedness, in the order of their first node.
     std::map<std::tuple<int, int, bool>, std::size_t> groupOf;

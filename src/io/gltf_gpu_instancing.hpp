@@ -43,10 +43,10 @@ struct GpuInstancingPlan {
     std::vector<int> batchOf;  // per scene node: the batch it is written in, -1 for a node of its own
 };
 
-// The batches worth writing: every group of plain leaves (a mesh that is written and has no morph targets;
-// no children, camera, light, skin, weights or extras; not animated, under nothing animated, no joint; a
-// transform that TRS holds) whose batch is smaller than its nodes, by the writer's bytes. Each attribute is
-// stored the smallest way that keeps every vertex within options.instanceRotationDeviation (rotations) and
+// The batches worth writing: every group of plain leaves (a mesh that is written, has no morph targets and draws
+// nothing blended; no children, camera, light, skin, weights or extras; not animated, under nothing animated, no joint;
+// a transform that TRS holds) whose batch is smaller than its nodes, by the writer's bytes. Each attribute is stored
+// the smallest way that keeps every vertex within options.instanceRotationDeviation (rotations) and
 // options.instanceTranslationDeviation (translations and scales) of the scene's diagonal: with Draco, normalized
 // SHORT rotations and EXT_meshopt_compression streams are among the candidates; without, the file is float
 // throughout. `meshIndex` is the glTF mesh of each scene mesh (-1: not written). Empty when

@@ -535,6 +535,8 @@ EncodedPrimitive encodePrimitive(const Primitive& primitive, const WriteOptions&
     const Primitive& drawing = split ? split->first : primitive;
     if (split) encoded.zeroArea = zeroAreaPart(primitive, split->second);
     if (drawing.triangles.empty()) {
+    } else if (options.keepTriangleOrder) {
+        encoded.parts.push_back(*encodeDracoPrimitive(drawing, options, file, DracoMethod::Sequential));
     } else if (auto whole = encodeDracoPrimitive(drawing, options, file, DracoMethod::EdgebreakerOrNothing)) {
         encoded.parts.push_back(std::move(*whole));
     } else {

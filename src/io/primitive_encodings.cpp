@@ -82,6 +82,7 @@ PrimitiveFingerprint fingerprintOf(const Primitive& primitive, const WriteOption
     // The options encodePrimitive reads (positionBitsFor, dracoSpeedsWorthTrying, positionBitsWorthTrying).
     f.word(options.draco);
     f.word(options.encodingTrials);
+    f.word(options.keepTriangleOrder);
     for (int bits : {options.positionBits, options.normalBits, options.texcoordBits, options.colorBits,
                      options.weightBits, options.compressionLevel})
         f.word(std::uint64_t(std::int64_t(bits)));

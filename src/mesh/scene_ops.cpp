@@ -372,6 +372,12 @@ std::vector<const Material*> materialsDrawnWith(const Scene& scene, int m) {
     return out;
 }
 
+bool drawnBlended(const Scene& scene, int m) {
+    const std::vector<const Material*> drawn = materialsDrawnWith(scene, m);
+    return std::any_of(drawn.begin(), drawn.end(),
+                       [](const Material* material) { return material->alphaMode == Material::AlphaMode::Blend; });
+}
+
 void copyNodeNotes(const Node& from, Node& to) {
     to.name = from.name;
     to.extrasJson = from.extrasJson;

@@ -67,14 +67,22 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
     }
     // Each triangle's kind: its material and the names of its other attributes (attributeSignature), which a tile
     // never mixes, so that its primitive carries every attribute of each of its triangles.
+    // A primitive whose material is drawn whole is a kind of its own.
     std::vector<int> kinds;
     kinds.reserve(triangleCount);
+    std::vector<char> whole(soup.size(), 0);
     {
         std::map<std::pair<int, std::string>, int> kindOf;
-        for (const WorldPrimitive& world : soup) {
-            const auto kind =
-                kindOf.try_emplace({world.primitive.material, attributeSignature(world.primitive)}, int(kindOf.size()));
-            kinds.insert(kinds.end(), world.primitive.triangles.size(), kind.first->second);
+        int kindsAlone = 0;
+        for (std::size_t p = 0; p < soup.size(); ++p) {
+            const Primitive& primitive = soup[p].primitive;
+            const int m = primitive.material;
+            whole[p] = m >= 0 && std::size_t(m) < options.wholePrimitiveMaterials.size() &&
+                       options.wholePrimitiveMaterials[std::size_t(m)];
+            const int kind =
+                whole[p] ? -++kindsAlone
+                         : kindOf.try_emplace({m, attributeSignature(primitive)}, int(kindOf.size())).first->second;
+            kinds.insert(kinds.end(), primitive.triangles.size(), kind);
         }
     }
 
@@ -104,6 +112,21 @@ std::vector<Tile> splitIntoTiles(const std::vector<WorldPrimitive>& soup, const 
                         sets.unite(u, t);
                 }
             }
+        }
+    }
+
+    // A primitive drawn whole: all its triangles one tile, connected or not.
+    {
+        std::uint32_t first = 0;
+        for (std::size_t p = 0; p < soup.size(); ++p) {
+            const auto count = static_cast<std::uint32_t>(soup[p].primitive.triangles.size());
+            if (whole[p]) {
+                std::uint32_t lead = first;
+                while (lead < first + count && zeroArea[lead]) ++lead;
+                for (std::uint32_t t = lead + 1; t < first + count; ++t)
+                    if (!zeroArea[t]) sets.unite(lead, t);
+            }
+            first += count;
         }
     }
 

@@ -138,7 +138,9 @@ std::vector<int> baseColorJoinGroups(const std::vector<Material>& materials) {
             std::any_of(material.extensions.begin(), material.extensions.end(),
                         [](const MaterialExtension& e) { return e.name == "KHR_materials_pbrSpecularGlossiness"; });
         using Key = std::tuple<int, int, int, double, double, double, int, bool>;
-        if (!material.variants.empty() || specularGlossiness) return std::optional<Key>();
+        // Blended primitives are drawn as objects of their own, which viewers sort (drawnBlended).
+        if (!material.variants.empty() || specularGlossiness || material.alphaMode == Material::AlphaMode::Blend)
+            return std::optional<Key>();
         return std::optional(Key(material.baseColorTexture.texture, material.metallicRoughnessTexture.texture,
                                  material.normalTexture.texture, material.metallicFactor, material.roughnessFactor,
                                  material.baseColorFactor.w(), int(material.alphaMode), material.doubleSided));

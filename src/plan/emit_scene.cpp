@@ -292,6 +292,23 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
         stats.tilesInNodeFrames += group.tiles.size();
         ++stats.nodeFrames;
     }
+    // Each tile drawn alone (a blended primitive, whole) by a mesh and node of its own, in the frame of the input
+    // node that drew it: viewers sort it by the centre of its bounds there, as they sorted the input's.
+    if (!plan.tilesAlone.empty()) {
+        const std::vector<Eigen::Matrix4d> world = worldTransforms(input);
+        for (std::size_t t : plan.tilesAlone) {
+            const int node = analysis.soup[analysis.tiles[t].sources.front().primitive].node;
+            const Node* source = sourceNode(input, analysis, t);
+            Eigen::Matrix4d frame = Eigen::Matrix4d::Identity();
+            if (source && std::abs(world[std::size_t(node)].topLeftCorner<3, 3>().determinant()) > 0)
+                frame = world[std::size_t(node)];
+            Mesh mesh = tilesInFrame(analysis, {t}, frame);
+            if (source && source->mesh >= 0) mesh.name = input.meshes[std::size_t(source->mesh)].name;
+            const Eigen::Matrix4d offset = centredIfFar(mesh, budget / largestStretch(frame));
+            out.meshes.push_back(std::move(mesh));
+            addRootNode(out, int(out.meshes.size()) - 1, frame * offset, source);
+        }
+    }
     if (const NodesByNotes groups = flattenedGroupsWithNotes(input, analysis); !groups.empty())
         out.warnings.push_back(nodeNotesLost(groups) + ": they group other nodes, and the output draws the tiles " +
                                "under nodes of their own");

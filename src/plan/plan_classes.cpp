@@ -191,7 +191,10 @@ void planClass(const PlanContext& context, std::size_t k, const CongruenceClass&
     const TileShape& shape = analysis.classification.shapes[c.prototype];
     StorageCosts& costs = context.costs;
     const PlanOptions& options = context.options;
-    if (c.members.size() == 1 && !(options.regions && shape.symmetry.order() > 1)) {
+    // A tile drawn alone is drawn whole, by one node: not as a region's copies.
+    const bool regions = options.regions && std::none_of(c.members.begin(), c.members.end(),
+                                                         [&](std::size_t t) { return analysis.drawnAlone(t); });
+    if (c.members.size() == 1 && !(regions && shape.symmetry.order() > 1)) {
         // A single copy with no symmetry to use: stored as it is (most classes of a big scene).
         if (!drawn[c.prototype]) plan.tilesAsTheyAre.push_back(c.prototype);
         return;
@@ -254,9 +257,9 @@ void planClass(const PlanContext& context, std::size_t k, const CongruenceClass&
     std::optional<FundamentalRegion> region;
     double regional = kNever;
     double instanced = kNever;
-    if (placed.size() > 1 || (options.regions && shape.symmetry.order() > 1))
+    if (placed.size() > 1 || (regions && shape.symmetry.order() > 1))
         instanced = costs.alone(c.prototype) + costs.nodes(nodesOf({atCenter}, true)) + variants;
-    if (options.regions && shape.symmetry.order() > 1) {
+    if (regions && shape.symmetry.order() > 1) {
         const std::vector<Eigen::Matrix3d> group = attributeGroup(context, shape, prototype, prototypeSurface);
         auto regionNodes = [&](const FundamentalRegion& r) {
             return costs.nodes(nodesOf(regionCopies(r), true)) + variants;

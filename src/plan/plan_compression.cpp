@@ -31,6 +31,14 @@ Eigen::Matrix4d translationTo(const Eigen::Vector3d& center) {
     return m;
 }
 
+// The tiles stored as they are that are drawn alone (SceneAnalysis::drawnAlone) moved to plan.tilesAlone.
+void setTilesAloneApart(const SceneAnalysis& analysis, CompressionPlan& plan) {
+    const auto alone = std::stable_partition(plan.tilesAsTheyAre.begin(), plan.tilesAsTheyAre.end(),
+                                             [&](std::size_t t) { return !analysis.drawnAlone(t); });
+    plan.tilesAlone.assign(alone, plan.tilesAsTheyAre.end());
+    plan.tilesAsTheyAre.erase(alone, plan.tilesAsTheyAre.end());
+}
+
 CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysis, const PlanOptions& options) {
     CompressionPlan plan;
     plan.maxError = options.maxError;
@@ -43,6 +51,7 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
         // cost more than it saves (hundreds of small scaled copies), and this plan stores nothing shared.
         plan.shareInputInstances = false;
         for (std::size_t t = 0; t < analysis.tiles.size(); ++t) plan.tilesAsTheyAre.push_back(t);
+        setTilesAloneApart(analysis, plan);
         StorageCosts costs(analysis, options.costs, joinGroups);
         withThreads(analysis.options.threads, [&] { planSourceFrames(input, analysis, costs, plan); });
         return plan;
@@ -51,6 +60,8 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
     StorageCosts costs(analysis, options.costs, joinGroups);
     const PlanContext context{input, analysis, options, costs};
     std::vector<bool> drawn(analysis.tiles.size(), false);  // by the scene's symmetry or a repeated assembly
+    // Tiles drawn alone are in no assembly (each would lose its own node) and stay for the classes.
+    for (std::size_t t = 0; t < drawn.size(); ++t) drawn[t] = analysis.drawnAlone(t);
     CompressionPlan classes = withThreads(analysis.options.threads, [&] {
         // The kinds' measures (the writer on a sample of up to 20000 triangles) beside the planners, which
         // ask for them under StorageCosts' lock.
@@ -74,6 +85,8 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
                 }
                 for (SharedPart& part : planAssemblies(context, drawn)) plan.shared.push_back(std::move(part));
             }
+            for (std::size_t t = 0; t < drawn.size(); ++t)
+                if (analysis.drawnAlone(t)) drawn[t] = false;
             CompressionPlan planned = planClasses(context, drawn);
             measuring.wait();
             return planned;
@@ -84,6 +97,7 @@ CompressionPlan planCompression(const Scene& input, const SceneAnalysis& analysi
     });
     for (SharedPart& part : classes.shared) plan.shared.push_back(std::move(part));
     plan.tilesAsTheyAre = std::move(classes.tilesAsTheyAre);
+    setTilesAloneApart(analysis, plan);
     plan.classes = classes.classes;
     plan.symmetricClasses = classes.symmetricClasses;
     plan.attributeMismatches = classes.attributeMismatches;

@@ -27,6 +27,8 @@ FreeOrbits freeOrbits(const PlanContext& context, const SymmetryGroup& group, co
         for (std::size_t u : orbit)
             if (u < none) seen[u] = true;
         if (orbit.size() < order || *orbit.rbegin() >= none) continue;  // on a plane or axis of G
+        if (std::any_of(orbit.begin(), orbit.end(), [&](std::size_t u) { return context.analysis.drawnAlone(u); }))
+            continue;  // a copy drawn alone
         const std::size_t representative =
             *std::min_element(orbit.begin(), orbit.end(), [&](std::size_t a, std::size_t b) {
                 return (classification.shapes[a].moments.centroid - generic).norm() <

@@ -106,7 +106,11 @@ SceneAnalysis analyzeSoup(const Scene& input, std::vector<WorldPrimitive> soup, 
     std::size_t triangles = 0;
     for (const WorldPrimitive& placed : analysis.soup) triangles += placed.primitive.triangles.size();
     if (options.progress) options.progress("splitting into tiles", triangles, "triangles");
-    analysis.tiles = splitIntoTiles(analysis.soup);
+    for (std::size_t m = 0; m < input.materials.size(); ++m)
+        analysis.blendedMaterials.push_back(drawnBlended(input, int(m)));
+    TileOptions tileOptions;
+    tileOptions.wholePrimitiveMaterials = analysis.blendedMaterials;
+    analysis.tiles = splitIntoTiles(analysis.soup, tileOptions);
     analysis.secondsTiles = since(start);
     start = std::chrono::steady_clock::now();
     if (options.classify) {

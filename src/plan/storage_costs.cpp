@@ -78,13 +78,20 @@ double StorageCosts::nodes(const std::vector<PlacedCopy>& copies) const {
     }
     double bytes = 0;
     for (const auto& [material, drawing] : byMaterial) {
-        if (model_.nodesBytes) {
+        const bool blended = material && *material >= 0 && std::size_t(*material) < analysis_.blendedMaterials.size() &&
+                             analysis_.blendedMaterials[std::size_t(*material)];
+        if (model_.nodesBytes && !blended) {
             bytes += model_.nodesBytes(drawing);
             continue;
         }
         for (const Node& one : drawing) bytes += node(one);
     }
     return bytes;
+}
+
+double StorageCosts::merged(std::size_t t) {
+    if (analysis_.drawnAlone(t)) return alone(t) + node(Eigen::Matrix4d::Identity(), nullptr);
+    return double(analysis_.tiles[t].mesh.triangles.size()) * kindOf(t).perTriangle;
 }
 
 double StorageCosts::alone(std::size_t t) {
@@ -104,6 +111,7 @@ double StorageCosts::apart(std::size_t t) {
 }
 
 bool StorageCosts::regionMayPay(std::size_t t) {
+    if (analysis_.drawnAlone(t)) return false;  // drawn whole
     constexpr double kMeshFloor = 0.5;  // of a one-triangle mesh's measure
     const double twoNodes = nodes({PlacedCopy{}, PlacedCopy{}});
     return merged(t) > kMeshFloor * kindOf(t).overhead + twoNodes;

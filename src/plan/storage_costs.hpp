@@ -32,10 +32,12 @@ public:
     // writer measures it.
     double node(const Eigen::Matrix4d& transform, const Node* source) const;
     double node(const Node& node) const;
-    // The nodes drawing one shared mesh, together: a batch of instances costs less than its nodes apart.
+    // The nodes drawing one shared mesh, together: a batch of instances costs less than its nodes apart (those
+    // drawing a blended material, which no batch holds, apart).
     double nodes(const std::vector<PlacedCopy>& copies) const;
-    // Tile t's triangles in a mesh with other parts.
-    double merged(std::size_t t) { return double(analysis_.tiles[t].mesh.triangles.size()) * kindOf(t).perTriangle; }
+    // Tile t's triangles in a mesh with other parts; a tile drawn alone (SceneAnalysis::drawnAlone), a mesh and
+    // node of its own.
+    double merged(std::size_t t);
     // What a primitive of tile t's kind costs before its triangles (the tiles stored as they are in another
     // material need one of their own).
     double primitiveOverhead(std::size_t t) { return kindOf(t).overhead; }

@@ -90,6 +90,14 @@ struct SceneAnalysis {
     // without a material or other attributes, stored as they are.
     std::vector<WorldPrimitive> zeroArea;
     std::vector<Tile> tiles;
+    // By material: drawn blended (drawnBlended), so that each primitive in it is one tile (TileOptions::
+    // wholePrimitiveMaterials), drawn alone: by a mesh and node of its own, or by its class's mesh under a node of
+    // its own; never merged with other tiles, cut into a fundamental region, part of an assembly or batched.
+    std::vector<bool> blendedMaterials;
+    bool drawnAlone(std::size_t t) const {
+        const int m = tiles[t].material;
+        return m >= 0 && std::size_t(m) < blendedMaterials.size() && blendedMaterials[std::size_t(m)];
+    }
     TileClassification classification;  // empty unless options.classify
     SurfaceDigest digest;
     double secondsTiles = 0, secondsClasses = 0;
@@ -180,6 +188,7 @@ struct CompressionPlan {
     bool shareInputInstances = true;          // false: the input's own shared meshes stored as they are too
     std::vector<SharedPart> shared;           // in the order they are written
     std::vector<std::size_t> tilesAsTheyAre;  // in the order they are merged (one mesh per material)
+    std::vector<std::size_t> tilesAlone;      // stored as they are, each by a mesh and node of its own (drawnAlone)
     std::vector<FramedTiles> framedTiles;     // of tilesAsTheyAre, those stored in their nodes' frames
     // Whether a shared part's mesh is written in its SharedPart::frame (false: every one in the world's).
     bool sharedPartFrames = true;
