@@ -299,12 +299,16 @@ public:
         out_ += "</head>\n<Scene>\n";
         for (const std::string& node : scene_.x3dEnvironment) out_ += " " + node + "\n";
         written_.assign(scene_.meshes.size(), false);
+        drawers_.assign(scene_.meshes.size(), 0);
+        const std::vector<char> written = nodesUnder(scene_, scene_.roots);
+        for (std::size_t n = 0; n < scene_.nodes.size(); ++n)
+            if (written[n] && scene_.nodes[n].mesh >= 0) ++drawers_[std::size_t(scene_.nodes[n].mesh)];
         for (const Animation& animation : scene_.animations)
             for (const AnimationChannel& channel : animation.channels) nodeDef_[channel.node];
         for (int root : scene_.roots) writeNode(root, 1);
         for (std::size_t a = 0; a < scene_.animations.size(); ++a) writeAnimation(scene_.animations[a], a);
         out_ += "</Scene>\n</X3D>\n";
-        return withGeometryDefs();
+        return withDefs();
     }
 
 private:
@@ -317,12 +321,19 @@ private:
 
     void indent(int depth) { out_.append(static_cast<std::size_t>(depth), ' '); }
 
+    // A node as a Transform, or where it would be one without a field (no name, not animated, no transform) as
+    // what it holds alone.
     void writeNode(int index, int depth) {
         const Node& node = scene_.nodes[index];
-        indent(depth);
-        out_ += "<Transform";
         // Animated nodes need a DEF for their ROUTEs (nodeDef_ holds an entry for each).
         const auto animated = nodeDef_.find(index);
+        const bool transform = !node.name.empty() || animated != nodeDef_.end() || !node.transform.isIdentity();
+        if (!transform) {
+            writeContent(node, depth);
+            return;
+        }
+        indent(depth);
+        out_ += "<Transform";
         if (!node.name.empty() || animated != nodeDef_.end()) {
             const std::string def = uniqueName(node.name.empty() ? "node" + std::to_string(index) : node.name);
             out_ += " DEF='" + def + "'";
@@ -330,12 +341,16 @@ private:
         }
         appendTransformFields(out_, node.transform, animated != nodeDef_.end());
         out_ += ">\n";
-        if (node.mesh >= 0) writeMesh(node.mesh, depth + 1);
-        if (node.camera >= 0) writeViewpoint(scene_.cameras[std::size_t(node.camera)], depth + 1);
-        if (node.light >= 0) writeLight(scene_.lights[std::size_t(node.light)], depth + 1);
-        for (int child : node.children) writeNode(child, depth + 1);
+        writeContent(node, depth + 1);
         indent(depth);
         out_ += "</Transform>\n";
+    }
+
+    void writeContent(const Node& node, int depth) {
+        if (node.mesh >= 0) writeMesh(node.mesh, depth);
+        if (node.camera >= 0) writeViewpoint(scene_.cameras[std::size_t(node.camera)], depth);
+        if (node.light >= 0) writeLight(scene_.lights[std::size_t(node.light)], depth);
+        for (int child : node.children) writeNode(child, depth);
     }
 
     // A camera in its node's frame (the Transform around it places it): at the origin, looking down -z.
@@ -452,44 +467,58 @@ private:
         return unique;
     }
 
-    // The DEF of the index'th mesh, material or texture: `prefix` and the index, made unique the first time (a
-    // node read from symcompress's own X3D output may be named mesh0).
-    std::string defOf(const std::string& prefix, int index) {
-        auto [entry, inserted] = defs_.try_emplace(prefix + std::to_string(index));
-        if (inserted) entry->second = uniqueName(entry->first);
-        return entry->second;
+    // The node just opened (its name written, `<Group`) as the one later nodes USE for `key` ("mesh3",
+    // "material0", "texture2"): it gets a DEF only where one does (useOf; withDefs).
+    void definable(const std::string& key) { definable_[key] = {out_.size(), {}}; }
+
+    // The DEF that a USE of `key`'s node names: the key, made unique the first time (a node read from
+    // symcompress's own X3D output may be named mesh0).
+    std::string useOf(const std::string& key) {
+        std::string& def = definable_.at(key).def;
+        if (def.empty()) def = uniqueName(key);
+        return def;
     }
 
+    // A mesh that one node draws as its Shapes; one that several draw as a Group of them, which the others USE.
     void writeMesh(int mesh, int depth) {
-        indent(depth);
-        const std::string def = defOf("mesh", mesh);
+        const std::string key = "mesh" + std::to_string(mesh);
         if (written_[mesh]) {
-            out_ += "<Group USE='" + def + "'/>\n";
+            indent(depth);
+            out_ += "<Group USE='" + useOf(key) + "'/>\n";
             return;
         }
         written_[mesh] = true;
-        out_ += "<Group DEF='" + def + "'>\n";
+        const bool grouped = drawers_[std::size_t(mesh)] > 1;
+        if (grouped) {
+            indent(depth);
+            out_ += "<Group";
+            definable(key);
+            out_ += ">\n";
+            ++depth;
+        }
         for (const Primitive& primitive : scene_.meshes[mesh].primitives) {
             if (primitive.drawsNothing()) continue;
             if (primitive.topology != Topology::Triangles) {
-                writeUnlitShape(primitive, depth + 1);
+                writeUnlitShape(primitive, depth);
                 continue;
             }
             if (primitive.x3dSource && primitive.x3dSource->cornerHash == trianglePositionsHash(primitive)) {
-                writeSourceShape(primitive, depth + 1);
+                writeSourceShape(primitive, depth);
                 continue;
             }
             // Triangles of zero area apart: the browser would make their normals of nothing.
             const std::optional<std::pair<Primitive, ZeroAreaTriangles>> split = withoutZeroAreaTriangles(primitive);
             if (!split) {
-                writeShape(primitive, depth + 1);
+                writeShape(primitive, depth);
                 continue;
             }
-            if (!split->first.triangles.empty()) writeShape(split->first, depth + 1);
-            writeZeroAreaShape(primitive.positions[split->second.vertex], split->second.count, depth + 1);
+            if (!split->first.triangles.empty()) writeShape(split->first, depth);
+            writeZeroAreaShape(primitive.positions[split->second.vertex], split->second.count, depth);
         }
-        indent(depth);
-        out_ += "</Group>\n";
+        if (grouped) {
+            indent(depth - 1);
+            out_ += "</Group>\n";
+        }
     }
 
     std::optional<Material::AlphaMode> statedAlphaMode(int material) {
@@ -509,14 +538,16 @@ private:
             out_ += "<Appearance><Material/></Appearance>\n";
             return;
         }
-        const std::string def = defOf("material", material);
+        const std::string key = "material" + std::to_string(material);
         if (!materialWritten_.insert(material).second) {
-            out_ += "<Appearance USE='" + def + "'/>\n";
+            out_ += "<Appearance USE='" + useOf(key) + "'/>\n";
             return;
         }
         const Material& m = scene_.materials[material];
         const x3d::MaterialTextures textures = x3d::materialTextures(m);
-        out_ += "<Appearance DEF='" + def + "'";
+        out_ += "<Appearance";
+        definable(key);
+        if (!m.name.empty()) definable_.at(key).def = uniqueName(m.name);  // the material's name, kept
         // glTF's alpha modes, which X3D 4's Appearance has, where AUTO would draw another.
         if (const auto stated = statedAlphaMode(material)) {
             out_ += stated == Material::AlphaMode::Opaque  ? " alphaMode='OPAQUE'"
@@ -549,17 +580,16 @@ private:
     // The Appearance of lines and points (x3d::unlitPhongOf), shared as writeAppearance's is.
     void writeUnlitAppearance(int material, int depth) {
         indent(depth);
-        std::string def;
-        if (material >= 0) {
-            def = defOf("emissive", material);
-            if (!unlitMaterialWritten_.insert(material).second) {
-                out_ += "<Appearance USE='" + def + "'/>\n";
-                return;
-            }
+        const std::string key = "emissive" + std::to_string(material);
+        if (material >= 0 && !unlitMaterialWritten_.insert(material).second) {
+            out_ += "<Appearance USE='" + useOf(key) + "'/>\n";
+            return;
         }
         const PhongMaterial phong =
             x3d::unlitPhongOf(material >= 0 ? scene_.materials[std::size_t(material)] : Material{});
-        out_ += def.empty() ? "<Appearance>" : "<Appearance DEF='" + def + "'>";
+        out_ += "<Appearance";
+        if (material >= 0) definable(key);
+        out_ += ">";
         out_ += "<Material diffuseColor='0 0 0' emissiveColor='";
         appendVector(out_, phong.emissiveColor, 3);
         out_ += "'";
@@ -656,9 +686,9 @@ private:
                sameImage_[std::size_t(index)] != sameImage_[std::size_t(texture)])
             ++index;  // the first texture of this image with this sampler (`texture` itself at the latest)
         const std::string field = containerField.empty() ? "" : " containerField='" + containerField + "'";
+        const std::string key = "texture" + std::to_string(index);
         if (textureWritten_.count(index)) {
-            const std::string def = defOf("texture", index);
-            out_ += "<ImageTexture USE='" + def + "'" + field + "/>";
+            out_ += "<ImageTexture USE='" + useOf(key) + "'" + field + "/>";
             return;
         }
         // A fallback image (Texture::fallback) follows as a second URL: a browser shows the first it can read.
@@ -671,8 +701,9 @@ private:
             if (!url.empty()) urls += (urls.empty() ? "\"" : " \"") + escapedMarkup(url) + "\"";
         if (urls.empty()) return;
         textureWritten_.insert(index);
-        const std::string def = defOf("texture", index);
-        out_ += "<ImageTexture DEF='" + def + "'" + field + " url='" + urls + "'";
+        out_ += "<ImageTexture";
+        definable(key);
+        out_ += field + " url='" + urls + "'";
         writeSampler(textures[std::size_t(texture)].sampler);
     }
 
@@ -911,7 +942,7 @@ private:
     }
 
     // The geometry node just written from `start`, where an earlier Shape wrote the same text (one part drawn in
-    // several materials: a family of classes), becomes a USE of that one, which gets a DEF (withGeometryDefs).
+    // several materials: a family of classes), becomes a USE of that one, which gets a DEF (withDefs).
     void shareGeometry(std::size_t start, const std::string& node) {
         const std::string_view text = std::string_view(out_).substr(start);
         std::vector<WrittenGeometry>& same = geometries_[std::hash<std::string_view>()(text)];
@@ -919,20 +950,22 @@ private:
             return std::string_view(out_).substr(g.start, g.length) == text;
         });
         if (earlier == same.end()) {
-            same.push_back({start, text.size(), {}});
+            // Keyed by where it starts: a key of its own.
+            definable_["geometry@" + std::to_string(start)] = {out_.find_first_of(" />", start), {}};
+            same.push_back({start, text.size()});
             return;
         }
-        if (earlier->def.empty()) earlier->def = uniqueName("geometry");
+        std::string& def = definable_.at("geometry@" + std::to_string(earlier->start)).def;
+        if (def.empty()) def = uniqueName("geometry");
         out_.resize(start);
-        out_ += "<" + node + " USE='" + earlier->def + "'/>\n";
+        out_ += "<" + node + " USE='" + def + "'/>\n";
     }
 
-    // The text with a DEF in each geometry node that a later Shape USEs.
-    std::string withGeometryDefs() {
+    // The text with a DEF in each node that a later node USEs.
+    std::string withDefs() {
         std::vector<std::pair<std::size_t, std::string>> defs;  // where (after the node's name), what
-        for (const auto& [hash, same] : geometries_)
-            for (const WrittenGeometry& g : same)
-                if (!g.def.empty()) defs.push_back({out_.find_first_of(" />", g.start), " DEF='" + g.def + "'"});
+        for (const auto& [key, node] : definable_)
+            if (!node.def.empty()) defs.push_back({node.at, " DEF='" + node.def + "'"});
         if (defs.empty()) return std::move(out_);
         std::sort(defs.begin(), defs.end());
         std::string text;
@@ -988,14 +1021,18 @@ private:
     std::set<int> blendedByColors_;  // materials AUTO blends for their vertex colours (write)
     struct WrittenGeometry {
         std::size_t start, length;  // in out_
-        std::string def;            // where a later Shape USEs it
     };
     std::unordered_map<std::size_t, std::vector<WrittenGeometry>> geometries_;  // by the hash of their text
     std::vector<int> sameImage_ = firstTextureOfSameImage(scene_.textures);
     std::set<int> textureWritten_;
     std::set<std::string> names_;
     std::map<int, std::string> nodeDef_;  // animated node -> its DEF
-    std::map<std::string, std::string> defs_;  // "mesh3", "material0", "texture2" -> its DEF (defOf)
+    struct DefinableNode {
+        std::size_t at;   // in out_, just after the node's name
+        std::string def;  // where a later node USEs it
+    };
+    std::map<std::string, DefinableNode> definable_;  // "mesh3", "material0", "texture2" (definable)
+    std::vector<int> drawers_;                        // by mesh: the nodes that draw it
     bool version4_ = false;               // a material needs X3D 4.0 (x3d::needsX3d4)
 };
 
@@ -1057,20 +1094,22 @@ std::size_t x3dMeshBytes(const Primitive& primitive, const WriteOptions& options
 }
 
 std::size_t x3dNodeBytes(const Node& node) {
-    // A file whose one mesh a first node draws, with and without `node` drawing it again (a USE).
+    // A file whose one mesh two nodes draw (a Group, which the second USEs), with and without `node` drawing it
+    // too: the Group is the mesh's, once.
     Scene scene;
     Primitive triangle;
     triangle.positions = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()};
     triangle.triangles = {{0, 1, 2}};
     scene.meshes.push_back({"", {triangle}, "", {}});
-    scene.nodes.resize(2);
-    scene.nodes[0].mesh = 0;
-    scene.nodes[1] = node;
-    scene.nodes[1].mesh = 0;
-    scene.nodes[1].children.clear();
-    scene.roots = {0, 1};
+    scene.nodes.resize(3);
+    scene.nodes[0].mesh = scene.nodes[1].mesh = 0;
+    scene.nodes[2] = node;
+    scene.nodes[2].mesh = 0;
+    scene.nodes[2].children.clear();
+    scene.roots = {0, 1, 2};
     const std::size_t withNode = X3dWriter(scene, {}).write().size();
-    scene.roots = {0};
+    scene.roots = {0, 1};
+    scene.nodes.pop_back();
     return withNode - X3dWriter(scene, {}).write().size();
 }
 
