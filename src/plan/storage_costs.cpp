@@ -78,9 +78,7 @@ double StorageCosts::nodes(const std::vector<PlacedCopy>& copies) const {
     }
     double bytes = 0;
     for (const auto& [material, drawing] : byMaterial) {
-        const bool blended = material && *material >= 0 && std::size_t(*material) < analysis_.blendedMaterials.size() &&
-                             analysis_.blendedMaterials[std::size_t(*material)];
-        if (model_.nodesBytes && !blended) {
+        if (model_.nodesBytes && !(material && analysis_.blended(*material))) {
             bytes += model_.nodesBytes(drawing);
             continue;
         }

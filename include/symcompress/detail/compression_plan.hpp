@@ -94,10 +94,10 @@ struct SceneAnalysis {
     // wholePrimitiveMaterials), drawn alone: by a mesh and node of its own, or by its class's mesh under a node of
     // its own; never merged with other tiles, cut into a fundamental region, part of an assembly or batched.
     std::vector<bool> blendedMaterials;
-    bool drawnAlone(std::size_t t) const {
-        const int m = tiles[t].material;
+    bool blended(int m) const {
         return m >= 0 && std::size_t(m) < blendedMaterials.size() && blendedMaterials[std::size_t(m)];
     }
+    bool drawnAlone(std::size_t t) const { return blended(tiles[t].material); }
     TileClassification classification;  // empty unless options.classify
     SurfaceDigest digest;
     double secondsTiles = 0, secondsClasses = 0;
