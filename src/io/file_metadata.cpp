@@ -2,6 +2,10 @@
 #include "file_metadata.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 
 namespace symcompress {
@@ -42,6 +46,34 @@ void addMetaTag(nlohmann::json& extras, const std::string& name, const std::stri
         if (!found->is_array()) *found = nlohmann::json::array({*found});
         found->push_back(content);
     }
+}
+
+std::string digestAsMetaContent(const nlohmann::json& digest) {
+    std::string content;
+    if (!digest.is_array()) return content;
+    for (const nlohmann::json& value : digest) {
+        if (!value.is_number()) return "";
+        std::string number = value.dump();  // the shortest text that reads back, 24.0 as 24
+        if (number.size() > 2 && number.compare(number.size() - 2, 2, ".0") == 0) number.resize(number.size() - 2);
+        content += (content.empty() ? "" : " ") + number;
+    }
+    return content;
+}
+
+nlohmann::json digestFromMetaContent(const std::string& content) {
+    nlohmann::json digest = nlohmann::json::array();
+    std::istringstream words(content);
+    for (std::string word; words >> word;) {
+        char* end = nullptr;
+        const double value = std::strtod(word.c_str(), &end);
+        if (end != word.c_str() + word.size() || !std::isfinite(value)) return nullptr;
+        // The count of triangles is an integer, which the digest reads as one.
+        if (word.find_first_of(".eE") == std::string::npos && value >= 0 && value < 9e15)
+            digest.push_back(std::uint64_t(value));
+        else
+            digest.push_back(value);
+    }
+    return digest.empty() ? nlohmann::json() : digest;
 }
 
 std::vector<std::pair<std::string, std::string>> metaTags(const nlohmann::json& extras) {

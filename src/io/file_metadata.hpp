@@ -27,6 +27,11 @@ void addMetaTag(nlohmann::json& extras, const std::string& name, const std::stri
 // own object of them holds (KHR_xmp_json_ld's packets). JSON text, empty for none.
 std::string passedThroughExtensions(const std::string& extensionsJson);
 
+// The digest (an array of numbers) as an X3D meta tag's content, its numbers apart by spaces, and back (null
+// where the content is anything else): a tag of its own, not JSON in an attribute, whose quotes XML escapes.
+std::string digestAsMetaContent(const nlohmann::json& digest);
+nlohmann::json digestFromMetaContent(const std::string& content);
+
 // Such an object's members as X3D meta tags (name, content), the digest's left out: a string as it is, an array
 // a tag for each of its strings, anything else as its JSON text.
 std::vector<std::pair<std::string, std::string>> metaTags(const nlohmann::json& extras);

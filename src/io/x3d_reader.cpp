@@ -237,7 +237,10 @@ std::vector<int> X3dReader::read() {
     nlohmann::json extras;
     for (pugi::xml_node meta : document_.child("X3D").child("head").children("meta")) {
         const std::string name = meta.attribute("name").value(), content = meta.attribute("content").value();
-        if (name == "symcompress") {
+        if (name == kDigestMember) {
+            if (nlohmann::json digest = digestFromMetaContent(content); !digest.is_null())
+                extras[kDigestMember] = std::move(digest);
+        } else if (name == "symcompress") {  // the digest's tag before 2026-12-07: its JSON
             const nlohmann::json digest = nlohmann::json::parse(content, nullptr, false);
             if (digest.is_object() && digest.contains(kDigestMember)) extras[kDigestMember] = digest[kDigestMember];
         } else if (name == "copyright" && scene_.copyright.empty()) {
