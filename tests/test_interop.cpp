@@ -245,8 +245,10 @@ TEST_CASE("Compressed samples are drawn as they were by independent readers (glT
     checkDrawnByOthers(inputs);
 }
 
-TEST_CASE("Files packed by glTF-Transform (meshopt) and gltfpack (quantized, meshopt, GPU instancing) read as the same scene",
-          "[interop][gltf]") {
+TEST_CASE(
+    "Files packed by glTF-Transform (meshopt) and gltfpack (quantized, EXT_ and KHR_meshopt, GPU instancing) read as "
+    "the same scene",
+    "[interop][gltf]") {
     if (!interopAvailable()) {
         WARN("skipped: the peers in ../shared/bench are not installed");
         return;
@@ -260,7 +262,8 @@ TEST_CASE("Files packed by glTF-Transform (meshopt) and gltfpack (quantized, mes
         convert(withStandInImages(modelPath(model), folder.path()), reference, false);
         std::vector<std::pair<std::string, std::string>> packers = {
             {"meshopt.glb", transform + " meshopt " + quoted(reference) + " " + quoted(folder / "meshopt.glb")}};
-        for (const char* flags : {"", "-cc", "-cc -mi"}) {
+        // -cz: KHR_meshopt_compression, its vertex codec's version 1 (meshopt_vertex_codec.hpp).
+        for (const char* flags : {"", "-cc", "-cc -mi", "-cz", "-cz -mi"}) {
             const std::string name = "gltfpack" + std::string(flags) + ".glb";
             packers.push_back({name, gltfpack + " " + flags + " -i " + quoted(reference) + " -o " + quoted(folder / name)});
         }
@@ -284,4 +287,30 @@ TEST_CASE("Files packed by glTF-Transform (meshopt) and gltfpack (quantized, mes
             CHECK((before.max() - after.max()).norm() < 1e-3);
         }
     }
+}
+
+TEST_CASE("Vertex colours gltfpack -cz codes with meshopt's colour filter read as its -cc ones", "[interop][gltf]") {
+    if (!interopAvailable()) {
+        WARN("skipped: the peers in ../shared/bench are not installed");
+        return;
+    }
+    TemporaryFolder folder;
+    const std::string gltfpack = quoted(sharedDir() / "bench/node/node_modules/.bin/gltfpack");
+    const std::filesystem::path input = modelPath("pbr/vertex_color/VertexColorTest.gltf");
+    for (const char* flags : {"-cc", "-cz"})
+        REQUIRE(runCommand(gltfpack + " " + flags + " -i " + quoted(input) + " -o " +
+                           quoted(folder / (std::string(flags) + ".glb")))
+                    .status == 0);
+    REQUIRE_THAT(readTextFile(folder / "-cz.glb"), Catch::Contains("\"filter\":\"COLOR\""));
+    const std::vector<WorldPrimitive> ext = flattenScene(readScene(folder / "-cc.glb"));
+    const std::vector<WorldPrimitive> khr = flattenScene(readScene(folder / "-cz.glb"));
+    REQUIRE(ext.size() == khr.size());
+    std::size_t colors = 0;
+    for (std::size_t p = 0; p < ext.size(); ++p) {
+        REQUIRE(ext[p].primitive.colors.size() == khr[p].primitive.colors.size());
+        for (std::size_t v = 0; v < ext[p].primitive.colors.size(); ++v, ++colors)
+            CHECK((ext[p].primitive.colors[v] - khr[p].primitive.colors[v]).cwiseAbs().maxCoeff() <= 1.5 / 255);
+    }
+    CHECK(colors > 0);
+    CHECK(decompressFile(folder / "-cz.glb", folder / "flat.glb", input).verified);
 }

@@ -1,8 +1,9 @@
 // A glTF file to a tinygltf model: the bytes checked and mended before tinygltf parses them (JSON depth,
 // integers beyond an int, a GLB's BIN chunk, Draco's index accessors, indices without a buffer view, meshopt's fallback
-// buffer), the images kept as bytes, EXT_meshopt_compression decoded.
+// buffer), the images kept as bytes, EXT_ and KHR_meshopt_compression decoded.
 #include "gltf_constants.hpp"
 #include "gltf_reader.hpp"
+#include "meshopt_vertex_codec.hpp"
 
 #include "symcompress/detail/atomic_file.hpp"
 
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 
 namespace symcompress {
@@ -70,15 +72,23 @@ bool refuseToWrite(std::string*, const std::string&, const std::vector<unsigned 
 // them (gltf_materials.cpp), so a file that requires one is read.
 bool appearanceOnly(const std::string& name) { return name.rfind("KHR_materials_", 0) == 0; }
 
-// EXT_meshopt_compression: each compressed buffer view decoded (meshoptimizer) into a buffer of its own,
-// which the view then points at, so that accessors read it as any other.
+// The two extensions of meshoptimizer's codecs: KHR's adds version 1 of the vertex codec and the colour filter.
+constexpr std::array<const char*, 2> kMeshoptExtensions = {"EXT_meshopt_compression", "KHR_meshopt_compression"};
+
+// EXT_ or KHR_meshopt_compression: each compressed buffer view decoded into a buffer of its own, which the view
+// then points at, so that accessors read it as any other. EXT's vertex streams (version 0) and every index
+// stream by meshoptimizer, KHR's vertex streams by meshopt_vertex_codec.hpp (the packaged library has no
+// version 1).
 void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
     for (std::size_t v = 0; v < model.bufferViews.size(); ++v) {
         tinygltf::BufferView& view = model.bufferViews[v];
-        const auto found = view.extensions.find("EXT_meshopt_compression");
+        auto found = view.extensions.end();
+        for (const char* name : kMeshoptExtensions)
+            if (const auto named = view.extensions.find(name); named != view.extensions.end()) found = named;
         if (found == view.extensions.end()) continue;
+        const bool khr = found->first == kMeshoptExtensions[1];
         const tinygltf::Value& extension = found->second;
-        const std::string where = "buffer view " + std::to_string(v) + " (EXT_meshopt_compression)";
+        const std::string where = "buffer view " + std::to_string(v) + " (" + found->first + ")";
         auto number = [&](const char* key, double fallback) { return numberOr(member(extension, key), fallback); };
         auto text = [&](const char* key, const char* fallback) {
             const tinygltf::Value& value = member(extension, key);
@@ -109,8 +119,12 @@ void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
         decoded.data.resize(std::size_t(stride) * std::size_t(count));
         int status = -1;
         if (mode == "ATTRIBUTES" && int(stride) % 4 == 0 && stride <= 256)
-            status = meshopt_decodeVertexBuffer(decoded.data.data(), std::size_t(count), std::size_t(stride), source,
-                                                std::size_t(length));
+            status = khr ? (decodeMeshoptVertexStream(decoded.data.data(), std::size_t(count), std::size_t(stride),
+                                                      source, std::size_t(length))
+                                ? 0
+                                : -1)
+                         : meshopt_decodeVertexBuffer(decoded.data.data(), std::size_t(count), std::size_t(stride),
+                                                      source, std::size_t(length));
         else if (mode == "TRIANGLES" && (stride == 2 || stride == 4))
             status = meshopt_decodeIndexBuffer(decoded.data.data(), std::size_t(count), std::size_t(stride), source,
                                                std::size_t(length));
@@ -124,6 +138,8 @@ void decodeMeshopt(tinygltf::Model& model, const fs::path& file) {
             meshopt_decodeFilterQuat(decoded.data.data(), std::size_t(count), std::size_t(stride));
         else if (filter == "EXPONENTIAL" && int(stride) % 4 == 0)
             meshopt_decodeFilterExp(decoded.data.data(), std::size_t(count), std::size_t(stride));
+        else if (khr && filter == "COLOR" && (stride == 4 || stride == 8))
+            decodeMeshoptColorFilter(decoded.data.data(), std::size_t(count), std::size_t(stride));
         else if (filter != "NONE")
             throw FileError(file, where + ": unknown filter '" + filter + "'");
         model.buffers.push_back(std::move(decoded));
@@ -217,7 +233,7 @@ void refuseUnreadable(const std::string& required, const fs::path& file) {
 // - a primitive whose indices accessor has no bufferView, which is how KHR_draco_mesh_compression files
 //   are written: the indices come from the Draco data anyway, so they are removed; any other primitive's
 //   indices without a buffer view are zeros, given a buffer of them;
-// - EXT_meshopt_compression's fallback buffer, which has no data (no uri, or more bytes than a GLB's binary
+// - EXT_ or KHR_meshopt_compression's fallback buffer, which has no data (no uri, or more bytes than a GLB's binary
 //   chunk): it gets one byte of its own; decodeMeshopt gives its buffer views their data.
 // It also refuses (FileError) what tinygltf would take badly: JSON nested too deep, integers beyond an int.
 std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>& bytes, bool binary,
@@ -250,11 +266,14 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
     if (json.contains("buffers") && json["buffers"].is_array())
         for (auto& buffer : json["buffers"]) {
             if (!buffer.is_object() || !buffer.contains("extensions") || !buffer["extensions"].is_object()) continue;
-            const auto meshopt = buffer["extensions"].find("EXT_meshopt_compression");
             // A "fallback" that is not a boolean (fuzz_gltf: a number) is no fallback, not an exception.
-            if (meshopt == buffer["extensions"].end() || !meshopt->is_object() || !meshopt->contains("fallback") ||
-                (*meshopt)["fallback"] != true)
-                continue;
+            const bool fallback =
+                std::any_of(kMeshoptExtensions.begin(), kMeshoptExtensions.end(), [&](const char* name) {
+                    const auto meshopt = buffer["extensions"].find(name);
+                    return meshopt != buffer["extensions"].end() && meshopt->is_object() &&
+                           meshopt->contains("fallback") && (*meshopt)["fallback"] == true;
+                });
+            if (!fallback) continue;
             buffer["uri"] = "data:application/octet-stream;base64,AA==";
             buffer["byteLength"] = 1;
             changed = true;
@@ -306,9 +325,9 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
 // The extensions we read.
 bool readExtension(const std::string& name) {
     static const std::set<std::string> read = {
-        "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization", "EXT_mesh_gpu_instancing",
-        "KHR_lights_punctual",        "KHR_texture_transform",   "EXT_texture_webp",      "KHR_texture_basisu",
-        "KHR_materials_variants",     "KHR_xmp_json_ld"};
+        "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_mesh_quantization",
+        "EXT_mesh_gpu_instancing",    "KHR_lights_punctual",     "KHR_texture_transform",   "EXT_texture_webp",
+        "KHR_texture_basisu",         "KHR_materials_variants",  "KHR_xmp_json_ld"};
     return read.count(name) > 0;
 }
 
