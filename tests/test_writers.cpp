@@ -534,6 +534,33 @@ TEST_CASE("An image several materials show is written to X3D once and USEd, and 
     CHECK(again.warnings.empty());
 }
 
+TEST_CASE("An X3D Shape that Transforms USE comes out as it went in: DEF'd once by its name, each USE one line",
+          "[io][x3d]") {
+    TemporaryFolder folder;
+    std::string input =
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<X3D profile=\"Interchange\" version=\"3.3\">\n"
+        "  <Scene>\n    <Transform>\n      <Shape DEF=\"Post\">\n        <Appearance><Material "
+        "diffuseColor=\"0.8 0.2 0.2\"/></Appearance>\n        <Cylinder/>\n      </Shape>\n"
+        "    </Transform>\n";
+    for (int k = 1; k < 40; ++k)
+        input += "    <Transform translation=\"" + std::to_string(3 * k) + " 0 " + std::to_string(k % 7) +
+                 "\" rotation=\"0 1 0 " + std::to_string(0.1 * k).substr(0, 4) +
+                 "\">\n      <Shape USE=\"Post\"/>\n"
+                 "    </Transform>\n";
+    input += "  </Scene>\n</X3D>\n";
+    writeTextFile(folder / "posts.x3d", input);
+    compressFile(folder / "posts.x3d", folder / "out.x3d");
+    const std::string text = readTextFile(folder / "out.x3d");
+    CHECK(occurrences(text, "<Shape DEF='Post'>") == 1);
+    CHECK(occurrences(text, "><Shape USE='Post'/></Transform>\n") == 39);
+    CHECK(occurrences(text, "<Group") == 0);
+    CHECK(occurrences(text, "DEF=") == 1);  // no Transform takes the Shape's name
+    CHECK(text.size() < input.size());
+    const Scene again = readScene(folder / "out.x3d");
+    CHECK(std::count_if(again.nodes.begin(), again.nodes.end(), [](const Node& n) { return n.name == "Post"; }) == 40);
+    CHECK(decompressFile(folder / "out.x3d", folder / "flat.glb", folder / "posts.x3d").verified);
+}
+
 TEST_CASE(
     "X3D output names only what is USEd or was named, groups a mesh only where several nodes draw it, and "
     "writes no Transform that does nothing",

@@ -26,6 +26,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
@@ -294,15 +295,20 @@ public:
             out_ += "<meta name='" + escapedMarkup(name) + "' content='" + escapedMarkup(content) + "'/>\n";
         if (!digest.empty()) out_ += "<meta name='" + std::string(kDigestMember) + "' content='" + digest + "'/>\n";
         out_ += "</head>\n<Scene>\n";
-        for (const std::string& node : scene_.x3dEnvironment) out_ += " " + node + "\n";
+        for (const std::string& node : scene_.x3dEnvironment) out_ += node + "\n";
         written_.assign(scene_.meshes.size(), false);
         drawers_.assign(scene_.meshes.size(), 0);
+        shapes_.assign(scene_.meshes.size(), -1);
+        namedByDrawer_.assign(scene_.meshes.size(), false);
         const std::vector<char> written = nodesUnder(scene_, scene_.roots);
         for (std::size_t n = 0; n < scene_.nodes.size(); ++n)
-            if (written[n] && scene_.nodes[n].mesh >= 0) ++drawers_[std::size_t(scene_.nodes[n].mesh)];
+            if (const Node& node = scene_.nodes[n]; written[n] && node.mesh >= 0) {
+                ++drawers_[std::size_t(node.mesh)];
+                if (carriesNodeName(node)) namedByDrawer_[std::size_t(node.mesh)] = true;
+            }
         for (const Animation& animation : scene_.animations)
             for (const AnimationChannel& channel : animation.channels) nodeDef_[channel.node];
-        for (int root : scene_.roots) writeNode(root, 1);
+        for (int root : scene_.roots) writeNode(root);
         for (std::size_t a = 0; a < scene_.animations.size(); ++a) writeAnimation(scene_.animations[a], a);
         out_ += "</Scene>\n</X3D>\n";
         return withDefs();
@@ -316,45 +322,53 @@ private:
         });
     }
 
-    void indent(int depth) { out_.append(static_cast<std::size_t>(depth), ' '); }
-
     // A node as a Transform, or where it would be one without a field (no name, not animated, no transform) as
-    // what it holds alone.
-    void writeNode(int index, int depth) {
+    // what it holds alone. A node that only USEs a mesh written before is one line.
+    void writeNode(int index) {
         const Node& node = scene_.nodes[index];
         // Animated nodes need a DEF for their ROUTEs (nodeDef_ holds an entry for each).
         const auto animated = nodeDef_.find(index);
-        const bool transform = !node.name.empty() || animated != nodeDef_.end() || !node.transform.isIdentity();
+        const bool named = !node.name.empty() && !carriesNodeName(node);
+        const bool transform = named || animated != nodeDef_.end() || !node.transform.isIdentity();
         if (!transform) {
-            writeContent(node, depth);
+            writeContent(node);
             return;
         }
-        indent(depth);
         out_ += "<Transform";
-        if (!node.name.empty() || animated != nodeDef_.end()) {
+        if (named || animated != nodeDef_.end()) {
             const std::string def = uniqueName(node.name.empty() ? "node" + std::to_string(index) : node.name);
             out_ += " DEF='" + def + "'";
             if (animated != nodeDef_.end()) animated->second = def;
         }
         appendTransformFields(out_, node.transform, animated != nodeDef_.end());
+        if (node.mesh >= 0 && written_[std::size_t(node.mesh)] && node.camera < 0 && node.light < 0 &&
+            node.children.empty()) {
+            out_ += ">" + meshUse(node.mesh) + "</Transform>\n";
+            return;
+        }
         out_ += ">\n";
-        writeContent(node, depth + 1);
-        indent(depth);
+        writeContent(node);
         out_ += "</Transform>\n";
     }
 
-    void writeContent(const Node& node, int depth) {
-        if (node.mesh >= 0) writeMesh(node.mesh, depth);
-        if (node.camera >= 0) writeViewpoint(scene_.cameras[std::size_t(node.camera)], depth);
-        if (node.light >= 0) writeLight(scene_.lights[std::size_t(node.light)], depth);
-        for (int child : node.children) writeNode(child, depth);
+    // Whether the name of `node` is its mesh's, which the mesh's DEF then carries (as X3D's reader names a node
+    // that draws a DEF'd Shape): the mesh is one Shape, or a Group that several nodes draw.
+    bool carriesNodeName(const Node& node) {
+        if (node.mesh < 0 || node.name.empty() || scene_.meshes[std::size_t(node.mesh)].name != node.name) return false;
+        return shapesOf(node.mesh) == 1 || drawers_[std::size_t(node.mesh)] > 1;
+    }
+
+    void writeContent(const Node& node) {
+        if (node.mesh >= 0) writeMesh(node.mesh);
+        if (node.camera >= 0) writeViewpoint(scene_.cameras[std::size_t(node.camera)]);
+        if (node.light >= 0) writeLight(scene_.lights[std::size_t(node.light)]);
+        for (int child : node.children) writeNode(child);
     }
 
     // A camera in its node's frame (the Transform around it places it): at the origin, looking down -z.
     // X3D's fieldOfView is the smaller of the two angles: the vertical one unless the view is narrower
     // than it is high.
-    void writeViewpoint(const Camera& camera, int depth) {
-        indent(depth);
+    void writeViewpoint(const Camera& camera) {
         if (camera.projection == Camera::Projection::Orthographic) {
             out_ += "<OrthoViewpoint position='0 0 0' fieldOfView='";
             appendVector(out_, Eigen::Vector4d(-camera.xmag, -camera.ymag, camera.xmag, camera.ymag), 4);
@@ -374,8 +388,7 @@ private:
     // glTF's do; its intensity is cut to X3D's largest, 1 (formatLosses warns); a point or spot light's
     // falls off as the X3D input had it, else with the inverse square of the distance, as glTF's does; no
     // range is X3D's largest radius.
-    void writeLight(const Light& light, int depth) {
-        indent(depth);
+    void writeLight(const Light& light) {
         out_ += light.type == Light::Type::Directional ? "<DirectionalLight direction='0 0 -1'"
                 : light.type == Light::Type::Spot      ? "<SpotLight direction='0 0 -1' location='0 0 0'"
                                                        : "<PointLight location='0 0 0'";
@@ -410,7 +423,7 @@ private:
         for (const AnimationChannel& channel : animation.channels) cycle = std::max(cycle, channel.times.back());
         if (!(cycle > 0)) cycle = 1;
         const std::string clock = uniqueName(animation.name.empty() ? "animation" + std::to_string(index) : animation.name);
-        out_ += " <TimeSensor DEF='" + clock + "' cycleInterval='";
+        out_ += "<TimeSensor DEF='" + clock + "' cycleInterval='";
         appendShortestFloat(out_, cycle);
         out_ += "' loop='true'/>\n";
         for (std::size_t c = 0; c < animation.channels.size(); ++c) {
@@ -427,7 +440,8 @@ private:
                 keys.push_back({channel.times[k] / cycle, k});
             }
             const std::string interpolator = uniqueName(clock + "_channel" + std::to_string(c));
-            out_ += std::string(" <") + (rotation ? "OrientationInterpolator" : "PositionInterpolator") + " DEF='" + interpolator + "' key='";
+            out_ += std::string("<") + (rotation ? "OrientationInterpolator" : "PositionInterpolator") + " DEF='" +
+                    interpolator + "' key='";
             for (std::size_t k = 0; k < keys.size(); ++k) {
                 if (k) out_ += ' ';
                 appendShortestFloat(out_, static_cast<float>(keys[k].first));  // key times are float32 in glTF
@@ -448,9 +462,10 @@ private:
             }
             out_ += "'/>\n";
             const char* field = rotation ? "set_rotation" : channel.path == AnimationChannel::Path::Scale ? "set_scale" : "set_translation";
-            out_ += " <ROUTE fromNode='" + clock + "' fromField='fraction_changed' toNode='" + interpolator + "' toField='set_fraction'/>\n";
-            out_ += " <ROUTE fromNode='" + interpolator + "' fromField='value_changed' toNode='" + nodeDef_.at(channel.node) +
-                    "' toField='" + field + "'/>\n";
+            out_ += "<ROUTE fromNode='" + clock + "' fromField='fraction_changed' toNode='" + interpolator +
+                    "' toField='set_fraction'/>\n";
+            out_ += "<ROUTE fromNode='" + interpolator + "' fromField='value_changed' toNode='" +
+                    nodeDef_.at(channel.node) + "' toField='" + field + "'/>\n";
         }
     }
 
@@ -476,46 +491,71 @@ private:
         return def;
     }
 
-    // A mesh that one node draws as its Shapes; one that several draw as a Group of them, which the others USE.
-    void writeMesh(int mesh, int depth) {
+    // How many Shapes writeMesh writes for `mesh` (a triangle primitive with triangles of zero area is two).
+    std::size_t shapesOf(int mesh) {
+        int& shapes = shapes_[std::size_t(mesh)];
+        if (shapes < 0) {
+            shapes = 0;
+            for (const Primitive& primitive : scene_.meshes[std::size_t(mesh)].primitives) {
+                if (primitive.drawsNothing()) continue;
+                const bool asItIs =
+                    primitive.topology != Topology::Triangles ||
+                    (primitive.x3dSource && primitive.x3dSource->cornerHash == trianglePositionsHash(primitive));
+                const auto split = asItIs ? std::nullopt : withoutZeroAreaTriangles(primitive);
+                shapes += split ? int(!split->first.triangles.empty()) + 1 : 1;
+            }
+        }
+        return std::size_t(shapes);
+    }
+
+    // The USE of a mesh written before: its one Shape, or its Group.
+    std::string meshUse(int mesh) {
+        return std::string(shapesOf(mesh) == 1 ? "<Shape" : "<Group") + " USE='" +
+               useOf("mesh" + std::to_string(mesh)) + "'/>";
+    }
+
+    // A mesh that one node draws as its Shapes; one that several draw as its one Shape, or as a Group of its
+    // Shapes, which the others USE. Its DEF is its name where that is a drawing node's (carriesNodeName).
+    void writeMesh(int mesh) {
         const std::string key = "mesh" + std::to_string(mesh);
         if (written_[mesh]) {
-            indent(depth);
-            out_ += "<Group USE='" + useOf(key) + "'/>\n";
+            out_ += meshUse(mesh) + "\n";
             return;
         }
         written_[mesh] = true;
-        const bool grouped = drawers_[std::size_t(mesh)] > 1;
+        const bool shared = drawers_[std::size_t(mesh)] > 1, grouped = shared && shapesOf(mesh) > 1;
+        const std::size_t start = out_.size();
         if (grouped) {
-            indent(depth);
             out_ += "<Group";
             definable(key);
             out_ += ">\n";
-            ++depth;
         }
         for (const Primitive& primitive : scene_.meshes[mesh].primitives) {
             if (primitive.drawsNothing()) continue;
             if (primitive.topology != Topology::Triangles) {
-                writeUnlitShape(primitive, depth);
+                writeUnlitShape(primitive);
                 continue;
             }
             if (primitive.x3dSource && primitive.x3dSource->cornerHash == trianglePositionsHash(primitive)) {
-                writeSourceShape(primitive, depth);
+                writeSourceShape(primitive);
                 continue;
             }
             // Triangles of zero area apart: the browser would make their normals of nothing.
             const std::optional<std::pair<Primitive, ZeroAreaTriangles>> split = withoutZeroAreaTriangles(primitive);
             if (!split) {
-                writeShape(primitive, depth);
+                writeShape(primitive);
                 continue;
             }
-            if (!split->first.triangles.empty()) writeShape(split->first, depth);
-            writeZeroAreaShape(primitive.positions[split->second.vertex], split->second.count, depth);
+            if (!split->first.triangles.empty()) writeShape(split->first);
+            writeZeroAreaShape(primitive.positions[split->second.vertex], split->second.count);
         }
         if (grouped) {
-            indent(depth - 1);
             out_ += "</Group>\n";
+        } else if (shared || namedByDrawer_[std::size_t(mesh)]) {
+            if (shapesOf(mesh) != 1) return;
+            definable_[key] = {out_.find("<Shape", start) + std::strlen("<Shape"), {}};
         }
+        if (namedByDrawer_[std::size_t(mesh)]) definable_.at(key).def = uniqueName(scene_.meshes[mesh].name);
     }
 
     std::optional<Material::AlphaMode> statedAlphaMode(int material) {
@@ -524,13 +564,12 @@ private:
             m, translucentTexture_(m.baseColorTexture.texture) || blendedByColors_.count(material) > 0);
     }
 
-    void writeAppearance(int material, int depth) {
+    void writeAppearance(int material) {
         // X3D draws a Shape without an Appearance unlit white.
         if (material >= 0) {
             const Material& m = scene_.materials[std::size_t(material)];
             if (x3d::drawnWithoutMaterial(m) && m.baseColorTexture.texture < 0 && !statedAlphaMode(material)) return;
         }
-        indent(depth);
         if (material < 0) {
             out_ += "<Appearance><Material/></Appearance>\n";
             return;
@@ -575,8 +614,7 @@ private:
     }
 
     // The Appearance of lines and points (x3d::unlitPhongOf), shared as writeAppearance's is.
-    void writeUnlitAppearance(int material, int depth) {
-        indent(depth);
+    void writeUnlitAppearance(int material) {
         const std::string key = "emissive" + std::to_string(material);
         if (material >= 0 && !unlitMaterialWritten_.insert(material).second) {
             out_ += "<Appearance USE='" + useOf(key) + "'/>\n";
@@ -737,10 +775,9 @@ private:
         return channel.transform ? Eigen::Vector2d(channel.transform->matrix() * t.homogeneous()) : t;
     }
 
-    void writeShape(const Primitive& primitive, int depth) {
-        indent(depth);
+    void writeShape(const Primitive& primitive) {
         out_ += "<Shape>\n";
-        writeAppearance(primitive.material, depth + 1);
+        writeAppearance(primitive.material);
         const bool doubleSided = primitive.material >= 0 && scene_.materials[primitive.material].doubleSided;
         // One set of coordinates for each channel the material's textures read (x3d_materials.hpp).
         const std::vector<x3d::TexcoordChannel> channels =
@@ -781,7 +818,6 @@ private:
         std::vector<std::uint32_t> written(creased ? creased->vertexOfPoint : std::vector<std::uint32_t>{});
         if (!creased)
             for (std::uint32_t v = 0; v < primitive.positions.size(); ++v) written.push_back(v);
-        indent(depth + 1);
         const std::size_t geometryStart = out_.size();
         const std::string solid = std::string("solid='") + (doubleSided ? "false" : "true") + "'";
         const bool faceSet = creased && creased->creaseAngle < M_PI;  // a triangle set smooths at every point
@@ -812,8 +848,8 @@ private:
                 }
         }
         out_ += "'>\n";
-        auto writeValues = [&](const char* node, const char* field, const auto& values, int components, auto transform) {
-            indent(depth + 2);
+        auto writeValues = [&](const char* node, const char* field, const auto& values, int components,
+                               auto transform) {
             out_ += std::string("<") + node + " " + field + "='";
             for (std::size_t i = 0; i < written.size(); ++i) {
                 if (i) out_ += ' ';
@@ -847,44 +883,35 @@ private:
         if (!texcoords.empty() && texcoordSets.size() == 1)
             writeValues("TextureCoordinate", "point", texcoords, 2, flipped);
         if (!texcoords.empty() && texcoordSets.size() > 1) {
-            indent(depth + 2);
             out_ += "<MultiTextureCoordinate>\n";
             for (std::size_t c = 0; c < texcoordSets.size(); ++c) {
                 const std::string node = "TextureCoordinate mapping='" + escapedMarkup(channels[c].mapping) + "'";
                 writeValues(node.c_str(), "point", texcoordSets[c], 2, flipped);
             }
-            indent(depth + 2);
             out_ += "</MultiTextureCoordinate>\n";
         }
-        if (!primitive.colors.empty()) writeColors(primitive, written, depth + 2);
-        indent(depth + 1);
+        if (!primitive.colors.empty()) writeColors(primitive, written);
         out_ += faceSet ? "</IndexedFaceSet>\n" : "</IndexedTriangleSet>\n";
         shareGeometry(geometryStart, faceSet ? "IndexedFaceSet" : "IndexedTriangleSet");
-        indent(depth);
         out_ += "</Shape>\n";
     }
 
     // A primitive as the X3D node it was read from (X3dGeometrySource): the browser makes its triangles again.
-    void writeSourceShape(const Primitive& primitive, int depth) {
-        indent(depth);
+    void writeSourceShape(const Primitive& primitive) {
         out_ += "<Shape>\n";
-        writeAppearance(primitive.material, depth + 1);
-        indent(depth + 1);
+        writeAppearance(primitive.material);
         const std::size_t geometryStart = out_.size();
         const std::string& xml = primitive.x3dSource->xml;
         out_ += xml + "\n";
         shareGeometry(geometryStart, xml.substr(1, xml.find_first_of(" />") - 1));
-        indent(depth);
         out_ += "</Shape>\n";
     }
 
     // `count` triangles of zero area at one point, in a shape of their own: they draw nothing, and browsers count
     // them as they counted those of the input (withoutZeroAreaTriangles). One convex face of count + 2 corners,
     // which the browser cuts into a fan of `count` triangles: 2 bytes a triangle.
-    void writeZeroAreaShape(const Eigen::Vector3d& at, std::size_t count, int depth) {
-        indent(depth);
+    void writeZeroAreaShape(const Eigen::Vector3d& at, std::size_t count) {
         out_ += "<Shape>\n";
-        indent(depth + 1);
         const std::size_t geometryStart = out_.size();
         out_ += "<IndexedFaceSet coordIndex='0";
         for (std::size_t i = 1; i < count + 2; ++i) out_ += " 0";
@@ -892,21 +919,18 @@ private:
         appendVector(out_, at, 3);
         out_ += "'/></IndexedFaceSet>\n";
         shareGeometry(geometryStart, "IndexedFaceSet");
-        indent(depth);
         out_ += "</Shape>\n";
     }
 
     // Lines as an IndexedLineSet, points as a PointSet (each vertex a point), drawn unlit as glTF's viewers draw
     // them (writeUnlitAppearance); normals and texture coordinates, which neither draws, left out. Positions
     // rounded as a triangle set's are.
-    void writeUnlitShape(const Primitive& primitive, int depth) {
-        indent(depth);
+    void writeUnlitShape(const Primitive& primitive) {
         out_ += "<Shape>\n";
-        writeUnlitAppearance(primitive.material, depth + 1);
+        writeUnlitAppearance(primitive.material);
         const std::optional<int> decimals = positionDecimals(primitive, options_);
         const auto round = [&](double x) { return decimals ? roundedDecimals(x, *decimals) : x; };
         const bool lines = primitive.topology == Topology::Lines;
-        indent(depth + 1);
         const std::size_t geometryStart = out_.size();
         if (lines) {
             out_ += "<IndexedLineSet coordIndex='";
@@ -919,7 +943,6 @@ private:
         } else {
             out_ += "<PointSet>\n";
         }
-        indent(depth + 2);
         out_ += "<Coordinate point='";
         for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
             if (v) out_ += ' ';
@@ -929,12 +952,10 @@ private:
         if (!primitive.colors.empty()) {
             std::vector<std::uint32_t> written(primitive.positions.size());
             for (std::uint32_t v = 0; v < written.size(); ++v) written[v] = v;
-            writeColors(primitive, written, depth + 2);
+            writeColors(primitive, written);
         }
-        indent(depth + 1);
         out_ += lines ? "</IndexedLineSet>\n" : "</PointSet>\n";
         shareGeometry(geometryStart, lines ? "IndexedLineSet" : "PointSet");
-        indent(depth);
         out_ += "</Shape>\n";
     }
 
@@ -981,7 +1002,7 @@ private:
     // as it is for PhysicalMaterial, which multiplies it the same; for Phong's Material and UnlitMaterial, whose
     // colour it takes the place of, the base colour multiplied in and sRGB-encoded as that colour is, each value
     // the shortest that the reader's decoding and division by the base colour (vertexColorsAsGltf) give back.
-    void writeColors(const Primitive& primitive, const std::vector<std::uint32_t>& written, int depth) {
+    void writeColors(const Primitive& primitive, const std::vector<std::uint32_t>& written) {
         const Material* material =
             primitive.material >= 0 ? &scene_.materials[std::size_t(primitive.material)] : nullptr;
         // Lines and points are written with Phong's Material (writeUnlitAppearance).
@@ -991,7 +1012,6 @@ private:
             material ? Eigen::Vector3d(material->baseColorFactor.head<3>()) : Eigen::Vector3d::Ones();
         const bool rgba =
             std::any_of(written.begin(), written.end(), [&](std::uint32_t v) { return primitive.colors[v][3] != 1; });
-        indent(depth);
         out_ += rgba ? "<ColorRGBA color='" : "<Color color='";
         for (std::size_t i = 0; i < written.size(); ++i) {
             if (i) out_ += ' ';
@@ -1030,6 +1050,8 @@ private:
     };
     std::map<std::string, DefinableNode> definable_;  // "mesh3", "material0", "texture2" (definable)
     std::vector<int> drawers_;                        // by mesh: the nodes that draw it
+    std::vector<int> shapes_;                         // by mesh: shapesOf, -1 before it is counted
+    std::vector<bool> namedByDrawer_;                 // by mesh: a node that draws it has its name
     bool version4_ = false;               // a material needs X3D 4.0 (x3d::needsX3d4)
 };
 
