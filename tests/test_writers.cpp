@@ -199,6 +199,8 @@ TEST_CASE("gltfMeshBytes and x3dMeshBytes are what a mesh of its own adds to the
     Primitive bare = part;
     bare.normals.clear();
     bare.texcoords.clear();
+    Primitive untextured = part;
+    untextured.texcoords.clear();
     Scene one;
     one.meshes.push_back({"", {part}});
     one.nodes.resize(1);
@@ -238,9 +240,13 @@ TEST_CASE("gltfMeshBytes and x3dMeshBytes are what a mesh of its own adds to the
         const auto measure = [&](const Primitive& p) { return double(x3d ? x3dMeshBytes(p, options) : gltfMeshBytes(p, options)); };
         CHECK(measure(part) == Approx(added).margin(c.margin));
         if (!c.viewsShared) CHECK(measure(part) <= added);
-        // Normals and texture coordinates are measured: a bare bolt costs far fewer bytes (0.73 of them, the
-        // texture coordinates written as float32 text).
-        CHECK(measure(bare) < 0.75 * measure(part));
+        // Normals and texture coordinates are measured: in glTF a bare bolt costs far fewer bytes (0.73 of them);
+        // in X3D, where the browser makes the bolt's smooth normals, its texture coordinates (written as float32
+        // text) cost a fifth (the bare bolt, flat, keeps its vertices apart).
+        if (x3d)
+            CHECK(measure(untextured) < 0.85 * measure(part));
+        else
+            CHECK(measure(bare) < 0.75 * measure(part));
     }
 }
 

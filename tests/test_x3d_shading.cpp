@@ -1,8 +1,11 @@
 // X3D shading as a browser does it and as glTF draws it (issue 15): a face set without a Normal node gets
 // the normals an X3D browser makes (creaseAngle, normalPerVertex), and a mesh without normals is written
 // to X3D flat, as glTF draws it.
+#include "io/x3d_polygons.hpp"
+#include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
+#include "symcompress/verify.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -136,16 +139,85 @@ TEST_CASE("X3D output leaves a mesh's normals to the browser where a creaseAngle
         REQUIRE(after.size() == before.size());
         for (std::size_t p = 0; p < before.size(); ++p) CHECK(normalsAgree(before[p], after[p]) < 3.5e-3);
     }
-    SECTION("normals no creaseAngle gives: written") {
-        // The smooth prism's normals are the means of its quads', which its triangles would weight otherwise.
+    SECTION("normals of quads: the quads written again; normals no creaseAngle gives: written") {
+        // The smooth prism's normals are the means of its quads', which its triangles would weight otherwise:
+        // the triangles are joined into the quads they fan over again (x3d_polygons.hpp).
         writeTextFile(folder / "prism.x3d", prism("creaseAngle='1'"));
         Scene scene = readScene(folder / "prism.x3d");
         writeScene(scene, folder / "smooth.x3d");
-        CHECK_THAT(readTextFile(folder / "smooth.x3d"), Catch::Contains("<Normal"));
+        const std::string smooth = readTextFile(folder / "smooth.x3d");
+        CHECK_THAT(smooth, !Catch::Contains("<Normal"));
+        CHECK_THAT(smooth, Catch::Contains("<IndexedFaceSet solid='true' creaseAngle='4' coordIndex='14 12 13 15 -1 "));
+        CHECK(normalsAgree(scene.meshes[0].primitives[0], readOnly(folder / "smooth.x3d")) < 3.5e-3);
         // Normals a modeller tilted.
         for (Eigen::Vector3d& n : scene.meshes[0].primitives[0].normals) n = (n + Eigen::Vector3d(0, 0, 0.3)).normalized();
         writeScene(scene, folder / "tilted.x3d");
         CHECK_THAT(readTextFile(folder / "tilted.x3d"), Catch::Contains("<Normal"));
         CHECK(normalsAgree(scene.meshes[0].primitives[0], readOnly(folder / "tilted.x3d")) < 1e-3);
+    }
+}
+
+TEST_CASE("Triangles that fan over a convex polygon are joined into it: planar ones where flat, bent where smoothed",
+          "[io][x3d]") {
+    using x3d::fanPolygons;
+    // A regular hexagon cut as a fan from corner 0, then a dart (concave at corner 8) cut the same way.
+    std::vector<Eigen::Vector3d> p;
+    for (int k = 0; k < 6; ++k) p.push_back({std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0});
+    p.insert(p.end(), {{10, 0, 0}, {12, -1, 0}, {11, 0, 0}, {12, 1, 0}});
+    std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {6, 7, 8}, {6, 8, 9}};
+    CHECK(fanPolygons(triangles, p, x3d::kMostTurnOfFlatPolygon) ==
+          std::vector<std::vector<std::uint32_t>>{{0, 1, 2, 3, 4, 5}, {6, 7, 8}, {6, 8, 9}});
+    // Out of order, or not from the first corner: no fan.
+    CHECK(fanPolygons({{0, 2, 3}, {0, 1, 2}}, p, x3d::kMostTurnOfFlatPolygon).size() == 2);
+    CHECK(fanPolygons({{0, 1, 2}, {2, 3, 0}}, p, x3d::kMostTurnOfFlatPolygon).size() == 2);
+    // A quad bent by 0.01 radians about its diagonal: two faces where flat, one where smoothed.
+    std::vector<Eigen::Vector3d> bent = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.01 * std::sqrt(2.0)}};
+    CHECK(fanPolygons({{0, 1, 2}, {0, 2, 3}}, bent, x3d::kMostTurnOfFlatPolygon).size() == 2);
+    CHECK(fanPolygons({{0, 1, 2}, {0, 2, 3}}, bent, x3d::kMostTurnOfSmoothedPolygon).size() == 1);
+    // A triangle of zero area (corner 3 on the edge from 0 to 2) joins nothing.
+    std::vector<Eigen::Vector3d> flat = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0.5, 0.5, 0}};
+    CHECK(fanPolygons({{0, 1, 2}, {0, 2, 3}}, flat, x3d::kMostTurnOfSmoothedPolygon).size() == 2);
+}
+
+TEST_CASE("X3D face sets of quads come out as quads: smaller than triangles, and the browser's normals as they were",
+          "[io][x3d]") {
+    TemporaryFolder folder;
+    // A ring of 40 x 12 planar quads (trapezoids between meridians at uneven longitudes, no symmetry to find),
+    // flat (creaseAngle 0), then smooth (creaseAngle 1: normals the means of the quads', which triangles would
+    // weigh otherwise).
+    std::string points, index;
+    const int around = 40, across = 12;
+    for (int i = 0; i < around; ++i) {
+        const double u = 2 * M_PI * (i + 0.3 * std::sin(i * 1.7)) / around;
+        for (int j = 0; j < across; ++j) {
+            const double v = 2 * M_PI * j / across, r = 0.5 * (1 + 0.3 * std::sin(v));
+            const double x = (2 + r * std::cos(v)) * std::cos(u), y = (2 + r * std::cos(v)) * std::sin(u);
+            points += std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(r * std::sin(v)) + " ";
+            const int a = i * across + j, b = ((i + 1) % around) * across + j;
+            const int c = ((i + 1) % around) * across + (j + 1) % across, d = i * across + (j + 1) % across;
+            index += std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " + std::to_string(d) +
+                     " -1 ";
+        }
+    }
+    for (const char* crease : {"0", "1"}) {
+        INFO("creaseAngle " << crease);
+        const std::string input =
+            "<X3D><Scene><Shape><Appearance><Material/></Appearance><IndexedFaceSet creaseAngle='" +
+            std::string(crease) + "' coordIndex='" + index + "'><Coordinate point='" + points +
+            "'/></IndexedFaceSet></Shape></Scene></X3D>";
+        writeTextFile(folder / "ring.x3d", input);
+        const Primitive read = readOnly(folder / "ring.x3d");
+        compressFile(folder / "ring.x3d", folder / "out.x3d");
+        const std::string text = readTextFile(folder / "out.x3d");
+        const std::size_t from = text.find("coordIndex='") + 12;
+        REQUIRE(from > 12);
+        const std::string faces = text.substr(from, text.find('\'', from) - from);
+        CHECK(occurrences(faces, "-1") == std::size_t(around * across));  // every quad one face
+        CHECK_THAT(text, !Catch::Contains("<Normal"));
+        CHECK(text.size() < input.size());
+        const Primitive again = readOnly(folder / "out.x3d");
+        REQUIRE(again.triangles.size() == read.triangles.size());
+        CHECK(again.normals.empty() == read.normals.empty());
+        CHECK(decompressFile(folder / "out.x3d", folder / "flat.glb", folder / "ring.x3d").verified);
     }
 }

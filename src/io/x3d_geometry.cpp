@@ -4,6 +4,7 @@
 #include "symcompress/detail/triangulate_polygon.hpp"
 #include "x3d_crease_normals.hpp"
 #include "x3d_faces.hpp"
+#include "x3d_polygons.hpp"
 #include "x3d_primitives.hpp"
 
 #include <algorithm>
@@ -25,6 +26,30 @@ namespace {
 constexpr std::size_t kMaxTexcoordSets = 8;
 // Arc2D's and ArcClose2D's default endAngle, the SFFloat nearest a quarter turn as X3D writes it.
 constexpr double kQuarterTurn = 1.570796;
+
+// Whether a face of more than 3 corners bends: a triangle of the fan the browser cuts it into (X_ITE, convex
+// faces) turns from the face's own normal (Newell's), which the browser shades all of it with where it is flat, by
+// more than the writer lets a flat polygon turn (x3d_polygons.hpp).
+bool anyFaceBends(const std::vector<x3d::Face>& faces, const std::vector<double>& points) {
+    const std::size_t count = points.size() / 3;
+    auto point = [&](std::int64_t p) { return Eigen::Vector3d(points[3 * p], points[3 * p + 1], points[3 * p + 2]); };
+    for (const x3d::Face& face : faces) {
+        if (face.size() <= 3 ||
+            std::any_of(face.begin(), face.end(), [&](std::int64_t p) { return p < 0 || std::size_t(p) >= count; }))
+            continue;
+        Eigen::Vector3d newell = Eigen::Vector3d::Zero();
+        for (std::size_t k = 0; k < face.size(); ++k)
+            newell += point(face[k]).cross(point(face[(k + 1) % face.size()]));
+        if (!(newell.norm() > 0)) continue;
+        newell.normalize();
+        for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+            const Eigen::Vector3d n = (point(face[k]) - point(face[0])).cross(point(face[k + 1]) - point(face[0]));
+            if (n.norm() > 0 && n.normalized().dot(newell) < std::cos(x3d::kMostTurnOfFlatPolygon)) return true;
+        }
+    }
+    return false;
+}
+
 // The geometry nodes read as faces (readFaceSet).
 const std::set<std::string> kFaceSets = {"IndexedFaceSet",
                                          "IndexedTriangleSet",
@@ -467,14 +492,16 @@ void X3dReader::readFaceSet(const pugi::xml_node& geometry, Primitive& out,
     std::map<CornerKey, std::uint32_t> vertexOf;
     // Without a Normal node, the normals the browser would make: flat (none, as glTF draws a mesh without
     // normals) unless normalPerVertex and, for an IndexedFaceSet, a creaseAngle above 0 ask for smoothing
-    // (the triangle sets smooth across every shared point).
+    // (the triangle sets smooth across every shared point). A flat face of more than 3 corners has one normal
+    // (X_ITE's: Newell's), which its triangles do not have where it bends: made for every face then.
     std::vector<std::int64_t> madeNormalOfCorner;
-    if (!normalNode && normalPerVertex) {
+    if (!normalNode) {
         // The triangle, strip, fan and quad sets smooth across every shared point (a QuadSet's quad has its
         // own, as X_ITE's normal of a quad: Newell's).
         const bool creased = indexLists || type == "ElevationGrid" || type == "Extrusion";
-        const double creaseAngle = creased ? scalar(geometry, "creaseAngle", 0) : M_PI;
-        if (creaseAngle > 0) std::tie(normalValues, madeNormalOfCorner) = creasedNormals(faces, points, creaseAngle, ccw);
+        const double creaseAngle = !normalPerVertex ? 0 : creased ? scalar(geometry, "creaseAngle", 0) : M_PI;
+        if (creaseAngle > 0 || anyFaceBends(faces, points))
+            std::tie(normalValues, madeNormalOfCorner) = creasedNormals(faces, points, creaseAngle, ccw);
     }
     const bool hasNormals = !normalValues.empty(), hasColors = !colorValues.empty(),
                hasTexcoords = !texcoordValues.empty(), hasTangents = !tangentValues.empty();

@@ -16,6 +16,7 @@
 #include "symcompress/scene_ops.hpp"
 #include "x3d_crease_normals.hpp"
 #include "x3d_materials.hpp"
+#include "x3d_polygons.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -82,7 +83,7 @@ std::optional<int> positionDecimals(const Primitive& primitive, const WriteOptio
 // neighbours in the input made, normals a modeller set, or no normals (flat).
 struct CreasedFaceSet {
     std::vector<std::uint32_t> vertexOfPoint;
-    std::vector<std::vector<std::int64_t>> faces;  // the triangles, by point
+    std::vector<std::vector<std::int64_t>> faces;  // the triangles, or the polygons they fan over, by point
     double creaseAngle = 0;                        // from pi up: every face at a point smoothed
 };
 
@@ -121,18 +122,21 @@ std::vector<std::uint32_t> pointsOfVertices(const Primitive& primitive, const st
     return pointOfVertex;
 }
 
-std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive, const std::vector<Eigen::Vector3d>& positions,
-                                               const std::vector<Eigen::Vector2d>& texcoords) {
-    if (primitive.normals.empty() || primitive.triangles.empty()) return std::nullopt;
+// The face set of `faces` (the primitive's triangles, or polygons they fan over), where an angle does.
+std::optional<CreasedFaceSet> creasedFaceSetOf(const Primitive& primitive,
+                                               const std::vector<Eigen::Vector3d>& positions,
+                                               const std::vector<Eigen::Vector2d>& texcoords,
+                                               const std::vector<std::vector<std::uint32_t>>& faces) {
     std::vector<Eigen::Vector3d> faceNormal;
     std::vector<std::vector<std::uint32_t>> facesOfVertex(positions.size());
     double leastCosine = 1;  // between two faces of one vertex: the crease angle lies above its angle
-    for (std::uint32_t f = 0; f < primitive.triangles.size(); ++f) {
-        const Triangle& t = primitive.triangles[f];
-        const Eigen::Vector3d normal = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+    for (std::uint32_t f = 0; f < faces.size(); ++f) {
+        Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // Newell's, as creasedNormals
+        for (std::size_t k = 0; k < faces[f].size(); ++k)
+            normal += positions[faces[f][k]].cross(positions[faces[f][(k + 1) % faces[f].size()]]);
         if (!(normal.norm() > 0)) return std::nullopt;  // the browser's choice for a face without a normal
         faceNormal.push_back(normal.normalized());
-        for (std::uint32_t v : t) {
+        for (std::uint32_t v : faces[f]) {
             for (std::uint32_t g : facesOfVertex[v])
                 leastCosine = std::min(leastCosine, faceNormal[f].dot(faceNormal[g]));
             facesOfVertex[v].push_back(f);
@@ -150,8 +154,8 @@ std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive, const
     std::vector<std::vector<std::uint32_t>> vertexGroups;
     for (auto& [place, vertices] : atPlace) vertexGroups.push_back(std::move(vertices));
     std::vector<Eigen::Vector3d> cornerNormals;
-    for (const Triangle& t : primitive.triangles)
-        for (std::uint32_t v : t) cornerNormals.push_back(primitive.normals[v]);
+    for (const std::vector<std::uint32_t>& face : faces)
+        for (std::uint32_t v : face) cornerNormals.push_back(primitive.normals[v]);
     // Angles to try: every face at a point smoothed (a triangle set), then the shortest decimals above the
     // largest angle smoothed, as modellers set them (0.5, 1).
     std::vector<double> angles = {4};
@@ -159,6 +163,7 @@ std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive, const
         const double scale = std::pow(10.0, places), angle = std::floor(smoothed * scale + 1) / scale;
         if (angle < M_PI && std::find(angles.begin(), angles.end(), angle) == angles.end()) angles.push_back(angle);
     }
+    std::optional<CreasedFaceSet> best;
     for (const double angle : angles) {
         CreasedFaceSet set;
         set.creaseAngle = angle;
@@ -167,11 +172,32 @@ std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive, const
         std::vector<double> points;
         for (std::uint32_t v : set.vertexOfPoint)
             points.insert(points.end(), {positions[v].x(), positions[v].y(), positions[v].z()});
-        for (const Triangle& t : primitive.triangles)
-            set.faces.push_back({pointOfVertex[t[0]], pointOfVertex[t[1]], pointOfVertex[t[2]]});
-        if (creasedNormalsMatch(set.faces, points, cornerNormals, angle)) return set;
+        for (const std::vector<std::uint32_t>& face : faces) {
+            std::vector<std::int64_t>& written = set.faces.emplace_back();
+            for (std::uint32_t v : face) written.push_back(pointOfVertex[v]);
+        }
+        // Of the angles that match, the one that joins the most vertices into points (flat faces that bend
+        // are each apart at an angle smoothing everything, joined at one that smooths nothing).
+        if ((!best || set.vertexOfPoint.size() < best->vertexOfPoint.size()) &&
+            creasedNormalsMatch(set.faces, points, cornerNormals, angle))
+            best = std::move(set);
     }
-    return std::nullopt;
+    return best;
+}
+
+// The polygons the triangles fan over first (x3d_polygons.hpp: the browser weighs a polygon's normal once where
+// it smooths, as it did for a face set read from polygons; fewer indices too), else the triangles.
+std::optional<CreasedFaceSet> asCreasedFaceSet(const Primitive& primitive,
+                                               const std::vector<Eigen::Vector3d>& positions,
+                                               const std::vector<Eigen::Vector2d>& texcoords) {
+    if (primitive.normals.empty() || primitive.triangles.empty()) return std::nullopt;
+    const std::vector<std::vector<std::uint32_t>> polygons =
+        x3d::fanPolygons(primitive.triangles, positions, x3d::kMostTurnOfSmoothedPolygon);
+    if (polygons.size() < primitive.triangles.size())
+        if (std::optional<CreasedFaceSet> set = creasedFaceSetOf(primitive, positions, texcoords, polygons)) return set;
+    std::vector<std::vector<std::uint32_t>> triangles;
+    for (const Triangle& t : primitive.triangles) triangles.push_back({t[0], t[1], t[2]});
+    return creasedFaceSetOf(primitive, positions, texcoords, triangles);
 }
 
 // Segments as polylines, each segment that starts where the one before it ends continuing its polyline (a strip
@@ -820,7 +846,11 @@ private:
             for (std::uint32_t v = 0; v < primitive.positions.size(); ++v) written.push_back(v);
         const std::size_t geometryStart = out_.size();
         const std::string solid = std::string("solid='") + (doubleSided ? "false" : "true") + "'";
-        const bool faceSet = creased && creased->creaseAngle < M_PI;  // a triangle set smooths at every point
+        // A triangle set smooths at every point; polygons are a face set's.
+        const bool faceSet = creased && (creased->creaseAngle < M_PI ||
+                                         std::any_of(creased->faces.begin(), creased->faces.end(),
+                                                     [](const std::vector<std::int64_t>& f) { return f.size() > 3; }));
+        bool polygons = false;  // triangles joined into polygons
         if (creased && !faceSet) {
             // The browser makes the normals, the same for every copy of the mesh.
             out_ += "<IndexedTriangleSet " + solid + " index='";
@@ -836,16 +866,23 @@ private:
                 out_ += "-1";
             }
         } else {
-            // Without normals, flat shading, as glTF draws such a mesh (X3D's default would smooth it).
-            out_ += "<IndexedTriangleSet " + solid + (primitive.normals.empty() ? " normalPerVertex='false'" : "") +
-                    " index='";
-            bool first = true;
+            // Without normals, flat shading, as glTF draws such a mesh (X3D's default would smooth it). Triangles
+            // that fan over a convex, planar polygon as one face where that is shorter: the browser cuts it back
+            // into them, and a flat face or given normals shade as they did (a smooth one's normals made by the
+            // browser would weigh the face once, not once a triangle).
+            std::string triangleIndices, faceIndices;
             for (const Triangle& t : primitive.triangles)
-                for (std::uint32_t i : t) {
-                    if (!first) out_ += ' ';
-                    first = false;
-                    out_ += std::to_string(i);
-                }
+                for (std::uint32_t i : t) triangleIndices += (triangleIndices.empty() ? "" : " ") + std::to_string(i);
+            for (const std::vector<std::uint32_t>& polygon :
+                 x3d::fanPolygons(primitive.triangles, positions, x3d::kMostTurnOfFlatPolygon)) {
+                for (std::uint32_t i : polygon) faceIndices += (faceIndices.empty() ? "" : " ") + std::to_string(i);
+                faceIndices += " -1";
+            }
+            polygons = faceIndices.size() + std::strlen("Face coordIndex") <
+                       triangleIndices.size() + std::strlen("Triangle index");
+            out_ += std::string(polygons ? "<IndexedFaceSet " : "<IndexedTriangleSet ") + solid +
+                    (primitive.normals.empty() ? " normalPerVertex='false'" : "") +
+                    (polygons ? " coordIndex='" + faceIndices : " index='" + triangleIndices);
         }
         out_ += "'>\n";
         auto writeValues = [&](const char* node, const char* field, const auto& values, int components,
@@ -891,8 +928,9 @@ private:
             out_ += "</MultiTextureCoordinate>\n";
         }
         if (!primitive.colors.empty()) writeColors(primitive, written);
-        out_ += faceSet ? "</IndexedFaceSet>\n" : "</IndexedTriangleSet>\n";
-        shareGeometry(geometryStart, faceSet ? "IndexedFaceSet" : "IndexedTriangleSet");
+        const std::string node = faceSet || polygons ? "IndexedFaceSet" : "IndexedTriangleSet";
+        out_ += "</" + node + ">\n";
+        shareGeometry(geometryStart, node);
         out_ += "</Shape>\n";
     }
 
