@@ -577,3 +577,15 @@ TEST_CASE("X3D: a prototype's IS connect to a field whose name is no name is lef
     writeScene(scene, folder / "written.x3d");
     CHECK(readScene(folder / "written.x3d").meshes.size() == scene.meshes.size());
 }
+
+TEST_CASE("X3D output: a mesh that draws nothing, drawn by several nodes, is neither DEF'd nor USEd", "[io][fuzz]") {
+    // fuzz_glb, fuzz_gltf, fuzz_x3d: such a mesh had no DEF (its Shapes, none, not grouped), and the second
+    // node's USE of it threw std::out_of_range from the writer.
+    TemporaryFolder folder;
+    for (const char* name : {"glb_x3d_use_of_mesh_drawing_nothing.glb", "x3d_use_of_mesh_drawing_nothing.x3d"}) {
+        INFO(name);
+        const Scene scene = readScene(regressionInput(name));
+        CHECK_NOTHROW(writeScene(scene, folder / "out.x3d"));
+        CHECK_NOTHROW(readScene(folder / "out.x3d"));
+    }
+}

@@ -543,6 +543,7 @@ private:
     // A mesh that one node draws as its Shapes; one that several draw as its one Shape, or as a Group of its
     // Shapes, which the others USE. Its DEF is its name where that is a drawing node's (carriesNodeName).
     void writeMesh(int mesh) {
+        if (shapesOf(mesh) == 0) return;  // nothing drawn: nothing to DEF or USE
         const std::string key = "mesh" + std::to_string(mesh);
         if (written_[mesh]) {
             out_ += meshUse(mesh) + "\n";
