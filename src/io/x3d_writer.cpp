@@ -517,17 +517,26 @@ private:
         return def;
     }
 
+    // How writeMesh writes a primitive: not at all, as lines or points, as the X3D node it was read from, or as
+    // its triangles (those of zero area in a Shape of their own).
+    enum class Writing { Nothing, Unlit, Source, Triangles };
+    static Writing writingOf(const Primitive& primitive) {
+        if (primitive.drawsNothing()) return Writing::Nothing;
+        if (primitive.topology != Topology::Triangles) return Writing::Unlit;
+        if (primitive.x3dSource && primitive.x3dSource->cornerHash == trianglePositionsHash(primitive))
+            return Writing::Source;
+        return Writing::Triangles;
+    }
+
     // How many Shapes writeMesh writes for `mesh` (a triangle primitive with triangles of zero area is two).
     std::size_t shapesOf(int mesh) {
         int& shapes = shapes_[std::size_t(mesh)];
         if (shapes < 0) {
             shapes = 0;
             for (const Primitive& primitive : scene_.meshes[std::size_t(mesh)].primitives) {
-                if (primitive.drawsNothing()) continue;
-                const bool asItIs =
-                    primitive.topology != Topology::Triangles ||
-                    (primitive.x3dSource && primitive.x3dSource->cornerHash == trianglePositionsHash(primitive));
-                const auto split = asItIs ? std::nullopt : withoutZeroAreaTriangles(primitive);
+                const Writing writing = writingOf(primitive);
+                if (writing == Writing::Nothing) continue;
+                const auto split = writing == Writing::Triangles ? withoutZeroAreaTriangles(primitive) : std::nullopt;
                 shapes += split ? int(!split->first.triangles.empty()) + 1 : 1;
             }
         }
@@ -558,12 +567,13 @@ private:
             out_ += ">\n";
         }
         for (const Primitive& primitive : scene_.meshes[mesh].primitives) {
-            if (primitive.drawsNothing()) continue;
-            if (primitive.topology != Topology::Triangles) {
+            const Writing writing = writingOf(primitive);
+            if (writing == Writing::Nothing) continue;
+            if (writing == Writing::Unlit) {
                 writeUnlitShape(primitive);
                 continue;
             }
-            if (primitive.x3dSource && primitive.x3dSource->cornerHash == trianglePositionsHash(primitive)) {
+            if (writing == Writing::Source) {
                 writeSourceShape(primitive);
                 continue;
             }
