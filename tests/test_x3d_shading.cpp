@@ -1,6 +1,7 @@
 // X3D shading as a browser does it and as glTF draws it (issue 15): a face set without a Normal node gets
 // the normals an X3D browser makes (creaseAngle, normalPerVertex), and a mesh without normals is written
 // to X3D flat, as glTF draws it.
+#include "io/x3d_crease_normals.hpp"
 #include "io/x3d_polygons.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/io.hpp"
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 using namespace symcompress;
 using namespace symcompress::testing;
@@ -42,6 +44,49 @@ Primitive readOnly(const std::filesystem::path& file) {
 }
 
 }  // namespace
+
+TEST_CASE("Creased normals equal the mean of the faces within the angle, where many faces share a normal",
+          "[io][x3d]") {
+    // A folded fan: 24 triangles about a centre, the first 12 in the plane z = 0 and the rest bent up along a fold
+    // (many faces of one normal at the centre and on the fold), with a few quads; checked against the definition,
+    // summed face by face.
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+    std::vector<double> points = {0, 0, 0};
+    constexpr int kRim = 24;
+    for (int k = 0; k <= kRim; ++k) {
+        const double angle = 2 * M_PI * k / kRim;
+        points.insert(points.end(), {std::cos(angle), std::sin(angle), k > kRim / 2 ? 0.4 + jitter(random) : 0.0});
+    }
+    std::vector<std::vector<std::int64_t>> faces;
+    for (int k = 1; k <= kRim; ++k) faces.push_back({0, k, k + 1});
+    faces.push_back({1, 3, 5, 7});
+    faces.push_back({13, 15, 17, 19});
+    auto point = [&](std::int64_t p) { return Eigen::Vector3d(points[3 * p], points[3 * p + 1], points[3 * p + 2]); };
+    std::vector<Eigen::Vector3d> unit;
+    for (const auto& face : faces) {
+        Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+        for (std::size_t k = 0; k < face.size(); ++k) normal += point(face[k]).cross(point(face[(k + 1) % face.size()]));
+        unit.push_back(normal.normalized());
+    }
+    for (const double creaseAngle : {0.0, 0.01, 0.3, 0.8, 1.6, 3.2}) {
+        const auto [normals, cornerNormal] = creasedNormals(faces, points, creaseAngle, true);
+        std::size_t corner = 0;
+        for (std::size_t f = 0; f < faces.size(); ++f)
+            for (const std::int64_t p : faces[f]) {
+                Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+                for (std::size_t g = 0; g < faces.size(); ++g)
+                    if (std::count(faces[g].begin(), faces[g].end(), p) &&
+                        (g == f || unit[f].dot(unit[g]) > std::cos(creaseAngle)))
+                        sum += unit[g];
+                const std::int64_t n = cornerNormal[corner++];
+                const Eigen::Vector3d made(normals[std::size_t(3 * n)], normals[std::size_t(3 * n + 1)],
+                                           normals[std::size_t(3 * n + 2)]);
+                CHECK((made - sum.normalized()).norm() < 1e-12);
+            }
+        CHECK(corner == cornerNormal.size());
+    }
+}
 
 TEST_CASE("X3D face sets without normals are shaded as the browser would: creaseAngle and normalPerVertex", "[io][x3d]") {
     TemporaryFolder folder;

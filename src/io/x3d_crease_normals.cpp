@@ -18,22 +18,27 @@ bool visitCreasedNormals(const std::vector<std::vector<std::int64_t>>& faces, co
                          double creaseAngle, bool ccw, Visit visit) {
     const std::size_t pointCount = points.size() / 3;
     auto point = [&](std::int64_t p) { return Eigen::Vector3d(points[3 * p], points[3 * p + 1], points[3 * p + 2]); };
-    // Newell's normal of each face, and its unit normal.
-    std::vector<Eigen::Vector3d> faceNormal(faces.size(), Eigen::Vector3d::Zero()), unit(faces.size());
-    std::vector<std::vector<std::size_t>> facesAt(pointCount);
+    // The unit (Newell's) normal of each face, and those of the faces at each point, a face once at a point.
+    std::vector<Eigen::Vector3d> unit(faces.size());
+    std::vector<std::pair<std::uint32_t, Eigen::Vector3d>> incidences;
+    incidences.reserve(3 * faces.size());
+    std::vector<std::size_t> lastFaceAt(pointCount, faces.size());
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& face = faces[f];
+        Eigen::Vector3d normal = Eigen::Vector3d::Zero();
         if (std::all_of(face.begin(), face.end(),
                         [&](std::int64_t p) { return p >= 0 && std::size_t(p) < pointCount; })) {
             for (std::size_t k = 0; k < face.size(); ++k)
-                faceNormal[f] += point(face[k]).cross(point(face[(k + 1) % face.size()]));
-            if (!ccw) faceNormal[f] = -faceNormal[f];
-            for (std::int64_t p : face)
-                if (facesAt[std::size_t(p)].empty() || facesAt[std::size_t(p)].back() != f)
-                    facesAt[std::size_t(p)].push_back(f);
+                normal += point(face[k]).cross(point(face[(k + 1) % face.size()]));
+            if (!ccw) normal = -normal;
         }
-        unit[f] = faceNormal[f].normalized();
+        unit[f] = normal.normalized();
+        if (normal.norm() > 0)
+            for (std::int64_t p : face)
+                if (std::exchange(lastFaceAt[std::size_t(p)], f) != f)
+                    incidences.push_back({std::uint32_t(p), unit[f]});
     }
+    const NormalsAtPoints normalsAt(pointCount, incidences);
     const double cosCrease = std::cos(std::min(creaseAngle, M_PI));
     std::size_t corner = 0;
     for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -43,9 +48,8 @@ bool visitCreasedNormals(const std::vector<std::vector<std::int64_t>>& faces, co
                 if (!visit(corner++, nullptr)) return false;
                 continue;
             }
-            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-            for (std::size_t g : facesAt[std::size_t(p)])
-                if (g == f || own.dot(unit[g]) > cosCrease) sum += unit[g];
+            // A face without a normal (zero) sums every face at the point once the angle passes a right one.
+            const Eigen::Vector3d sum = normalsAt.smoothed(std::size_t(p), own, cosCrease);
             const Eigen::Vector3d normal = sum.norm() > 0   ? sum.normalized()
                                            : own.norm() > 0 ? own
                                                             : Eigen::Vector3d::UnitZ();
@@ -56,6 +60,32 @@ bool visitCreasedNormals(const std::vector<std::vector<std::int64_t>>& faces, co
 }
 
 }  // namespace
+
+NormalsAtPoints::NormalsAtPoints(std::size_t pointCount,
+                                 const std::vector<std::pair<std::uint32_t, Eigen::Vector3d>>& incidences)
+    : begin_(pointCount + 1, 0), end_(pointCount), normals_(incidences.size()), counts_(incidences.size(), 1) {
+    for (const auto& [point, normal] : incidences) ++begin_[point + 1];
+    for (std::size_t p = 0; p < pointCount; ++p) begin_[p + 1] += begin_[p];
+    std::copy(begin_.begin(), begin_.end() - 1, end_.begin());
+    for (const auto& [point, normal] : incidences) {
+        // A normal the point has already is counted again; a new one appended.
+        const auto first = normals_.begin() + std::ptrdiff_t(begin_[point]),
+                   last = normals_.begin() + std::ptrdiff_t(end_[point]);
+        const auto found = std::find(first, last, normal);
+        if (found != last) {
+            ++counts_[std::size_t(found - normals_.begin())];
+        } else {
+            normals_[end_[point]++] = normal;
+        }
+    }
+}
+
+Eigen::Vector3d NormalsAtPoints::smoothed(std::size_t point, const Eigen::Vector3d& own, double cosCrease) const {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t k = begin_[point]; k < end_[point]; ++k)
+        if (normals_[k] == own || own.dot(normals_[k]) > cosCrease) sum += counts_[k] * normals_[k];
+    return sum;
+}
 
 std::pair<std::vector<double>, std::vector<std::int64_t>> creasedNormals(
     const std::vector<std::vector<std::int64_t>>& faces, const std::vector<double>& points, double creaseAngle,

@@ -10,6 +10,24 @@
 
 namespace symcompress {
 
+// The unit normals of the faces at each of a number of points, each distinct one once with the number of faces that
+// have it, in one array for all points. A corner's creased normal at a point depends on its face's normal alone,
+// so a point where many faces lie in one plane (a fan, a grid) is summed once per plane rather than once per face.
+class NormalsAtPoints {
+public:
+    // From every (point, unit normal of a face at it) pair, a face once at a point.
+    NormalsAtPoints(std::size_t pointCount, const std::vector<std::pair<std::uint32_t, Eigen::Vector3d>>& incidences);
+
+    // The sum of the normals at `point` that turn by less than the crease angle from `own` (its cosine), `own`
+    // among them: the browser's normal of a corner there whose face has normal `own`, before normalization.
+    Eigen::Vector3d smoothed(std::size_t point, const Eigen::Vector3d& own, double cosCrease) const;
+
+private:
+    std::vector<std::size_t> begin_, end_;  // each point's distinct normals: [begin_[p], end_[p])
+    std::vector<Eigen::Vector3d> normals_;
+    std::vector<int> counts_;  // how many faces have each
+};
+
 // The normals of every corner (X3D 3.3, 13.3.6 and 11.2.3): at a point, the average of the unit normals of
 // the faces around it whose normal turns by less than `creaseAngle` from that of the corner's own face
 // (unweighted, as X_ITE averages them). Returns the distinct normals (flat) and, for each corner in face

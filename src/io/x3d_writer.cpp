@@ -87,36 +87,51 @@ struct CreasedFaceSet {
     double creaseAngle = 0;                        // from pi up: every face at a point smoothed
 };
 
-// Vertices at one place (position as written, texture coordinates, colour) whose faces turn by less than
-// `creaseAngle` from one another belong to one point where, as one, the browser would give each corner its
-// normal; otherwise (parts that touch without sharing their points) each stays a point of its own.
-std::vector<std::uint32_t> pointsOfVertices(const Primitive& primitive, const std::vector<Eigen::Vector3d>& faceNormal,
-                                            const std::vector<std::vector<std::uint32_t>>& vertexGroups,
-                                            const std::vector<std::vector<std::uint32_t>>& facesOfVertex,
-                                            double creaseAngle, std::vector<std::uint32_t>& vertexOfPoint) {
+// The points of the face set at `creaseAngle`, for each vertex, and a vertex of each point (`vertexOfPoint`): the
+// vertices of a group belong to one point where, as one, the browser would give each corner its normal; otherwise
+// (parts that touch without sharing their points, a crease the angle would smooth) each is a point of its own.
+// Nothing where a vertex would not get its normal even alone: the angle does not match (creasedNormalsMatch).
+// `groups`: vertices at one place (position as written, texture coordinates, colour); `groupNormals`: the normals
+// of the faces at each group, the same at every angle tried.
+std::optional<std::vector<std::uint32_t>> pointsOfVertices(const Primitive& primitive,
+                                                           const std::vector<Eigen::Vector3d>& faceNormal,
+                                                           const std::vector<std::vector<std::uint32_t>>& groups,
+                                                           const NormalsAtPoints& groupNormals,
+                                                           const std::vector<std::vector<std::uint32_t>>& facesOfVertex,
+                                                           double creaseAngle,
+                                                           std::vector<std::uint32_t>& vertexOfPoint) {
     const double cosCrease = std::cos(std::min(creaseAngle, M_PI));
-    std::vector<std::uint32_t> pointOfVertex(primitive.positions.size());
-    auto newPoint = [&](const std::vector<std::uint32_t>& vertices) {
-        for (std::uint32_t v : vertices) pointOfVertex[v] = std::uint32_t(vertexOfPoint.size());
-        vertexOfPoint.push_back(vertices.front());
+    auto matches = [&](std::uint32_t v, const Eigen::Vector3d& sum) {
+        return (sum.normalized() - primitive.normals[v]).norm() < 3.5e-3;
     };
-    for (const std::vector<std::uint32_t>& group : vertexGroups) {
-        // As one point: each corner's normal is the mean of the faces of the group within the angle of its own.
-        auto asOne = [&] {
-            for (std::uint32_t v : group)
-                for (std::uint32_t f : facesOfVertex[v]) {
-                    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-                    for (std::uint32_t w : group)
-                        for (std::uint32_t g : facesOfVertex[w])
-                            if (g == f || faceNormal[f].dot(faceNormal[g]) > cosCrease) sum += faceNormal[g];
-                    if (!((sum.normalized() - primitive.normals[v]).norm() < 3.5e-3)) return false;
-                }
-            return true;
-        };
-        if (asOne()) {
-            newPoint(group);
-        } else {
-            for (std::uint32_t v : group) newPoint({v});
+    // As one point: each corner's normal is the mean of the faces of the group within the angle of its own.
+    auto asOne = [&](std::size_t group) {
+        for (std::uint32_t v : groups[group])
+            for (std::uint32_t f : facesOfVertex[v])
+                if (!matches(v, groupNormals.smoothed(group, faceNormal[f], cosCrease))) return false;
+        return true;
+    };
+    auto alone = [&](std::uint32_t v) {
+        for (std::uint32_t f : facesOfVertex[v]) {
+            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+            for (std::uint32_t g : facesOfVertex[v])
+                if (g == f || faceNormal[f].dot(faceNormal[g]) > cosCrease) sum += faceNormal[g];
+            if (!matches(v, sum)) return false;
+        }
+        return true;
+    };
+    std::vector<std::uint32_t> pointOfVertex(primitive.positions.size());
+    for (std::size_t group = 0; group < groups.size(); ++group) {
+        if (asOne(group)) {
+            for (std::uint32_t v : groups[group]) pointOfVertex[v] = std::uint32_t(vertexOfPoint.size());
+            vertexOfPoint.push_back(groups[group].front());
+            continue;
+        }
+        if (groups[group].size() == 1) return std::nullopt;
+        for (std::uint32_t v : groups[group]) {
+            if (!alone(v)) return std::nullopt;
+            pointOfVertex[v] = std::uint32_t(vertexOfPoint.size());
+            vertexOfPoint.push_back(v);
         }
     }
     return pointOfVertex;
@@ -151,11 +166,19 @@ std::optional<CreasedFaceSet> creasedFaceSetOf(const Primitive& primitive,
             for (int c = 0; c < 4; ++c) key[std::size_t(5 + c)] = primitive.colors[v][c];
         atPlace[key].push_back(v);
     }
-    std::vector<std::vector<std::uint32_t>> vertexGroups;
-    for (auto& [place, vertices] : atPlace) vertexGroups.push_back(std::move(vertices));
     std::vector<Eigen::Vector3d> cornerNormals;
     for (const std::vector<std::uint32_t>& face : faces)
         for (std::uint32_t v : face) cornerNormals.push_back(primitive.normals[v]);
+    std::vector<std::vector<std::uint32_t>> groups;
+    std::vector<std::pair<std::uint32_t, Eigen::Vector3d>> normalsAtGroup;
+    normalsAtGroup.reserve(cornerNormals.size());
+    for (auto& [place, vertices] : atPlace) {
+        for (std::uint32_t v : vertices)
+            for (std::uint32_t f : facesOfVertex[v])
+                normalsAtGroup.push_back({std::uint32_t(groups.size()), faceNormal[f]});
+        groups.push_back(std::move(vertices));
+    }
+    const NormalsAtPoints groupNormals(groups.size(), normalsAtGroup);
     // Angles to try: every face at a point smoothed (a triangle set), then the shortest decimals above the
     // largest angle smoothed, as modellers set them (0.5, 1).
     std::vector<double> angles = {4};
@@ -163,26 +186,42 @@ std::optional<CreasedFaceSet> creasedFaceSetOf(const Primitive& primitive,
         const double scale = std::pow(10.0, places), angle = std::floor(smoothed * scale + 1) / scale;
         if (angle < M_PI && std::find(angles.begin(), angles.end(), angle) == angles.end()) angles.push_back(angle);
     }
-    std::optional<CreasedFaceSet> best;
+    // Of the angles that match, the one that joins the most vertices into points (flat faces that bend are each
+    // apart at an angle smoothing everything, joined at one that smooths nothing), the first of equals: the
+    // points of each, then every normal checked from the fewest points up.
+    struct Trial {
+        double angle;
+        std::vector<std::uint32_t> vertexOfPoint, pointOfVertex;
+    };
+    std::vector<Trial> trials;
     for (const double angle : angles) {
+        Trial trial{angle, {}, {}};
+        std::optional<std::vector<std::uint32_t>> pointOfVertex =
+            pointsOfVertices(primitive, faceNormal, groups, groupNormals, facesOfVertex, angle, trial.vertexOfPoint);
+        if (!pointOfVertex) continue;
+        trial.pointOfVertex = std::move(*pointOfVertex);
+        trials.push_back(std::move(trial));
+    }
+    std::stable_sort(trials.begin(), trials.end(),
+                     [](const Trial& a, const Trial& b) { return a.vertexOfPoint.size() < b.vertexOfPoint.size(); });
+    for (Trial& trial : trials) {
         CreasedFaceSet set;
-        set.creaseAngle = angle;
-        const std::vector<std::uint32_t> pointOfVertex =
-            pointsOfVertices(primitive, faceNormal, vertexGroups, facesOfVertex, angle, set.vertexOfPoint);
+        set.creaseAngle = trial.angle;
         std::vector<double> points;
-        for (std::uint32_t v : set.vertexOfPoint)
+        for (std::uint32_t v : trial.vertexOfPoint)
             points.insert(points.end(), {positions[v].x(), positions[v].y(), positions[v].z()});
+        set.faces.reserve(faces.size());
         for (const std::vector<std::uint32_t>& face : faces) {
             std::vector<std::int64_t>& written = set.faces.emplace_back();
-            for (std::uint32_t v : face) written.push_back(pointOfVertex[v]);
+            written.reserve(face.size());
+            for (std::uint32_t v : face) written.push_back(trial.pointOfVertex[v]);
         }
-        // Of the angles that match, the one that joins the most vertices into points (flat faces that bend
-        // are each apart at an angle smoothing everything, joined at one that smooths nothing).
-        if ((!best || set.vertexOfPoint.size() < best->vertexOfPoint.size()) &&
-            creasedNormalsMatch(set.faces, points, cornerNormals, angle))
-            best = std::move(set);
+        if (creasedNormalsMatch(set.faces, points, cornerNormals, trial.angle)) {
+            set.vertexOfPoint = std::move(trial.vertexOfPoint);
+            return set;
+        }
     }
-    return best;
+    return std::nullopt;
 }
 
 // The polygons the triangles fan over first (x3d_polygons.hpp: the browser weighs a polygon's normal once where
