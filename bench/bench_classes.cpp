@@ -2,6 +2,7 @@
 // small parts (random convex solids of about 30 triangles, 8 of them 1% larger copies of others, which
 // must stay apart) placed at random rotations, mirrors and positions on a grid, baked into one mesh.
 //   bench_classes N        one row of the table (run each N in its own process for its peak memory)
+#include "sample_scenes.hpp"
 #include "symcompress/congruence.hpp"
 #include "symcompress/detail/solids.hpp"
 
@@ -23,7 +24,7 @@ std::vector<TriangleMesh> distinctParts(std::mt19937_64& random) {
     for (int k = 0; k < 32; ++k) {
         std::vector<Eigen::Vector3d> points;
         while (points.size() < 16) {
-            const Eigen::Vector3d p(uniform(random), uniform(random), uniform(random));
+            const Eigen::Vector3d p = samples::drawnVector([&] { return uniform(random); });
             if (p.norm() > 0.5 && p.norm() < 1) points.push_back(p.normalized());  // on the sphere: convex position
         }
         parts.push_back(triangulateFaces(makeConvexPolyhedron(points)));
@@ -60,7 +61,8 @@ int main(int argc, char** argv) {
     const auto side = std::size_t(std::ceil(std::cbrt(double(tileCount))));
     for (std::size_t t = 0; t < tileCount; ++t) {
         const TriangleMesh& part = parts[pick(random)];
-        Eigen::Matrix3d linear = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random)).normalized().toRotationMatrix();
+        Eigen::Matrix3d linear =
+            samples::drawnQuaternion([&] { return normal(random); }).normalized().toRotationMatrix();
         const bool mirror = t % 4 == 3;
         if (mirror) linear.col(0) *= -1;
         const Eigen::Vector3d cell(double(t % side), double(t / side % side), double(t / side / side));

@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
         baked.normals.reserve(baked.positions.capacity());
         baked.triangles.reserve(bolts * bolt.triangles.size() + parts * 28);
         for (std::size_t k = 0; k < bolts + parts; ++k) {
-            Eigen::Matrix3d linear = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random)).normalized().toRotationMatrix();
+            Eigen::Matrix3d linear =
+                samples::drawnQuaternion([&] { return normal(random); }).normalized().toRotationMatrix();
             if (k % 4 == 3) linear.col(0) *= -1;
             const Eigen::Vector3d at = 6.0 * Eigen::Vector3d(double(k % side), double(k / side % side), double(k / side / side));
             appendPlaced(baked, k < bolts ? bolt : randomPart(random), linear, at);

@@ -206,9 +206,8 @@ TriangleMesh mirrorShape(std::size_t triangles) {
                0.02 * std::sin(2 * v) * std::cos(u);
     };
     std::normal_distribution<double> normal;
-    const Eigen::Matrix3d turn = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
-                                     .normalized()
-                                     .toRotationMatrix();
+    const Eigen::Matrix3d turn =
+        samples::drawnQuaternion([&] { return normal(random); }).normalized().toRotationMatrix();
     TriangleMesh mesh = bench::torusOnRows(rowAngle, columns, radius);
     for (Eigen::Vector3d& p : mesh.positions) p = (turn * p).cast<float>().cast<double>();
     return mesh;

@@ -3,6 +3,7 @@
 //                                                      and triangle deletion; DATA_FILE gets a gnuplot table
 //   bench_symmetry speed [MAX_TRIANGLES]               detection time and its parts, 10k .. 1M triangles
 #include "bench_meshes.hpp"
+#include "sample_scenes.hpp"
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "symcompress/symmetry.hpp"
@@ -34,7 +35,7 @@ double axisError(const SymmetryGroup& group, Symmetry::Kind kind, int fold, cons
 
 TriangleMesh withNoise(TriangleMesh mesh, double amplitude, std::mt19937_64& random) {
     std::normal_distribution<double> normal(0, amplitude / std::sqrt(3.0));  // rms displacement = amplitude
-    for (auto& p : mesh.positions) p += Eigen::Vector3d(normal(random), normal(random), normal(random));
+    for (auto& p : mesh.positions) p += samples::drawnVector([&] { return normal(random); });
     return mesh;
 }
 

@@ -47,12 +47,11 @@ Primitive bakeCopies(const Primitive& part, int copies, int mirrorEvery, double 
     std::uniform_real_distribution<double> uniform(-1, 1);
     Primitive out;
     for (int copy = 0; copy < copies; ++copy) {
-        const Eigen::Quaterniond rotation =
-            Eigen::Quaterniond(uniform(random), uniform(random), uniform(random), uniform(random)).normalized();
+        const Eigen::Quaterniond rotation = drawnQuaternion([&] { return uniform(random); }).normalized();
         Eigen::Matrix3d linear = rotation.toRotationMatrix();
         const bool mirrored = mirrorEvery > 0 && copy % mirrorEvery == mirrorEvery - 1;
         if (mirrored) linear.col(0) = -linear.col(0);
-        const Eigen::Vector3d offset(spread * uniform(random), spread * uniform(random), spread * uniform(random));
+        const Eigen::Vector3d offset = spread * drawnVector([&] { return uniform(random); });
         const Eigen::Matrix3d normalMatrix = linear.inverse().transpose();
         const auto base = static_cast<std::uint32_t>(out.positions.size());
         for (std::size_t v = 0; v < part.positions.size(); ++v) {

@@ -59,18 +59,16 @@ TriangleMesh latheMesh(const std::vector<Eigen::Vector2d>& profile, int segments
 
 Eigen::Matrix3d randomRotation(std::mt19937_64& random) {
     std::normal_distribution<double> normal;
-    return Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
-        .normalized()
-        .toRotationMatrix();
+    return drawnQuaternion([&] { return normal(random); }).normalized().toRotationMatrix();
 }
 
 TriangleMesh randomConvexPart(std::mt19937_64& random) {
     std::normal_distribution<double> normal;
     std::uniform_real_distribution<double> axis(0.4, 1.2);
-    const Eigen::Vector3d axes(axis(random), axis(random), axis(random));
+    const Eigen::Vector3d axes = drawnVector([&] { return axis(random); });
     std::vector<Eigen::Vector3d> points;
     while (points.size() < 16)
-        points.push_back(Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized().cwiseProduct(axes));
+        points.push_back(drawnVector([&] { return normal(random); }).normalized().cwiseProduct(axes));
     return triangulateFaces(makeConvexPolyhedron(points));
 }
 
@@ -88,9 +86,11 @@ TriangleMesh unevenEllipsoid(int azimuths, std::uint64_t seed) {
     const std::uint32_t north = add(0, 0);
     std::vector<std::vector<std::uint32_t>> rings(kRings - 1);
     for (int r = 1; r < kRings; ++r)
-        for (int s = 0; s < azimuths; ++s)
+        for (int s = 0; s < azimuths; ++s) {
+            const double azimuthSlide = slide(random), polarSlide = slide(random);  // in this order (drawnVector)
             rings[std::size_t(r - 1)].push_back(
-                add(M_PI * (r + slide(random)) / kRings, 2 * M_PI * (s + slide(random)) / azimuths));
+                add(M_PI * (r + polarSlide) / kRings, 2 * M_PI * (s + azimuthSlide) / azimuths));
+        }
     const std::uint32_t south = add(M_PI, 0);
     for (std::size_t s = 0; s < std::size_t(azimuths); ++s) {
         const std::size_t t = (s + 1) % std::size_t(azimuths);

@@ -11,6 +11,25 @@
 
 namespace symcompress::samples {
 
+// A vector or a quaternion drawn coordinate by coordinate from `draw()`, in one order whatever the compiler: a
+// function's arguments are evaluated in an unspecified order (GCC, which made the committed samples, right to left;
+// Clang left to right), so that Eigen::Vector3d(d(r), d(r), d(r)) differs between them. The last is drawn first.
+template <typename Draw>
+Eigen::Vector3d drawnVector(Draw draw) {
+    const double z = draw(), y = draw(), x = draw();
+    return {x, y, z};
+}
+template <typename Draw>
+Eigen::Vector4d drawnVector4(Draw draw) {
+    const double w = draw(), z = draw(), y = draw(), x = draw();
+    return {x, y, z, w};
+}
+template <typename Draw>
+Eigen::Quaterniond drawnQuaternion(Draw draw) {
+    const Eigen::Vector4d wxyz = drawnVector4(draw);
+    return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]};
+}
+
 // Building blocks (sample_geometry.cpp).
 void appendMesh(Primitive& out, const TriangleMesh& part);
 TriangleMesh boxMesh(const Eigen::Vector3d& centre, const Eigen::Vector3d& size);  // axis-aligned, 12 triangles

@@ -119,9 +119,10 @@ TEST_CASE("Baked copies are stored once and drawn by instances, mirrors included
     std::mt19937_64 random(5);
     std::normal_distribution<double> normal;
     for (int k = 0; k < 12; ++k) {
-        Eigen::Matrix3d linear = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random)).normalized().toRotationMatrix();
+        Eigen::Matrix3d linear =
+            samples::drawnQuaternion([&] { return normal(random); }).normalized().toRotationMatrix();
         if (k % 3 == 1) linear.col(0) *= -1;
-        const Eigen::Vector3d shift = Eigen::Vector3d(normal(random), normal(random), normal(random)) * 300;
+        const Eigen::Vector3d shift = samples::drawnVector([&] { return normal(random); }) * 300;
         const auto offset = std::uint32_t(baked.positions.size());
         for (const auto& p : rock.positions) baked.positions.push_back((linear * p + shift).cast<float>().cast<double>());
         for (auto t : rock.triangles) {
@@ -160,11 +161,10 @@ TEST_CASE(
     std::mt19937_64 random(8);
     std::normal_distribution<double> normal;
     for (int k = 0; k < 7; ++k) {
-        Eigen::Matrix3d linear = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
-                                     .normalized()
-                                     .toRotationMatrix();
+        Eigen::Matrix3d linear =
+            samples::drawnQuaternion([&] { return normal(random); }).normalized().toRotationMatrix();
         if (k % 3 == 1) linear.col(0) *= -1;
-        const Eigen::Vector3d shift = Eigen::Vector3d(normal(random), normal(random), normal(random)) * 300;
+        const Eigen::Vector3d shift = samples::drawnVector([&] { return normal(random); }) * 300;
         const auto offset = std::uint32_t(baked.positions.size());
         for (const auto& p : knot.positions) {
             baked.positions.push_back((linear * p + shift).cast<float>().cast<double>());
@@ -242,10 +242,8 @@ TEST_CASE("A part baked in several materials is stored once: a mesh per material
         material.baseColorFactor = Eigen::Vector4d(0.1 * k + 0.2, 0.5, 0.3, 1);
         if (k >= 3) material.baseColorTexture.texture = 0;
         const Eigen::Matrix3d linear =
-            Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random))
-                .normalized()
-                .toRotationMatrix();
-        const Eigen::Vector3d shift = Eigen::Vector3d(normal(random), normal(random), normal(random)) * 300;
+            samples::drawnQuaternion([&] { return normal(random); }).normalized().toRotationMatrix();
+        const Eigen::Vector3d shift = samples::drawnVector([&] { return normal(random); }) * 300;
         Primitive copy;
         copy.material = k;
         for (const auto& p : knot.positions) {
@@ -1214,7 +1212,7 @@ TEST_CASE("Hundreds of small copies the author shared with a scale: one meshopt 
         Node node;
         node.mesh = 0;
         node.transform.topLeftCorner<3, 3>() *= 0.5;
-        node.transform.topRightCorner<3, 1>() = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+        node.transform.topRightCorner<3, 1>() = samples::drawnVector([&] { return coordinate(random); });
         scene.roots.push_back(int(scene.nodes.size()));
         scene.nodes.push_back(node);
     }
@@ -1376,7 +1374,7 @@ TEST_CASE("Small parts alone get no symmetry group, and the output is the same b
     std::normal_distribution<double> normal;
     for (int k = 0; k < 24; ++k) {
         std::vector<Eigen::Vector3d> points;
-        while (points.size() < 16) points.push_back(Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized());
+        while (points.size() < 16) points.push_back(samples::drawnVector([&] { return normal(random); }).normalized());
         const TriangleMesh part = k == 7 ? samples::boxMesh({0, 0, 0}, {1, 1, 1}) : triangulateFaces(makeConvexPolyhedron(points));
         samples::appendMesh(baked, samples::transformed(part, Eigen::Matrix3d::Identity(), {3.0 * k, 6, 0}));
     }

@@ -90,9 +90,9 @@ TEST_CASE("40 baked copies of a model, turned, moved and mirrored, are one class
     std::vector<Isometry> truth;
     for (int k = 0; k < 40; ++k) {
         Isometry placement;
-        placement.linear = Eigen::Quaterniond(normal(random), normal(random), normal(random), normal(random)).normalized().toRotationMatrix();
+        placement.linear = samples::drawnQuaternion([&] { return normal(random); }).normalized().toRotationMatrix();
         if (k % 3 == 1) placement.linear.col(0) *= -1;  // a mirror image
-        placement.translation = Eigen::Vector3d(normal(random), normal(random), normal(random)) * 2;
+        placement.translation = samples::drawnVector([&] { return normal(random); }) * 2;
         TriangleMesh copy = rock;
         for (auto& p : copy.positions) p = (placement.linear * p + placement.translation).cast<float>().cast<double>();
         if (placement.linear.determinant() < 0)

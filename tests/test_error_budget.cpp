@@ -2,6 +2,7 @@
 // the rebuilt surface against it; copies tessellated each on its own are instanced when they agree as
 // surfaces, and a copy just beyond the budget, or scaled, stays apart.
 #include "geometry/bounds.hpp"
+#include "sample_scenes.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/detail/compression_plan.hpp"
 #include "symcompress/io.hpp"
@@ -66,9 +67,11 @@ Primitive tessellatedPart(double radius, int segments, std::mt19937& random) {
     const double start = 2 * M_PI * slide(random);
     for (int r = 1; r < kRings; ++r) {
         rings.emplace_back();
-        for (int s = 0; s < segments; ++s)
+        for (int s = 0; s < segments; ++s) {
+            const double azimuthSlide = slide(random), polarSlide = slide(random);  // in this order (drawnVector)
             rings.back().push_back(
-                add(M_PI * (r + slide(random)) / kRings, start + 2 * M_PI * (s + slide(random)) / segments));
+                add(M_PI * (r + polarSlide) / kRings, start + 2 * M_PI * (s + azimuthSlide) / segments));
+        }
     }
     const std::uint32_t south = add(M_PI, 0);
     std::bernoulli_distribution diagonal(0.5);
@@ -102,10 +105,10 @@ Scene copiesTessellatedApart(bool withNormals) {
         // 32 to 52 azimuths: no two copies have the same number of triangles.
         Primitive part = tessellatedPart(k == kCopies ? 0.53 : k == kCopies + 1 ? 0.75 : 0.5, 32 + 4 * (k % 6), random);
         if (!withNormals) part.normals.clear();
-        const Eigen::Matrix3d turn =
-            (Eigen::AngleAxisd(angle(random), Eigen::Vector3d(1, 2, 3).normalized()) *
-             Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitZ()))
-                .toRotationMatrix();
+        const double second = angle(random), first = angle(random);  // in this order (drawnVector)
+        const Eigen::Matrix3d turn = (Eigen::AngleAxisd(first, Eigen::Vector3d(1, 2, 3).normalized()) *
+                                      Eigen::AngleAxisd(second, Eigen::Vector3d::UnitZ()))
+                                         .toRotationMatrix();
         const Eigen::Vector3d at(3.0 * (k % 4), 3.0 * (k / 4), 0);
         scene.meshes.push_back({});
         scene.meshes.back().primitives.push_back(transformPrimitive(part, [&] {
@@ -146,7 +149,7 @@ Primitive pointsOnSphere(unsigned seed) {
     Primitive points;
     for (int i = 0; i < 300; ++i)
         points.positions.push_back(Eigen::Vector3d(10, -4, 2) +
-                                   3 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized());
+                                   3 * samples::drawnVector([&] { return normal(random); }).normalized());
     for (std::uint32_t i = 0; i + 2 < 300; i += 3) points.triangles.push_back({i, i + 1, i + 2});
     return points;
 }

@@ -1,9 +1,10 @@
 // Fundamental regions of tiles with known symmetry groups: the copies of the region must rebuild the tile
 // (area, coverage both ways, orientation), attributes must be interpolated at the cuts, and seams must
 // survive quantization where the frame makes that possible.
+#include "sample_scenes.hpp"
+#include "signed_permutation_groups.hpp"
 #include "symcompress/detail/fundamental_region.hpp"
 #include "symcompress/scene_ops.hpp"
-#include "signed_permutation_groups.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -166,9 +167,9 @@ Placement randomPlacement(std::uint64_t seed) {
     std::mt19937_64 generator(seed);
     std::normal_distribution<double> gaussian;
     std::uniform_real_distribution<double> uniform(-5, 5);
-    const Eigen::Quaterniond q(gaussian(generator), gaussian(generator), gaussian(generator), gaussian(generator));
+    const Eigen::Quaterniond q = samples::drawnQuaternion([&] { return gaussian(generator); });
     return {q.normalized().toRotationMatrix(), 0.5 + std::abs(uniform(generator)) / 2,
-            Eigen::Vector3d(uniform(generator), uniform(generator), uniform(generator))};
+            samples::drawnVector([&] { return uniform(generator); })};
 }
 
 Eigen::Vector2d texcoordAt(const Eigen::Vector3d& x) {

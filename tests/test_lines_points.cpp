@@ -1,5 +1,6 @@
 // Lines and points: read from glTF, OBJ and PLY, kept as they are through the compressor (not tiled), written to
 // glTF with their modes, and verified by symdecompress (in number, and within the budget of each other).
+#include "sample_scenes.hpp"
 #include "symcompress/compress.hpp"
 #include "symcompress/detail/solids.hpp"
 #include "symcompress/io.hpp"
@@ -316,9 +317,7 @@ TEST_CASE("Lines and points: a part's edges kept apart, its faces still found co
     for (int copy = 0; copy < 12; ++copy) {
         Eigen::Matrix4d placement = Eigen::Matrix4d::Identity();
         placement.topLeftCorner<3, 3>() =
-            Eigen::Quaterniond(
-                Eigen::Vector4d(normal(random), normal(random), normal(random), normal(random)).normalized())
-                .toRotationMatrix();
+            Eigen::Quaterniond(samples::drawnVector4([&] { return normal(random); }).normalized()).toRotationMatrix();
         placement.topRightCorner<3, 1>() = Eigen::Vector3d(4.0 * copy, 0, 0);
         Mesh& mesh = scene.meshes.emplace_back();
         mesh.primitives = {transformPrimitive(surface, placement), transformPrimitive(edges, placement)};
@@ -358,7 +357,7 @@ Primitive randomCloud(std::size_t count) {
     std::mt19937 random(11);
     std::uniform_real_distribution<double> unit(-1, 1);
     for (std::size_t i = 0; i < count; ++i)
-        cloud.positions.emplace_back(10 + unit(random), 20 + unit(random), 30 + unit(random));
+        cloud.positions.push_back(Eigen::Vector3d(10, 20, 30) + samples::drawnVector([&] { return unit(random); }));
     return cloud;
 }
 
@@ -507,8 +506,9 @@ TEST_CASE(
     std::uniform_real_distribution<double> unit(0, 1);
     std::normal_distribution<double> normal;
     for (std::size_t v = 0; v < cloud.positions.size(); ++v) {
-        cloud.colors.emplace_back(unit(random), unit(random), unit(random), 1);
-        cloud.normals.push_back(Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized());
+        const Eigen::Vector3d rgb = samples::drawnVector([&] { return unit(random); });
+        cloud.colors.emplace_back(rgb.x(), rgb.y(), rgb.z(), 1);
+        cloud.normals.push_back(samples::drawnVector([&] { return normal(random); }).normalized());
     }
     TemporaryFolder folder;
     writeInput(cloud, folder / "cloud.glb");

@@ -181,8 +181,8 @@ TEST_CASE("meshopt's colour filter decodes as meshoptimizer's own decoder does",
         const double largest = stride == 4 ? 255 : 65535;
         double worst = 0, worstFromColor = 0;
         for (std::size_t i = 0; i < 4 * count; ++i) {
-            auto component = [&](const std::vector<unsigned char>& bytes) {
-                if (stride == 4) return double(bytes[i]);
+            auto component = [&, wide = stride == 8](const std::vector<unsigned char>& bytes) {
+                if (!wide) return double(bytes[i]);
                 std::uint16_t value;
                 std::memcpy(&value, bytes.data() + 2 * i, 2);
                 return double(value);

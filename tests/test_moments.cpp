@@ -23,7 +23,7 @@ constexpr double kPi = 3.14159265358979323846;
 Eigen::Vector3d randomDirection(std::mt19937_64& random) {
     std::normal_distribution<double> normal;
     Eigen::Vector3d w;
-    do w = Eigen::Vector3d(normal(random), normal(random), normal(random));
+    do w = samples::drawnVector([&] { return normal(random); });
     while (w.norm() < 1e-3);
     return w.normalized();
 }
@@ -280,7 +280,7 @@ TEST_CASE("The congruence descriptor is invariant under isometries and tells mod
     std::uniform_real_distribution<double> uniform(-10, 10);
     for (int trial = 0; trial < 10; ++trial) {
         const Eigen::Matrix3d q = randomOrthogonal(random, trial % 2 == 1);
-        const TriangleMesh moved = transformed(mesh, q, Eigen::Vector3d(uniform(random), uniform(random), uniform(random)));
+        const TriangleMesh moved = transformed(mesh, q, samples::drawnVector([&] { return uniform(random); }));
         // Retessellated as well: congruent tiles need not share their triangles.
         const CongruenceDescriptor other = computeCongruenceDescriptor(computeMomentCoefficients(moved, options));
         CHECK(descriptorDifference(reference, other) < 1e-10);

@@ -499,7 +499,8 @@ TEST_CASE(
     for (int i = 0; i < 9; ++i)
         for (int j = 0; j < 9; ++j) {
             sheet.positions.push_back({i / 8.0 + jitter(random), j / 8.0 + jitter(random), jitter(random)});
-            sheet.normals.push_back(Eigen::Vector3d(jitter(random), jitter(random), 1).normalized());
+            const double y = jitter(random), x = jitter(random);  // in this order (samples::drawnVector)
+            sheet.normals.push_back(Eigen::Vector3d(x, y, 1).normalized());
         }
     for (std::uint32_t i = 0; i < 8; ++i)
         for (std::uint32_t j = 0; j < 8; ++j) {

@@ -1,5 +1,6 @@
-#include "symcompress/tiles.hpp"
+#include "sample_scenes.hpp"
 #include "symcompress/detail/weld_positions.hpp"
+#include "symcompress/tiles.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -44,8 +45,8 @@ TEST_CASE("weldPositions agrees with brute force on random clusters", "[tiles]")
     std::uniform_real_distribution<double> coordinate(-5, 5), jitter(-1e-4, 1e-4);
     std::vector<Eigen::Vector3d> points;
     for (int cluster = 0; cluster < 200; ++cluster) {
-        const Eigen::Vector3d centre(coordinate(random), coordinate(random), coordinate(random));
-        for (int k = 0; k < 4; ++k) points.push_back(centre + Eigen::Vector3d(jitter(random), jitter(random), jitter(random)));
+        const Eigen::Vector3d centre = samples::drawnVector([&] { return coordinate(random); });
+        for (int k = 0; k < 4; ++k) points.push_back(centre + samples::drawnVector([&] { return jitter(random); }));
     }
     const double tolerance = 1e-3;  // clusters are far apart and tight: each must become one vertex
     const auto welded = weldPositions(points, tolerance);

@@ -1,3 +1,4 @@
+#include "sample_scenes.hpp"
 #include "symcompress/detail/triangulate_polygon.hpp"
 
 #include <catch2/catch.hpp>
@@ -76,8 +77,8 @@ TEST_CASE("triangulatePolygon handles convex and concave polygons in any orienta
         for (int trial = 0; trial < 5; ++trial) {
             Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
             placement.linear() =
-                Eigen::Quaterniond(uniform(random), uniform(random), uniform(random), uniform(random)).normalized().toRotationMatrix();
-            placement.translation() = Eigen::Vector3d(uniform(random), uniform(random), uniform(random)) * 10;
+                samples::drawnQuaternion([&] { return uniform(random); }).normalized().toRotationMatrix();
+            placement.translation() = samples::drawnVector([&] { return uniform(random); }) * 10;
             INFO("polygon of " << polygon.size() << " corners, trial " << trial);
             checkTriangulation(polygon, placement);
         }

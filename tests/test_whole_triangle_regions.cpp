@@ -278,7 +278,7 @@ TEST_CASE(
     std::uniform_real_distribution<double> noise(-1e-7, 1e-7);
     Primitive tile = exact;
     for (Eigen::Vector3d& p : tile.positions)
-        p = centre + turn * p + Eigen::Vector3d(noise(generator), noise(generator), noise(generator));
+        p = centre + turn * p + samples::drawnVector([&] { return noise(generator); });
     std::vector<Eigen::Matrix3d> group;
     for (const Eigen::Matrix3d& g : groupOh()) group.push_back(turn * g * turn.transpose());
 
@@ -344,8 +344,7 @@ TEST_CASE(
     Primitive rounded = geodesicSphere(2);
     std::mt19937_64 generator(9);
     std::uniform_real_distribution<double> noise(-5e-6 / std::sqrt(3.0), 5e-6 / std::sqrt(3.0));
-    for (Eigen::Vector3d& p : rounded.positions)
-        p += Eigen::Vector3d(noise(generator), noise(generator), noise(generator));
+    for (Eigen::Vector3d& p : rounded.positions) p += samples::drawnVector([&] { return noise(generator); });
     const std::vector<Eigen::Matrix3d> ih = icosahedralGroup();
     std::vector<Eigen::Matrix3d> rotations;  // D5, which fixes no triangle
     for (const std::vector<std::size_t>& h : subgroupsOf(ih, 1e-9)) {
