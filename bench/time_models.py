@@ -1,6 +1,6 @@
-# Times each shared model, and any file given after --, compressed to GLB by each symcompress binary given (the
-# faster of two runs), to compare two builds. Prints a markdown table.
-# Usage: python3 bench/time_models.py BINARY... [-- FILE...]
+# Times each shared model, and any file given after --, compressed to GLB (or to X3D, with --to x3d) by each
+# symcompress binary given (the faster of two runs), to compare two builds. Prints a markdown table.
+# Usage: python3 bench/time_models.py [--to glb|x3d] BINARY... [-- FILE...]
 import glob
 import os
 import subprocess
@@ -9,6 +9,9 @@ import tempfile
 import time
 
 args = sys.argv[1:]
+extension = "glb"
+if args[:1] == ["--to"]:
+    extension, args = args[1], args[2:]
 binaries = args[: args.index("--")] if "--" in args else args
 extra = args[args.index("--") + 1 :] if "--" in args else []
 shared = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "models")
@@ -19,7 +22,7 @@ totals = [0.0] * len(binaries)
 print("| input | " + " | ".join(binaries) + " |")
 print("| --- |" + " ---: |" * len(binaries))
 with tempfile.TemporaryDirectory() as folder:
-    output = os.path.join(folder, "out.glb")
+    output = os.path.join(folder, "out." + extension)
     for model in models:
         row = []
         for k, binary in enumerate(binaries):
