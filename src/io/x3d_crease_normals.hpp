@@ -15,7 +15,7 @@ namespace symcompress {
 // so a point where many faces lie in one plane (a fan, a grid) is summed once per plane rather than once per face.
 class NormalsAtPoints {
 public:
-    // From every (point, unit normal of a face at it) pair, a face once at a point.
+    // From (point, unit normal) pairs, one for each face at each point.
     NormalsAtPoints(std::size_t pointCount, const std::vector<std::pair<std::uint32_t, Eigen::Vector3d>>& incidences);
 
     // The sum of the normals at `point` that turn by less than the crease angle from `own` (its cosine), `own`
