@@ -117,14 +117,13 @@ std::pair<std::vector<double>, std::vector<std::int64_t>> creasedNormals(
 
 bool creasedNormalsMatch(const std::vector<std::vector<std::int64_t>>& faces, const std::vector<double>& points,
                          const std::vector<Eigen::Vector3d>& cornerNormals, double creaseAngle) {
-    constexpr double kMatch = 3.5e-3;
     std::size_t corners = 0;
     for (const auto& face : faces) corners += face.size();
     if (corners != cornerNormals.size()) return false;
     // Stops at the first corner that differs: most angles tried fail at once.
     return visitCreasedNormals(faces, points, creaseAngle, true,
                                [&](std::size_t corner, const Eigen::Vector3d* normal) {
-                                   return normal && (*normal - cornerNormals[corner]).norm() <= kMatch;
+                                   return normal && (*normal - cornerNormals[corner]).norm() <= kCreasedNormalMatch;
                                });
 }
 

@@ -36,9 +36,12 @@ std::pair<std::vector<double>, std::vector<std::int64_t>> creasedNormals(
     const std::vector<std::vector<std::int64_t>>& faces, const std::vector<double>& points, double creaseAngle,
     bool ccw);
 
+// How far a browser's normal may lie from the one a corner has and still be its normal: about what Draco's 10-bit
+// normals move a normal by in GLB output (0.2 degrees).
+constexpr double kCreasedNormalMatch = 3.5e-3;
+
 // Whether creasedNormals at `creaseAngle` gives every corner the normal it has (`cornerNormals`, one per
-// corner in face order, ccw faces), within 3.5e-3: about what Draco's 10-bit normals move a normal by in GLB
-// output (0.2 degrees).
+// corner in face order, ccw faces), within kCreasedNormalMatch.
 bool creasedNormalsMatch(const std::vector<std::vector<std::int64_t>>& faces, const std::vector<double>& points,
                          const std::vector<Eigen::Vector3d>& cornerNormals, double creaseAngle);
 

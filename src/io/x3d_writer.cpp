@@ -102,7 +102,7 @@ std::optional<std::vector<std::uint32_t>> pointsOfVertices(const Primitive& prim
                                                            std::vector<std::uint32_t>& vertexOfPoint) {
     const double cosCrease = std::cos(std::min(creaseAngle, M_PI));
     auto matches = [&](std::uint32_t v, const Eigen::Vector3d& sum) {
-        return (sum.normalized() - primitive.normals[v]).norm() < 3.5e-3;
+        return (sum.normalized() - primitive.normals[v]).norm() < kCreasedNormalMatch;
     };
     // As one point: each corner's normal is the mean of the faces of the group within the angle of its own.
     auto asOne = [&](std::size_t group) {
