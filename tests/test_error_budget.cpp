@@ -511,6 +511,48 @@ TEST_CASE("Where whole bits keep the corners well within the bound, a coarser gr
     CHECK(!coarserPositionGrid(points, tight, 12));
 }
 
+TEST_CASE("A scene a hundred-millionth or a millionth across verifies within the budget", "[budget][compress]") {
+    // Draco keeps an explicit grid's origin and range as six decimals: the coarser grid of a scene 1e-8 across
+    // decoded every corner to one point, one 1e-6 across came out 1.1 times the budget.
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    for (const double scale : {1e-8, 1e-6}) {
+        INFO("scale " << scale);
+        // Four L-shaped parts (a cube and a flat box through its side), baked in one primitive.
+        Primitive parts;
+        auto addBox = [&](const Eigen::Vector3d& center, const Eigen::Vector3d& size) {
+            const auto first = std::uint32_t(parts.positions.size());
+            for (int i = 0; i < 8; ++i) {
+                const Eigen::Vector3d corner(i & 1, (i >> 1) & 1, i >> 2);
+                parts.positions.push_back(scale * (center + (corner.array() - 0.5).matrix().cwiseProduct(size)));
+            }
+            for (const Triangle& t : std::vector<Triangle>{{0, 2, 1},
+                                                           {1, 2, 3},
+                                                           {4, 5, 6},
+                                                           {5, 7, 6},
+                                                           {0, 1, 4},
+                                                           {1, 5, 4},
+                                                           {2, 6, 3},
+                                                           {3, 6, 7},
+                                                           {0, 4, 2},
+                                                           {2, 4, 6},
+                                                           {1, 3, 5},
+                                                           {3, 7, 5}})
+                parts.triangles.push_back({first + t[0], first + t[1], first + t[2]});
+        };
+        for (int k = 0; k < 4; ++k) {
+            addBox(Eigen::Vector3d(3 * k, 0, 0), Eigen::Vector3d(1, 1, 1));
+            addBox(Eigen::Vector3d(3 * k + 0.75, 0.25, 0), Eigen::Vector3d(0.5, 0.5, 0.3));
+        }
+        writeScene(sceneOf(parts), folder / "small.glb", plain);
+        compressFile(folder / "small.glb", folder / "out.glb", CompressOptions{});
+        const RebuildReport rebuilt = decompressFile(folder / "out.glb", folder / "flat.glb", folder / "small.glb");
+        CHECK(rebuilt.verified);
+        CHECK(rebuilt.areaRatio == Approx(1).epsilon(1e-3));
+    }
+}
+
 TEST_CASE(
     "A corner's move is measured to what float32 tells apart: a bound a fraction of a unit in the last place "
     "below the move keeps the bits, a whole unit below does not",

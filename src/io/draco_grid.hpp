@@ -2,6 +2,11 @@
 // grid where it has one (Primitive::positionGrid), else the box of its triangles' corners with its largest
 // side cut into 2^bits - 1 steps. The writer asks it which bits keep the corners within a bound and which
 // triangles edgebreaker would drop.
+//
+// An explicit grid reaches Draco's encoder as text: ExpertEncoder::SetAttributeExplicitQuantization keeps origin
+// and range in draco::Options, which print them with std::to_string, six decimals (libdraco 1.5.5). A grid is
+// taken here as Draco reads it back: on a scene 1e-7 across a range reads as 0 and every corner decodes to the
+// origin; at 1e-5 the range grows by a tenth.
 #pragma once
 
 #include "symcompress/scene.hpp"
@@ -13,7 +18,10 @@ namespace symcompress {
 class DracoGrid {
 public:
     DracoGrid(const Primitive& primitive, int bits);
-    explicit DracoGrid(const QuantizationGrid& grid);
+    explicit DracoGrid(const QuantizationGrid& grid);  // as Draco reads it back
+
+    // Whether every corner of the primitive's triangles lies within the grid's levels on a grid of some extent.
+    bool holds(const Primitive& primitive) const;
 
     // The grid as an explicit quantization: the box's corner, its largest side, the bits.
     QuantizationGrid explicitGrid() const;

@@ -32,7 +32,8 @@ double largestQuantizationError(const Primitive& primitive, const DracoGrid& gri
                 squared += error * error;
             }
             const double unresolved = p.cwiseAbs().maxCoeff() * std::ldexp(1.0, -24);  // half a float32 ulp
-            largest = std::max(largest, std::sqrt(squared) - unresolved);
+            const double moved = std::sqrt(squared) - unresolved;
+            if (!(moved <= largest)) largest = std::isnan(moved) ? HUGE_VAL : moved;
         }
     return std::max(largest, 0.0);
 }
@@ -106,7 +107,9 @@ std::optional<QuantizationGrid> coarserPositionGrid(const Primitive& primitive, 
         QuantizationGrid coarser = own;
         coarser.range = double(float(own.range * std::exp2(k / 8.0)));
         const DracoGrid grid(coarser);
-        if (largestQuantizationError(primitive, grid) <= bound && !collapsesTriangles(primitive, grid)) return coarser;
+        if (grid.holds(primitive) && largestQuantizationError(primitive, grid) <= bound &&
+            !collapsesTriangles(primitive, grid))
+            return coarser;
     }
     return std::nullopt;
 }
