@@ -160,6 +160,31 @@ TEST_CASE("dropUnreadAttributes keeps texture coordinates only where a texture r
     validateScene(scene);
 }
 
+TEST_CASE("dropUnreadAttributes keeps an unread set of texture coordinates below one a texture reads", "[scene]") {
+    // glTF numbers the sets without a gap: a normal map on TEXCOORD_1 needs TEXCOORD_0 beside it (the validator's
+    // MESH_PRIMITIVE_INDEXED_SEMANTIC_CONTINUITY), read or not. Sets above it go.
+    Primitive textured = unitTriangle();
+    textured.texcoords = {{0, 0}, {1, 0}, {0, 1}};
+    for (const char* name : {"TEXCOORD_1", "TEXCOORD_2", "TEXCOORD_3"})
+        textured.attributes.push_back({name, 2, {0, 0, 1, 0, 0, 1}});
+    Scene scene;
+    scene.textures.resize(1);
+    scene.textures[0].bytes = {0x89, 'P', 'N', 'G'};
+    scene.materials.resize(1);
+    scene.materials[0].normalTexture.texture = 0;
+    scene.materials[0].normalTexture.texCoord = 1;
+    Mesh mesh;
+    mesh.primitives.push_back(textured);
+    mesh.primitives.back().material = 0;
+    scene.meshes.push_back(mesh);
+    CHECK(dropUnreadAttributes(scene) == 1);
+    const Primitive& kept = scene.meshes[0].primitives[0];
+    CHECK(kept.texcoords == textured.texcoords);
+    REQUIRE(kept.attributes.size() == 1);
+    CHECK(kept.attributes[0].name == "TEXCOORD_1");
+    validateScene(scene);
+}
+
 TEST_CASE("dropUnreadAttributes drops tangents no normal map reads, from morph targets too", "[scene]") {
     Primitive morphed = unitTriangle();
     morphed.attributes.push_back({"TANGENT", 4, {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}});

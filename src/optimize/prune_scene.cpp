@@ -10,13 +10,6 @@ namespace symcompress {
 
 namespace {
 
-// Whether a texture of the material reads TEXCOORD_<set>.
-bool readsTexcoords(const Material& material, int set) {
-    for (const TextureRef* use : material.textureRefs())
-        if (use->texture >= 0 && use->texCoordSet() == set) return true;
-    return false;
-}
-
 // Whether the material's shading reads tangents: a normal map (core or clear-coat's) or anisotropy.
 bool readsTangents(const Material& material) {
     if (material.normalTexture.texture >= 0) return true;
@@ -139,13 +132,17 @@ std::size_t dropUnreadAttributes(Scene& scene) {
         for (Primitive& primitive : mesh.primitives) {
             // Read by the material under any of its variants.
             const std::vector<const Material*> materials = materialsDrawnWith(scene, primitive.material);
+            // glTF numbers the sets without a gap (TEXCOORD_1 needs TEXCOORD_0): an unread set below one that is
+            // read stays.
+            int highestRead = -1;
+            for (const Material* m : materials)
+                for (const TextureRef* use : m->textureRefs())
+                    if (use->texture >= 0) highestRead = std::max(highestRead, use->texCoordSet());
             const auto unread = [&](const VertexAttribute& attribute) {
                 if (attribute.name == "TANGENT")
                     return std::none_of(materials.begin(), materials.end(),
                                         [](const Material* m) { return readsTangents(*m); });
-                const int set = texcoordSet(attribute.name);
-                return set >= 0 && std::none_of(materials.begin(), materials.end(),
-                                                [&](const Material* m) { return readsTexcoords(*m, set); });
+                return texcoordSet(attribute.name) > highestRead;
             };
             bool any = false;
             if (!primitive.texcoords.empty() && unread({"TEXCOORD_0", 2, {}})) {
