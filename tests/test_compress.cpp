@@ -1396,3 +1396,49 @@ TEST_CASE("Groups the scene's symmetry needs are detected, small or not: the roo
     CHECK(skipped == 0);
     CHECK(asked == all);
 }
+
+TEST_CASE("What a file names and notes comes out with it: the root's extras, a part's mesh name and extras",
+          "[compress]") {
+    // A part drawn by three nodes, turned: too small for a node per copy to pay (stored as it is, merged), or
+    // large enough (one stored copy).
+    const bool large = GENERATE(false, true);
+    INFO((large ? "large" : "small"));
+    std::mt19937_64 random(11);
+    Scene scene;
+    scene.meshes.push_back({});
+    scene.meshes[0].name = "bracket";
+    scene.meshes[0].extrasJson = R"({"part":7})";
+    scene.meshes[0].primitives.emplace_back();
+    samples::appendMesh(scene.meshes[0].primitives[0],
+                        large ? samples::unevenEllipsoid(48, 3) : samples::randomConvexPart(random));
+    for (int k = 0; k < 3; ++k) {
+        Node node;
+        node.mesh = 0;
+        node.transform.topLeftCorner<3, 3>() = samples::randomRotation(random);
+        node.transform.topRightCorner<3, 1>() = Eigen::Vector3d(5.0 * k, 0, 0);
+        scene.roots.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(node);
+    }
+    scene.rootExtrasJson = R"({"project":"mill"})";
+    TemporaryFolder folder;
+    WriteOptions plain;
+    plain.draco = false;
+    writeScene(scene, folder / "in.glb", plain);
+    const CompressionReport report = compressFile(folder / "in.glb", folder / "out.glb", CompressOptions{});
+    CHECK(report.stats.instances == (large ? 3 : 0));
+    const nlohmann::json out = glbJson(folder / "out.glb");
+    CHECK(out["extras"]["project"] == "mill");
+    REQUIRE(out["meshes"].size() == 1);
+    CHECK(out["meshes"][0]["name"] == "bracket");
+    CHECK(out["meshes"][0]["extras"]["part"] == 7);
+    CHECK(decompressFile(folder / "out.glb", folder / "flat.glb", folder / "in.glb").verified);
+}
+
+TEST_CASE("A scene of nothing writes no empty node list, which glTF does not allow", "[io]") {
+    TemporaryFolder folder;
+    writeScene(Scene{}, folder / "empty.glb", WriteOptions{});
+    const nlohmann::json empty = glbJson(folder / "empty.glb");
+    REQUIRE(empty["scenes"].size() == 1);
+    CHECK(!empty["scenes"][0].contains("nodes"));
+    if (interopAvailable()) CHECK(validatorErrors(folder / "empty.glb").empty());
+}

@@ -354,6 +354,7 @@ struct Scene {
     std::string copyright;        // glTF's asset.copyright; X3D's meta tag named "copyright"
     std::string name;             // glTF: the scene's name
     std::string sceneExtrasJson;  // glTF: the scene's extras (JSON text), empty for none
+    std::string rootExtrasJson;   // glTF: the extras of the file's root object (JSON text), empty for none
     // glTF extensions of the file, its asset and its scene passed through as read (an extensions object as JSON
     // text, empty for none): those whose indices name only what the file's own object of them holds
     // (KHR_xmp_json_ld's packets; kPassedThroughExtensions).

@@ -506,9 +506,11 @@ Scene GltfReader::read() {
         if (!passedThroughExtensions(model_.meshes[m].extensions_json_string).empty())
             warnAbout("mesh " + std::to_string(m) +
                       ": its KHR_xmp_json_ld metadata not kept (meshes are rebuilt from their tiles)");
-        for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p)
-            readPrimitive(model_.meshes[m].primitives[p], mesh, scene,
-                          "mesh " + std::to_string(m) + " primitive " + std::to_string(p));
+        for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p) {
+            const std::string where = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+            readPrimitive(model_.meshes[m].primitives[p], mesh, scene, where);
+            if (!extrasOf(model_.meshes[m].primitives[p].extras_json_string).empty()) ++primitivesWithExtras_;
+        }
         mesh.weights = model_.meshes[m].weights;
         keepConsistentMorphTargets(mesh, "mesh " + std::to_string(m));
         scene.meshes.push_back(std::move(mesh));
@@ -544,6 +546,7 @@ Scene GltfReader::read() {
     }
     readCamerasAndLights(scene);
     expandGpuInstances(scene);
+    scene.rootExtrasJson = extrasOf(model_.extras_json_string);
     const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (sceneIndex < static_cast<int>(model_.scenes.size())) {
         scene.name = model_.scenes[sceneIndex].name;
@@ -563,6 +566,9 @@ Scene GltfReader::read() {
     readSkins(scene);
     readAnimations(scene);
     for (const auto& [mode, count] : skippedModes_) warnAbout(std::to_string(count) + " " + mode + " skipped");
+    if (primitivesWithExtras_ > 0)
+        warnAbout("the extras of " + std::to_string(primitivesWithExtras_) +
+                  " primitives not kept (primitives are cut into tiles and joined)");
     for (const std::string& warning : warnings_) scene.warnings.push_back(file_.filename().string() + ": " + warning);
     return scene;
 }

@@ -116,6 +116,7 @@ private:
     const tinygltf::Model& model_;
     std::set<std::string> warnings_;
     std::map<std::string, int> skippedModes_;
+    std::size_t primitivesWithExtras_ = 0;
     std::map<int, int> textureOfGltfTexture_;  // glTF texture -> scene texture (-1: none)
     std::set<std::string> materialExtensions_;  // the names of the extensions kept on materials
     std::map<std::pair<int, std::vector<int>>, int> materialWithVariants_;  // (default, table) -> scene material

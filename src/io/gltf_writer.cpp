@@ -774,12 +774,15 @@ GltfFile buildGltf(const Scene& scene, const fs::path& file, const WriteOptions&
     writeGpuBatches(gpu, scene, meshIndex, builder, root);
     if (!gpu.batches.empty()) extensions.add("EXT_mesh_gpu_instancing", true);
     for (Json& node : extraNodes) root["nodes"].push_back(std::move(node));
-    root["scenes"] = {{{"nodes", numbering.list(scene.roots)}}};
+    // A scene of no nodes leaves them out: glTF's `nodes`, where given, holds one at least.
+    root["scenes"] = Json::array({Json::object()});
+    if (!scene.roots.empty()) root["scenes"][0]["nodes"] = numbering.list(scene.roots);
     if (!scene.name.empty()) root["scenes"][0]["name"] = scene.name;
     putExtras(root["scenes"][0], scene.sceneExtrasJson);
     putPassedExtensions(root["scenes"][0], scene.sceneExtensionsJson, extensions);
     putPassedExtensions(root["asset"], scene.assetExtensionsJson, extensions);
     putPassedExtensions(root, scene.extensionsJson, extensions);
+    putExtras(root, scene.rootExtrasJson);
     root["scene"] = 0;
     // Animations and skins name nodes that are never batched, renumbered as the nodes are.
     // Their key values rounded within the budget where meshopt's filters can hold them.

@@ -389,6 +389,7 @@ void copyFileMetadata(const Scene& from, Scene& to) {
     to.copyright = from.copyright;
     to.name = from.name;
     to.sceneExtrasJson = from.sceneExtrasJson;
+    to.rootExtrasJson = from.rootExtrasJson;
     to.extensionsJson = from.extensionsJson;
     to.assetExtensionsJson = from.assetExtensionsJson;
     to.sceneExtensionsJson = from.sceneExtensionsJson;

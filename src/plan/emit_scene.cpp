@@ -264,11 +264,14 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     for (const FramedTiles& group : plan.framedTiles)
         for (std::size_t t : group.tiles) framed[t] = group.node >= 0 ? 1 : 2;
     for (const WorldPrimitive& placed : analysis.zeroArea) unique.add(placed.primitive);
+    std::vector<std::size_t> uniqueTiles;
     for (std::size_t t : plan.tilesAsTheyAre) {
         if (framed[t] == 1) continue;
         if (const Node* source = sourceNode(input, analysis, t); source && hasNodeNotes(*source))
             addByNotes(merged, *source);
-        if (!framed[t]) unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
+        if (framed[t]) continue;
+        unique.add(tilePrimitive(analysis.tiles[t], analysis.soup));
+        uniqueTiles.push_back(t);
     }
     // The tiles stored as they are share one mesh per material, drawn by one node (or one per turn of their
     // nodes, below): it takes the name, extras and extensions of the node its tiles came from when that is a single
@@ -278,6 +281,8 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     if (!unique.empty()) {
         Mesh mesh;
         unique.moveInto(mesh);
+        if (const Mesh* source = commonSourceMesh(input, analysis, uniqueTiles); source && analysis.zeroArea.empty())
+            mesh.name = source->name, mesh.extrasJson = source->extrasJson;
         const Eigen::Matrix4d offset = centredIfFar(mesh, budget);
         out.meshes.push_back(std::move(mesh));
         addRootNode(out, int(out.meshes.size()) - 1, offset, merged.size() == 1 ? merged.begin()->second : nullptr);

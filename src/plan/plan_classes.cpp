@@ -310,7 +310,14 @@ void planClass(const PlanContext& context, std::size_t k, const CongruenceClass&
     // its aligned frame, also about the centroid (see RegionFrame::Aligned); a lighter stand-in about its own.
     SharedPart shared;
     shared.mechanism = useRegion ? SharedPart::Mechanism::Region : SharedPart::Mechanism::Class;
-    shared.mesh.name = "class " + std::to_string(k) + (useRegion ? " (fundamental region)" : "");
+    std::vector<std::size_t> placedTiles;
+    for (std::size_t i : placed) placedTiles.push_back(c.members[i]);
+    if (const Mesh* source = commonSourceMesh(context.input, analysis, placedTiles)) {
+        shared.mesh.name = source->name;
+        shared.mesh.extrasJson = source->extrasJson;
+    } else {
+        shared.mesh.name = "class " + std::to_string(k) + (useRegion ? " (fundamental region)" : "");
+    }
     Primitive local = useRegion ? region->region : prototype;
     Eigen::Vector3d storedAbout = center;
     if (!useRegion)

@@ -17,6 +17,18 @@ const Node* sourceNode(const Scene& input, const SceneAnalysis& analysis, std::s
     return node >= 0 && std::size_t(node) < input.nodes.size() ? &input.nodes[std::size_t(node)] : nullptr;
 }
 
+const Mesh* commonSourceMesh(const Scene& input, const SceneAnalysis& analysis, const std::vector<std::size_t>& tiles) {
+    int mesh = -1;
+    for (std::size_t t : tiles) {
+        const Node* source = sourceNode(input, analysis, t);
+        if (!source || source->mesh < 0 || (mesh >= 0 && source->mesh != mesh)) return nullptr;
+        mesh = source->mesh;
+    }
+    if (mesh < 0) return nullptr;
+    const Mesh& found = input.meshes[std::size_t(mesh)];
+    return found.name.empty() && found.extrasJson.empty() ? nullptr : &found;
+}
+
 bool PlanContext::reproduces(std::size_t from, std::size_t to, const Isometry& map, double* deviation) const {
     const bool reproduced = symcompress::reproduces(tilePrimitive(analysis.tiles[from], analysis.soup),
                                                     tilePrimitive(analysis.tiles[to], analysis.soup), map,

@@ -14,6 +14,9 @@ namespace symcompress {
 // The input node that draws tile t (nullptr when it has none): instance nodes keep its name and extras.
 const Node* sourceNode(const Scene& input, const SceneAnalysis& analysis, std::size_t t);
 
+// The input mesh all the tiles came from, if one, with a name or extras: the mesh storing them keeps those.
+const Mesh* commonSourceMesh(const Scene& input, const SceneAnalysis& analysis, const std::vector<std::size_t>& tiles);
+
 // What every planner reads.
 struct PlanContext {
     const Scene& input;
