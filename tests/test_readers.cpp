@@ -153,6 +153,23 @@ TEST_CASE("Each kind of bad input gives one clear error naming the file", "[io][
     }
 }
 
+TEST_CASE("PLY and X3D files that start with a byte order mark are read", "[io]") {
+    TemporaryFolder folder;
+    const std::string bom = "\xEF\xBB\xBF";
+    writeTextFile(folder / "part.ply",
+                  bom +
+                      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    CHECK(sceneStatistics(readScene(folder / "part.ply")).trianglesDrawn == 1);
+    writeTextFile(folder / "part.x3d",
+                  bom +
+                      "<?xml version='1.0' encoding='UTF-8'?>\n<X3D><Scene><Shape>"
+                      "<IndexedFaceSet coordIndex='0 1 2 -1'><Coordinate point='0 0 0 1 0 0 0 1 0'/>"
+                      "</IndexedFaceSet></Shape></Scene></X3D>\n");
+    CHECK(sceneStatistics(readScene(folder / "part.x3d")).trianglesDrawn == 1);
+}
+
 TEST_CASE("Node animations are read and written back, and channels the scene cannot hold are left out with a warning",
           "[io]") {
     SECTION("the milk truck's turning wheels, through convert") {
