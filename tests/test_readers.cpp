@@ -142,6 +142,13 @@ TEST_CASE("Each kind of bad input gives one clear error naming the file", "[io][
                     "truncated");
     }
     SECTION("truncated binary STL") { expectError("truncated.stl", std::string(80, ' ') + std::string("\x05\0\0\0", 4), "truncated"); }
+    SECTION("binary data as OBJ") {
+        expectError("binary.obj", std::string("\x8f\x13v\0\xff 1 2\n\x01\0\0f", 14), "not an OBJ text file");
+    }
+    SECTION("text that is no OBJ") { expectError("text.obj", "Dear reader,\nthis is a letter.\n", "not an OBJ file"); }
+    SECTION("OBJ vertex of 5 numbers") {
+        expectError("five.obj", "v 0 0 0\nv 1 0 0 1 0\nv 0 1 0\nf 1 2 3\n", "a vertex of 5 numbers");
+    }
     SECTION("a directory") {
         std::filesystem::create_directory(folder / "folder.glb");
         try {
@@ -151,6 +158,74 @@ TEST_CASE("Each kind of bad input gives one clear error naming the file", "[io][
             CHECK_THAT(error.what(), Catch::Contains("folder.glb") && Catch::Contains("directory"));
         }
     }
+}
+
+TEST_CASE("OBJ and MTL: a byte order mark, comments after a statement and continued lines are read", "[io]") {
+    TemporaryFolder folder;
+    const std::string bom = "\xEF\xBB\xBF";
+    auto read = [&](const std::string& obj, const std::string& mtl) {
+        writeTextFile(folder / "part.obj", obj);
+        writeTextFile(folder / "part.mtl", mtl);
+        const Scene scene = readScene(folder / "part.obj");
+        for (const std::string& warning : scene.warnings) UNSCOPED_INFO(warning);
+        return scene;
+    };
+    SECTION("a byte order mark before mtllib and newmtl, with Unix and Windows line ends") {
+        for (const std::string lineEnd : {"\n", "\r\n"}) {
+            const Scene scene = read(bom + "mtllib part.mtl" + lineEnd + "usemtl red" + lineEnd + "v 0 0 0" + lineEnd +
+                                         "v 1 0 0" + lineEnd + "v 0 1 0" + lineEnd + "f 1 2 3" + lineEnd,
+                                     bom + "newmtl red" + lineEnd + "Kd 1 0 0" + lineEnd);
+            CHECK_FALSE(hasWarning(scene, "not defined"));
+            REQUIRE(scene.materials.size() == 1);
+            CHECK(scene.materials[0].name == "red");
+            CHECK(scene.materials[0].phong->diffuseColor == Eigen::Vector3d(1, 0, 0));
+            CHECK(sceneStatistics(scene).trianglesDrawn == 1);
+        }
+    }
+    SECTION("comments after statements, a '#' inside a name kept") {
+        const Scene scene = read(
+            "mtllib part.mtl # the library\nusemtl red#2\t# a name with '#'\nv 0 0 0 # origin\n"
+            "v\t1 0 0\t#x\nv 0 1 0\nv 0 0 1 1 0 0 # red\nf 1 2 3 # first\nf 1 3 4 #\n",
+            "newmtl red#2 # a comment\nKd 0 1 0 # green\nd 1 # opaque\n");
+        CHECK_FALSE(hasWarning(scene, "not defined"));
+        REQUIRE(scene.materials.size() == 1);
+        CHECK(scene.materials[0].name == "red#2");
+        CHECK(scene.materials[0].phong->diffuseColor == Eigen::Vector3d(0, 1, 0));
+        CHECK(sceneStatistics(scene).trianglesDrawn == 2);
+        CHECK(scene.meshes.at(0).primitives.at(0).colors.size() == 4);
+    }
+    SECTION("lines continued by a backslash, in the OBJ and its library") {
+        const Scene scene = read(
+            "mtllib \\\npart.mtl\nusemtl red\nv 0 0 0\nv 1 \\\n  0 0\nv 0 1 0\nv 0 0 1\nf 1 2 \\\n 3\n"
+            "f 1 3 \\  \r\n4 # a space after the backslash, and a Windows line end\nf 1 4 2 \\",
+            "newmtl red\nKd 1 \\\n0 \\\n0\n");
+        CHECK_FALSE(hasWarning(scene, "not defined"));
+        REQUIRE(scene.materials.size() == 1);
+        CHECK(scene.materials[0].phong->diffuseColor == Eigen::Vector3d(1, 0, 0));
+        CHECK(sceneStatistics(scene).trianglesDrawn == 3);
+    }
+}
+
+TEST_CASE("OBJ: a vertex's weight w is ignored, numbers after its colour too, and unknown statements warned of",
+          "[io]") {
+    TemporaryFolder folder;
+    writeTextFile(folder / "part.obj", "v 0 0 0 1\nv 2 0 0 1.0\nv 0 2 0 0.5\nf 1 2 3\n");
+    const Scene weighted = readScene(folder / "part.obj");
+    REQUIRE(sceneStatistics(weighted).trianglesDrawn == 1);
+    const Primitive& triangle = weighted.meshes.at(0).primitives.at(0);
+    CHECK(triangle.colors.empty());
+    CHECK(std::count(triangle.positions.begin(), triangle.positions.end(), Eigen::Vector3d(0, 2, 0)) == 1);
+    CHECK(hasWarning(weighted, "part.obj: 1 vertex weights w other than 1 ignored"));
+
+    writeTextFile(folder / "part.obj",
+                  "s 1\nv 0 0 0 1 0 0 0.5\nv 1 0 0 1 0 0 1\nv 0 1 0 1 0 0\nvendor_tag x\nf 1 2 3\n");
+    const Scene withAlpha = readScene(folder / "part.obj");
+    const Primitive& red = withAlpha.meshes.at(0).primitives.at(0);
+    REQUIRE(red.colors.size() == 3);
+    for (const Eigen::Vector4d& color : red.colors) CHECK(color == Eigen::Vector4d(1, 0, 0, 1));
+    CHECK(hasWarning(withAlpha, "part.obj: 2 vertices' numbers after x y z r g b ignored"));
+    CHECK(hasWarning(withAlpha, "part.obj: 1 statements of keywords OBJ does not have ('vendor_tag' 1) ignored"));
+    CHECK_FALSE(hasWarning(withAlpha, "'s'"));
 }
 
 TEST_CASE("PLY and X3D files that start with a byte order mark are read", "[io]") {
