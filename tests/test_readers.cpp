@@ -8,7 +8,9 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -142,6 +144,10 @@ TEST_CASE("Each kind of bad input gives one clear error naming the file", "[io][
                     "truncated");
     }
     SECTION("truncated binary STL") { expectError("truncated.stl", std::string(80, ' ') + std::string("\x05\0\0\0", 4), "truncated"); }
+    SECTION("truncated binary STL whose header starts with solid") {
+        expectError("solid.stl", "solid part" + std::string(70, '\0') + std::string("\x05\0\0\0", 4),
+                    "announces 5 triangles");
+    }
     SECTION("binary data as OBJ") {
         expectError("binary.obj", std::string("\x8f\x13v\0\xff 1 2\n\x01\0\0f", 14), "not an OBJ text file");
     }
@@ -226,6 +232,39 @@ TEST_CASE("OBJ: a vertex's weight w is ignored, numbers after its colour too, an
     CHECK(hasWarning(withAlpha, "part.obj: 2 vertices' numbers after x y z r g b ignored"));
     CHECK(hasWarning(withAlpha, "part.obj: 1 statements of keywords OBJ does not have ('vendor_tag' 1) ignored"));
     CHECK_FALSE(hasWarning(withAlpha, "'s'"));
+}
+
+TEST_CASE("STL: capital keywords, a byte order mark, and bytes after the announced triangles are read", "[io]") {
+    TemporaryFolder folder;
+    const std::string facets =
+        " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n"
+        "  endloop\n endfacet\n";
+    auto upper = [](std::string text) {
+        std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
+        return text;
+    };
+    // A binary STL: `header` padded to 80 bytes, `triangles` copies of one triangle, then `extra` bytes.
+    auto binary = [](const std::string& header, std::uint32_t triangles, std::size_t extra) {
+        std::string bytes = header + std::string(80 - header.size(), ' ');
+        bytes.append(reinterpret_cast<const char*>(&triangles), 4);
+        const float record[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+        for (std::uint32_t t = 0; t < triangles; ++t)
+            bytes.append(reinterpret_cast<const char*>(record), sizeof record).append(2, '\0');
+        return bytes + std::string(extra, '\x7f');
+    };
+    auto read = [&](const std::string& content) {
+        writeTextFile(folder / "part.stl", content);
+        return readScene(folder / "part.stl");
+    };
+    CHECK(sceneStatistics(read(upper("solid part\n" + facets + facets + "endsolid part\n"))).trianglesDrawn == 2);
+    CHECK(sceneStatistics(read("\xEF\xBB\xBFsolid part\r\n" + facets + "endsolid part\r\n")).trianglesDrawn == 1);
+    CHECK(sceneStatistics(read(binary("solid part", 3, 0))).trianglesDrawn == 3);
+    for (const std::string header : {"", "solid part"}) {
+        INFO("header '" << header << "'");
+        const Scene scene = read(binary(header, 3, 100));
+        CHECK(sceneStatistics(scene).trianglesDrawn == 3);
+        CHECK(hasWarning(scene, "part.stl: 100 bytes after the 3 triangles its binary header announces ignored"));
+    }
 }
 
 TEST_CASE("PLY and X3D files that start with a byte order mark are read", "[io]") {
