@@ -8,7 +8,9 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -142,6 +144,17 @@ TEST_CASE("Each kind of bad input gives one clear error naming the file", "[io][
                     "truncated");
     }
     SECTION("truncated binary STL") { expectError("truncated.stl", std::string(80, ' ') + std::string("\x05\0\0\0", 4), "truncated"); }
+    SECTION("truncated binary STL whose header starts with solid") {
+        expectError("solid.stl", "solid part" + std::string(70, '\0') + std::string("\x05\0\0\0", 4),
+                    "announces 5 triangles");
+    }
+    SECTION("binary data as OBJ") {
+        expectError("binary.obj", std::string("\x8f\x13v\0\xff 1 2\n\x01\0\0f", 14), "not an OBJ text file");
+    }
+    SECTION("text that is no OBJ") { expectError("text.obj", "Dear reader,\nthis is a letter.\n", "not an OBJ file"); }
+    SECTION("OBJ vertex of 5 numbers") {
+        expectError("five.obj", "v 0 0 0\nv 1 0 0 1 0\nv 0 1 0\nf 1 2 3\n", "a vertex of 5 numbers");
+    }
     SECTION("a directory") {
         std::filesystem::create_directory(folder / "folder.glb");
         try {
@@ -151,6 +164,124 @@ TEST_CASE("Each kind of bad input gives one clear error naming the file", "[io][
             CHECK_THAT(error.what(), Catch::Contains("folder.glb") && Catch::Contains("directory"));
         }
     }
+}
+
+TEST_CASE("OBJ and MTL: a byte order mark, comments after a statement and continued lines are read", "[io]") {
+    TemporaryFolder folder;
+    const std::string bom = "\xEF\xBB\xBF";
+    auto read = [&](const std::string& obj, const std::string& mtl) {
+        writeTextFile(folder / "part.obj", obj);
+        writeTextFile(folder / "part.mtl", mtl);
+        const Scene scene = readScene(folder / "part.obj");
+        for (const std::string& warning : scene.warnings) UNSCOPED_INFO(warning);
+        return scene;
+    };
+    SECTION("a byte order mark before mtllib and newmtl, with Unix and Windows line ends") {
+        for (const std::string lineEnd : {"\n", "\r\n"}) {
+            const Scene scene = read(bom + "mtllib part.mtl" + lineEnd + "usemtl red" + lineEnd + "v 0 0 0" + lineEnd +
+                                         "v 1 0 0" + lineEnd + "v 0 1 0" + lineEnd + "f 1 2 3" + lineEnd,
+                                     bom + "newmtl red" + lineEnd + "Kd 1 0 0" + lineEnd);
+            CHECK_FALSE(hasWarning(scene, "not defined"));
+            REQUIRE(scene.materials.size() == 1);
+            CHECK(scene.materials[0].name == "red");
+            CHECK(scene.materials[0].phong->diffuseColor == Eigen::Vector3d(1, 0, 0));
+            CHECK(sceneStatistics(scene).trianglesDrawn == 1);
+        }
+    }
+    SECTION("comments after statements, a '#' inside a name kept") {
+        const Scene scene = read(
+            "mtllib part.mtl # the library\nusemtl red#2\t# a name with '#'\nv 0 0 0 # origin\n"
+            "v\t1 0 0\t#x\nv 0 1 0\nv 0 0 1 1 0 0 # red\nf 1 2 3 # first\nf 1 3 4 #\n",
+            "newmtl red#2 # a comment\nKd 0 1 0 # green\nd 1 # opaque\n");
+        CHECK_FALSE(hasWarning(scene, "not defined"));
+        REQUIRE(scene.materials.size() == 1);
+        CHECK(scene.materials[0].name == "red#2");
+        CHECK(scene.materials[0].phong->diffuseColor == Eigen::Vector3d(0, 1, 0));
+        CHECK(sceneStatistics(scene).trianglesDrawn == 2);
+        CHECK(scene.meshes.at(0).primitives.at(0).colors.size() == 4);
+    }
+    SECTION("lines continued by a backslash, in the OBJ and its library") {
+        const Scene scene = read(
+            "mtllib \\\npart.mtl\nusemtl red\nv 0 0 0\nv 1 \\\n  0 0\nv 0 1 0\nv 0 0 1\nf 1 2 \\\n 3\n"
+            "f 1 3 \\  \r\n4 # a space after the backslash, and a Windows line end\nf 1 4 2 \\",
+            "newmtl red\nKd 1 \\\n0 \\\n0\n");
+        CHECK_FALSE(hasWarning(scene, "not defined"));
+        REQUIRE(scene.materials.size() == 1);
+        CHECK(scene.materials[0].phong->diffuseColor == Eigen::Vector3d(1, 0, 0));
+        CHECK(sceneStatistics(scene).trianglesDrawn == 3);
+    }
+}
+
+TEST_CASE("OBJ: a vertex's weight w is ignored, numbers after its colour too, and unknown statements warned of",
+          "[io]") {
+    TemporaryFolder folder;
+    writeTextFile(folder / "part.obj", "v 0 0 0 1\nv 2 0 0 1.0\nv 0 2 0 0.5\nf 1 2 3\n");
+    const Scene weighted = readScene(folder / "part.obj");
+    REQUIRE(sceneStatistics(weighted).trianglesDrawn == 1);
+    const Primitive& triangle = weighted.meshes.at(0).primitives.at(0);
+    CHECK(triangle.colors.empty());
+    CHECK(std::count(triangle.positions.begin(), triangle.positions.end(), Eigen::Vector3d(0, 2, 0)) == 1);
+    CHECK(hasWarning(weighted, "part.obj: 1 vertex weights w other than 1 ignored"));
+
+    writeTextFile(folder / "part.obj",
+                  "s 1\nv 0 0 0 1 0 0 0.5\nv 1 0 0 1 0 0 1\nv 0 1 0 1 0 0\nvendor_tag x\nf 1 2 3\n");
+    const Scene withAlpha = readScene(folder / "part.obj");
+    const Primitive& red = withAlpha.meshes.at(0).primitives.at(0);
+    REQUIRE(red.colors.size() == 3);
+    for (const Eigen::Vector4d& color : red.colors) CHECK(color == Eigen::Vector4d(1, 0, 0, 1));
+    CHECK(hasWarning(withAlpha, "part.obj: 2 vertices' numbers after x y z r g b ignored"));
+    CHECK(hasWarning(withAlpha, "part.obj: 1 statements of keywords OBJ does not have ('vendor_tag' 1) ignored"));
+    CHECK_FALSE(hasWarning(withAlpha, "'s'"));
+}
+
+TEST_CASE("STL: capital keywords, a byte order mark, and bytes after the announced triangles are read", "[io]") {
+    TemporaryFolder folder;
+    const std::string facets =
+        " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n"
+        "  endloop\n endfacet\n";
+    auto upper = [](std::string text) {
+        std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
+        return text;
+    };
+    // A binary STL: `header` padded to 80 bytes, `triangles` copies of one triangle, then `extra` bytes.
+    auto binary = [](const std::string& header, std::uint32_t triangles, std::size_t extra) {
+        std::string bytes = header + std::string(80 - header.size(), ' ');
+        bytes.append(reinterpret_cast<const char*>(&triangles), 4);
+        const float record[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+        for (std::uint32_t t = 0; t < triangles; ++t)
+            bytes.append(reinterpret_cast<const char*>(record), sizeof record).append(2, '\0');
+        return bytes + std::string(extra, '\x7f');
+    };
+    auto read = [&](const std::string& content) {
+        writeTextFile(folder / "part.stl", content);
+        return readScene(folder / "part.stl");
+    };
+    CHECK(sceneStatistics(read(upper("solid part\n" + facets + facets + "endsolid part\n"))).trianglesDrawn == 2);
+    CHECK(sceneStatistics(read("\xEF\xBB\xBFsolid part\r\n" + facets + "endsolid part\r\n")).trianglesDrawn == 1);
+    CHECK(sceneStatistics(read(binary("solid part", 3, 0))).trianglesDrawn == 3);
+    for (const std::string header : {"", "solid part"}) {
+        INFO("header '" << header << "'");
+        const Scene scene = read(binary(header, 3, 100));
+        CHECK(sceneStatistics(scene).trianglesDrawn == 3);
+        CHECK(hasWarning(scene, "part.stl: 100 bytes after the 3 triangles its binary header announces ignored"));
+    }
+}
+
+TEST_CASE("PLY and X3D files that start with a byte order mark are read", "[io]") {
+    TemporaryFolder folder;
+    const std::string bom = "\xEF\xBB\xBF";
+    writeTextFile(folder / "part.ply",
+                  bom +
+                      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    CHECK(sceneStatistics(readScene(folder / "part.ply")).trianglesDrawn == 1);
+    writeTextFile(folder / "part.x3d",
+                  bom +
+                      "<?xml version='1.0' encoding='UTF-8'?>\n<X3D><Scene><Shape>"
+                      "<IndexedFaceSet coordIndex='0 1 2 -1'><Coordinate point='0 0 0 1 0 0 0 1 0'/>"
+                      "</IndexedFaceSet></Shape></Scene></X3D>\n");
+    CHECK(sceneStatistics(readScene(folder / "part.x3d")).trianglesDrawn == 1);
 }
 
 TEST_CASE("Node animations are read and written back, and channels the scene cannot hold are left out with a warning",

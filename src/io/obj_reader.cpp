@@ -25,6 +25,103 @@ std::string rest(std::string_view line) {
     return std::string(line);
 }
 
+// The statements of an OBJ or MTL file, one a call: a line, with the lines that a '\' at its end continues it
+// into, without its comment. A comment starts at a word that begins with '#' ("v 1 2 3 # note": exporters write
+// them, and OBJ readers skip them); a '#' inside a word stays, as in a name ("usemtl part#2").
+class Statements {
+public:
+    explicit Statements(TextScanner& scanner) : scanner_(scanner) {}
+    bool atEnd() const { return scanner_.atEnd(); }
+
+    std::string_view next() {
+        std::string_view line = withoutComment(scanner_.nextLine());
+        bool continues = cutContinuation(line);
+        if (!continues || scanner_.atEnd()) return line;
+        joined_.assign(line);
+        while (continues && !scanner_.atEnd()) {
+            line = withoutComment(scanner_.nextLine());
+            continues = cutContinuation(line);
+            joined_.append(" ").append(line);
+        }
+        return joined_;
+    }
+
+private:
+    static std::string_view withoutComment(std::string_view line) {
+        for (std::size_t at = line.find('#'); at != std::string_view::npos; at = line.find('#', at + 1))
+            if (at == 0 || line[at - 1] == ' ' || line[at - 1] == '\t') {
+                line = line.substr(0, at);
+                break;
+            }
+        while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+        return line;
+    }
+    // Cuts a '\' that ends `line`; true where there was one (the statement goes on on the next line).
+    static bool cutContinuation(std::string_view& line) {
+        if (line.empty() || line.back() != '\\') return false;
+        line.remove_suffix(1);
+        return true;
+    }
+
+    TextScanner& scanner_;
+    std::string joined_;
+};
+
+// Refuses an OBJ file with a NUL byte, which no text has: binary data would otherwise read as an OBJ of unknown
+// statements, that is as nothing, without a word. A material library is not refused so: a broken one costs the
+// materials it fails to define, each named in a warning ("material 'x' is not defined").
+void checkIsText(const fs::path& file, std::string_view text) {
+    const std::size_t nul = text.find('\0');
+    if (nul != std::string_view::npos)
+        throw FileError(file, "not an OBJ text file (a NUL byte at offset " + std::to_string(nul) + ")");
+}
+
+// OBJ's statements that the reader skips without a word: smoothing groups, merging groups, render attributes,
+// and the free-form geometry that goes with the curves and surfaces it counts (see readObj).
+bool isSkippedObjStatement(std::string_view keyword) {
+    static const std::set<std::string_view> skipped = {
+        "s",         "mg",    "vp",    "deg",  "bmat",  "step",     "parm",     "trim", "hole",
+        "scrv",      "sp",    "end",   "con",  "bevel", "c_interp", "d_interp", "lod",  "shadow_obj",
+        "trace_obj", "ctech", "stech", "call", "csh",   "maplib",   "usemap"};
+    return skipped.count(keyword) > 0;
+}
+
+// How many words `line` has.
+std::size_t wordCount(std::string_view line) {
+    std::size_t count = 0;
+    while (!nextWord(line).empty()) ++count;
+    return count;
+}
+
+// The statements whose keyword OBJ does not have, for one warning: real OBJ readers skip them (some exporters
+// add their own), but a file of nothing else is no OBJ file.
+class UnknownStatements {
+public:
+    void add(std::string_view keyword) {
+        ++count_;
+        // The first few keywords are named; a text file that is no OBJ file could have thousands.
+        if (keywords_.size() < kNamed || keywords_.count(std::string(keyword)))
+            ++keywords_[std::string(keyword)];
+        else
+            unnamed_ = true;
+    }
+    std::size_t count() const { return count_; }
+    // "3 statements of keywords OBJ does not have ('foo' 2, 'bar' 1)".
+    std::string describe() const {
+        std::string list;
+        for (const auto& [keyword, times] : keywords_)
+            list += (list.empty() ? "'" : ", '") + keyword + "' " + std::to_string(times);
+        if (unnamed_) list += ", ...";
+        return std::to_string(count_) + " statements of keywords OBJ does not have (" + list + ")";
+    }
+
+private:
+    static constexpr std::size_t kNamed = 8;
+    std::size_t count_ = 0;
+    std::map<std::string, std::size_t> keywords_;
+    bool unnamed_ = false;
+};
+
 // Clamps `color`'s components to [0, 1], the range of display values; false where one was outside it.
 bool clampedToUnit(Eigen::Ref<Eigen::Vector3d> color) {
     const Eigen::Vector3d inside = color.cwiseMax(0.0).cwiseMin(1.0);
@@ -53,7 +150,9 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
         return byName;
     }
     const std::vector<unsigned char> bytes = readFileBytes(library);
-    TextScanner scanner(library, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    TextScanner scanner(library, text);
+    Statements statements(scanner);
     Material* current = nullptr;
     std::map<std::string, int> textureOfFile;
     bool clamped = false;              // a colour component outside [0, 1]
@@ -73,8 +172,8 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
         }
         return entry->second;
     };
-    while (!scanner.atEnd()) {
-        std::string_view line = scanner.nextLine();
+    while (!statements.atEnd()) {
+        std::string_view line = statements.next();
         const std::string_view keyword = nextWord(line);
         if (keyword == "newmtl") {
             const std::string name = rest(line);
@@ -87,7 +186,7 @@ std::map<std::string, int> readMaterialLibrary(const fs::path& library, Scene& s
             byName[name] = static_cast<int>(scene.materials.size()) - 1;
             continue;
         }
-        if (!current || keyword.empty() || keyword.front() == '#') continue;
+        if (!current || keyword.empty()) continue;
         auto readColor = [&]() {
             Eigen::Vector3d color;
             for (int c = 0; c < 3; ++c) color[c] = nextFiniteNumber<double>(line, scanner, "colour component");
@@ -160,7 +259,10 @@ struct Group {
 Scene readObj(const fs::path& file) {
     const std::vector<unsigned char> bytes = readFileBytes(file);
     if (bytes.empty()) throw FileError(file, "the file is empty");
-    TextScanner scanner(file, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    checkIsText(file, text);
+    TextScanner scanner(file, text);
+    Statements statements(scanner);
     Scene scene;
     std::vector<Eigen::Vector3d> positions, normals;
     std::vector<Eigen::Vector4d> vertexColors;
@@ -169,8 +271,10 @@ Scene readObj(const fs::path& file) {
     int currentMaterial = -1;
     std::vector<Group> groups(1);
     groups[0].name = file.stem().string();
-    std::size_t curves = 0, degenerateFaces = 0;
+    std::size_t curves = 0, degenerateFaces = 0, weighted = 0, beyondColor = 0;
     bool anyColors = false, clampedColors = false;
+    std::size_t statementCount = 0;
+    UnknownStatements unknown;
 
     auto resolve = [&](std::string_view word, std::size_t count, const char* what) -> int {
         long long index;
@@ -181,18 +285,27 @@ Scene readObj(const fs::path& file) {
         return static_cast<int>(resolved);
     };
 
-    while (!scanner.atEnd()) {
-        std::string_view line = scanner.nextLine();
+    while (!statements.atEnd()) {
+        std::string_view line = statements.next();
         const std::string_view keyword = nextWord(line);
-        if (keyword.empty() || keyword.front() == '#') continue;
+        if (keyword.empty()) continue;
+        ++statementCount;
         if (keyword == "v") {
             Eigen::Vector3d p;
             for (int c = 0; c < 3; ++c) p[c] = nextFiniteNumber<double>(line, scanner, "vertex coordinate");
             positions.push_back(p);
-            // Optional "v x y z r g b" vertex colours: display values (sRGB-encoded, as three.js's OBJLoader
-            // reads them); COLOR_0 is linear.
-            std::string_view colorText = line;
-            if (!nextWord(colorText).empty()) {
+            // What follows x y z: w (one number), the weight of rational curves and surfaces, which polygons have
+            // no use for (ignored, with a warning where it is not 1); r g b, a vertex colour; or r g b and more, as
+            // where a writer adds an alpha ("x y z r g b a"), read as three.js's OBJLoader reads them: the colour,
+            // the rest ignored (with a warning). Five numbers make no vertex.
+            const std::size_t extra = wordCount(line);
+            if (extra == 1) {
+                weighted += nextFiniteNumber<double>(line, scanner, "vertex weight w") != 1;
+            } else if (extra == 2) {
+                scanner.fail("a vertex of 5 numbers (x y z, x y z w or x y z r g b expected)");
+            } else if (extra >= 3) {
+                beyondColor += extra > 3;
+                // Display values (sRGB-encoded, as three.js's OBJLoader reads them); COLOR_0 is linear.
                 Eigen::Vector4d color(1, 1, 1, 1);
                 for (int c = 0; c < 3; ++c) color[c] = nextFiniteNumber<double>(line, scanner, "vertex colour");
                 clampedColors = !clampedToUnit(color.head<3>()) || clampedColors;
@@ -287,8 +400,13 @@ Scene readObj(const fs::path& file) {
                 materials[materialName] = index;
         } else if (keyword == "curv" || keyword == "curv2" || keyword == "surf" || keyword == "cstype") {
             ++curves;
+        } else if (!isSkippedObjStatement(keyword)) {
+            unknown.add(keyword);
         }
     }
+    if (statementCount > 0 && unknown.count() == statementCount)
+        throw FileError(file, "not an OBJ file (none of its " + std::to_string(statementCount) +
+                                  " statements is one of OBJ's, such as v, f, o or g)");
 
     // Vertices and nothing drawn from them: a point cloud (a scan), drawn as points, as three.js's OBJLoader
     // gives it.
@@ -327,6 +445,14 @@ Scene readObj(const fs::path& file) {
     const std::string name = file.filename().string();
     if (clampedColors) scene.warnings.push_back(name + ": vertex colour components outside [0, 1] clamped");
     if (curves) scene.warnings.push_back(name + ": " + std::to_string(curves) + " curve and surface statements skipped");
+    if (weighted)
+        scene.warnings.push_back(name + ": " + std::to_string(weighted) +
+                                 " vertex weights w other than 1 ignored (they weigh rational curves and surfaces, "
+                                 "not polygons)");
+    if (beyondColor)
+        scene.warnings.push_back(name + ": " + std::to_string(beyondColor) +
+                                 " vertices' numbers after x y z r g b ignored (as three.js's OBJLoader ignores them)");
+    if (unknown.count()) scene.warnings.push_back(name + ": " + unknown.describe() + " ignored");
     if (degenerateFaces)
         scene.warnings.push_back(name + ": " + std::to_string(degenerateFaces) +
                                  " faces with fewer than 3 corners or no area skipped");

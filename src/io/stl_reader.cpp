@@ -5,6 +5,8 @@
 #include "symcompress/scene_ops.hpp"
 #include "text_scanner.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -34,13 +36,29 @@ private:
     std::map<std::array<double, 3>, std::uint32_t> index_;
 };
 
+// `word` is `keyword` in capitals or not: STL's keywords are lower case, and some writers spell them in capitals
+// ("SOLID", "FACET NORMAL"), which readers take as well.
+bool isKeyword(std::string_view word, std::string_view keyword) {
+    return word.size() == keyword.size() && std::equal(word.begin(), word.end(), keyword.begin(), [](char a, char b) {
+               return std::tolower(static_cast<unsigned char>(a)) == b;
+           });
+}
+
 void checkFinite(const fs::path& file, const Eigen::Vector3d& p, std::size_t facet) {
     if (!p.allFinite()) throw FileError(file, "facet " + std::to_string(facet) + " has a NaN or infinite coordinate");
 }
 
-void readBinaryStl(const fs::path& file, const std::vector<unsigned char>& bytes, Primitive& out) {
+std::uint32_t announcedTriangles(const std::vector<unsigned char>& bytes) {
     std::uint32_t count;
     std::memcpy(&count, bytes.data() + 80, 4);
+    return count;
+}
+
+std::uint64_t binarySize(std::uint32_t triangles) { return 84 + 50 * static_cast<std::uint64_t>(triangles); }
+
+// Reads the triangles the header announces (the caller checked the file holds them).
+void readBinaryStl(const fs::path& file, const std::vector<unsigned char>& bytes, Primitive& out) {
+    const std::uint32_t count = announcedTriangles(bytes);
     SoupIndexer indexer(out);
     for (std::uint32_t f = 0; f < count; ++f) {
         const unsigned char* record = bytes.data() + 84 + 50 * static_cast<std::size_t>(f);
@@ -64,20 +82,21 @@ void readAsciiStl(const fs::path& file, const std::vector<unsigned char>& bytes,
     while (!scanner.atEnd()) {
         std::string_view line = scanner.nextLine();
         const std::string_view keyword = nextWord(line);
-        if (keyword == "solid") {
+        if (isKeyword(keyword, "solid")) {
             sawSolid = true;
-        } else if (keyword == "vertex") {
+        } else if (isKeyword(keyword, "vertex")) {
             if (corner == 3) scanner.fail("a facet with more than 3 vertices");
             Eigen::Vector3d p;
             for (int c = 0; c < 3; ++c) p[c] = nextFiniteNumber<double>(line, scanner, "vertex coordinate");
             corners[corner++] = p;
-        } else if (keyword == "endloop") {
+        } else if (isKeyword(keyword, "endloop")) {
             if (corner != 3) scanner.fail("a facet with " + std::to_string(corner) + " vertices instead of 3");
             indexer.addTriangle(corners);
             corner = 0;
-        } else if (keyword == "endsolid") {
+        } else if (isKeyword(keyword, "endsolid")) {
             sawEnd = true;
-        } else if (!keyword.empty() && keyword != "facet" && keyword != "outer" && keyword != "endfacet") {
+        } else if (!keyword.empty() && !isKeyword(keyword, "facet") && !isKeyword(keyword, "outer") &&
+                   !isKeyword(keyword, "endfacet")) {
             scanner.fail("unexpected '" + std::string(keyword) + "'");
         }
     }
@@ -91,28 +110,35 @@ Scene readStl(const fs::path& file) {
     const std::vector<unsigned char> bytes = readFileBytes(file);
     if (bytes.empty()) throw FileError(file, "the file is empty");
     Primitive primitive;
-    // Binary when the size matches the facet count; many binary files also start with "solid".
-    bool binary = false;
-    if (bytes.size() >= 84) {
-        std::uint32_t count;
-        std::memcpy(&count, bytes.data() + 80, 4);
-        binary = bytes.size() == 84 + 50 * static_cast<std::uint64_t>(count);
-    }
-    const bool looksAscii = bytes.size() >= 5 && std::memcmp(bytes.data(), "solid", 5) == 0;
-    if (binary) {
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    // Binary when the size matches the header's triangle count, though many binary headers start with "solid"
+    // too; else ASCII when it starts with "solid" (in capitals or not, after any byte order mark) and is text
+    // (a binary file's "solid" comes with NUL bytes: its count's high bytes, its zeros); else binary when the
+    // file holds the triangles its header announces and more (some writers pad it), the rest ignored.
+    const std::uint64_t announced = bytes.size() >= 84 ? binarySize(announcedTriangles(bytes)) : 0;
+    const bool looksAscii =
+        isKeyword(withoutByteOrderMark(text).substr(0, 5), "solid") && text.find('\0') == std::string_view::npos;
+    std::uint64_t trailingBytes = 0;
+    if (announced == bytes.size()) {
         readBinaryStl(file, bytes, primitive);
     } else if (looksAscii) {
         readAsciiStl(file, bytes, primitive);
-    } else if (bytes.size() >= 84) {
-        std::uint32_t count;
-        std::memcpy(&count, bytes.data() + 80, 4);
-        throw FileError(file, "binary STL header announces " + std::to_string(count) + " triangles (" +
-                                  std::to_string(84 + 50 * static_cast<std::uint64_t>(count)) + " bytes) but the file has " +
+    } else if (bytes.size() < 84) {
+        throw FileError(file, "too short for a binary STL and not ASCII STL");
+    } else if (announced > bytes.size()) {
+        throw FileError(file, "binary STL header announces " + std::to_string(announcedTriangles(bytes)) +
+                                  " triangles (" + std::to_string(announced) + " bytes) but the file has " +
                                   std::to_string(bytes.size()) + " bytes (truncated?)");
     } else {
-        throw FileError(file, "too short for a binary STL and not ASCII STL");
+        readBinaryStl(file, bytes, primitive);
+        trailingBytes = bytes.size() - announced;
     }
-    return sceneOfOneMesh(file.stem().string(), std::move(primitive));
+    Scene scene = sceneOfOneMesh(file.stem().string(), std::move(primitive));
+    if (trailingBytes)
+        scene.warnings.push_back(file.filename().string() + ": " + std::to_string(trailingBytes) + " bytes after the " +
+                                 std::to_string(announcedTriangles(bytes)) +
+                                 " triangles its binary header announces ignored");
+    return scene;
 }
 
 }  // namespace symcompress

@@ -12,9 +12,18 @@
 
 namespace symcompress {
 
+// `text` without the UTF-8 byte order mark that Windows editors put at the start of a file: it would otherwise
+// stick to the first line's first word ("\xEF\xBB\xBFmtllib"), and that statement be lost.
+inline std::string_view withoutByteOrderMark(std::string_view text) {
+    constexpr std::string_view mark = "\xEF\xBB\xBF";
+    return text.substr(0, mark.size()) == mark ? text.substr(mark.size()) : text;
+}
+
 class TextScanner {
 public:
-    TextScanner(const std::filesystem::path& file, std::string_view text) : file_(file), text_(text) {}
+    // A byte order mark at the start is skipped (see withoutByteOrderMark).
+    TextScanner(const std::filesystem::path& file, std::string_view text)
+        : file_(file), text_(text), position_(text.size() - withoutByteOrderMark(text).size()) {}
 
     bool atEnd() const { return position_ >= text_.size(); }
     std::size_t line() const { return line_; }
