@@ -1,3 +1,4 @@
+#include "symcompress/compress.hpp"
 #include "symcompress/detail/atomic_file.hpp"
 #include "symcompress/io.hpp"
 
@@ -63,4 +64,25 @@ TEST_CASE("readFileBytes reports missing files and directories", "[atomic]") {
     TemporaryFolder folder;
     CHECK_THROWS_WITH(readFileBytes(folder / "missing.obj"), Catch::Contains("no such file"));
     CHECK_THROWS_WITH(readFileBytes(folder.path()), Catch::Contains("directory"));
+}
+
+TEST_CASE("A compression whose output cannot be written says so of the output, before reading the input", "[atomic]") {
+    TemporaryFolder folder;
+    const auto input = testing::modelPath("menger_sponge/Menger_sponge-Binary.stl");
+    auto refusal = [&](const std::filesystem::path& output) {
+        try {
+            compressFile(input, output);
+        } catch (const FileError& error) {
+            return std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    // Before, the first of these named the temporary file of a measure ('.symcompress-draco_alone-x.glb').
+    const std::string missing = refusal(folder / "nowhere" / "x.glb");
+    CHECK_THAT(missing,
+               Catch::Contains("x.glb") && Catch::Contains("does not exist") && !Catch::Contains(".symcompress-"));
+    CHECK_THAT(refusal(folder / "x.stl"),
+               Catch::Contains("writing STL is not supported") && !Catch::Contains(".symcompress-"));
+    CHECK_THAT(refusal(folder / "x.fbx"), Catch::Contains("cannot write a file of type '.fbx'"));
+    CHECK(std::filesystem::is_empty(folder.path()));
 }

@@ -90,6 +90,10 @@ struct WriteOptions {
     std::shared_ptr<PrimitiveEncodings> encodings;
 };
 
+// Throws FileError unless `file` can be written: a type the writers write (.glb, .gltf, .x3d, .x3dz, .obj, .ply),
+// in a folder that exists, none of `inputs`.
+void checkOutputFile(const std::filesystem::path& file, const std::vector<std::filesystem::path>& inputs = {});
+
 // Writes atomically (temporary file in the same folder, then rename). Refuses to overwrite any of
 // `inputs` (the files the scene was read from). Throws FileError.
 void writeScene(const Scene& scene, const std::filesystem::path& file, const WriteOptions& options = {},

@@ -369,6 +369,8 @@ CompressionReport compressToFile(Scene scene, const fs::path& output, const Comp
 
 CompressionReport compressFile(const fs::path& input, const fs::path& output, const CompressOptions& options) {
     const auto start = std::chrono::steady_clock::now();
+    // Before the reading (a large scene takes a while) and before any temporary file beside it is named in an error.
+    checkOutputFile(output, {input});
     if (options.progress) options.progress("reading", 0, "");
     Scene scene = readScene(input);
     return compressRead(std::move(scene), output, options, {input}, since(start));

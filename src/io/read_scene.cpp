@@ -12,10 +12,19 @@
 namespace symcompress {
 namespace fs = std::filesystem;
 
-FileFormat formatFromExtension(const fs::path& file) {
+namespace {
+
+std::string lowercaseExtension(const fs::path& file) {
     std::string extension = file.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension;
+}
+
+}  // namespace
+
+FileFormat formatFromExtension(const fs::path& file) {
+    const std::string extension = lowercaseExtension(file);
     if (extension == ".gltf") return FileFormat::Gltf;
     if (extension == ".glb") return FileFormat::Glb;
     if (extension == ".x3d" || extension == ".x3dz") return FileFormat::X3d;
@@ -192,16 +201,31 @@ std::vector<std::string> formatLosses(const Scene& scene, const fs::path& file) 
     return losses;
 }
 
+void checkOutputFile(const fs::path& file, const std::vector<fs::path>& inputs) {
+    const std::string extension = lowercaseExtension(file);
+    if (extension == ".stl")
+        throw FileError(file, "writing STL is not supported (use .glb, .gltf, .x3d, .obj or .ply)");
+    if (extension != ".gltf" && extension != ".glb" && extension != ".x3d" && extension != ".x3dz" &&
+        extension != ".obj" && extension != ".ply")
+        throw FileError(
+            file, "cannot write a file of type '" + extension + "' (expected .glb, .gltf, .x3d, .x3dz, .obj or .ply)");
+    std::error_code error;
+    if (fs::is_directory(file, error)) throw FileError(file, "is a directory, not a file");
+    const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    if (!fs::is_directory(folder, error)) throw FileError(file, "the folder " + folder.string() + " does not exist");
+    refuseToOverwriteInputs(file, inputs);
+}
+
 void writeScene(const Scene& scene, const fs::path& file, const WriteOptions& options,
                 const std::vector<fs::path>& inputs) {
-    refuseToOverwriteInputs(file, inputs);
+    checkOutputFile(file, inputs);
     switch (formatFromExtension(file)) {
         case FileFormat::Gltf:
         case FileFormat::Glb: writeGltf(scene, file, options); break;
         case FileFormat::X3d: writeX3d(scene, file, options); break;
         case FileFormat::Obj: writeObj(scene, file, options); break;
         case FileFormat::Ply: writePly(scene, file, options); break;
-        case FileFormat::Stl: throw FileError(file, "writing STL is not supported (use .glb, .gltf, .x3d, .obj or .ply)");
+        case FileFormat::Stl: break;  // refused by checkOutputFile
     }
 }
 
