@@ -257,6 +257,7 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
                               bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin + jsonLength), nullptr, false);
     if (json.is_discarded() || !json.is_object()) return bytes;
     refuseIntegersBeyondInt(json, "", file);
+    refuseBrokenStructure(json, file);
     // Before tinygltf, which would report what an unknown extension's data does to the file's layout instead (the
     // fallback buffer of KHR_meshopt_compression: "Invalid `byteLength'").
     if (json.contains("extensionsRequired") && json["extensionsRequired"].is_array())
@@ -339,6 +340,17 @@ tinygltf::Model loadGltfModel(const fs::path& file) {
     if (formatFromExtension(file) == FileFormat::Glb &&
         (bytes.size() < 12 || std::memcmp(bytes.data(), "glTF", 4) != 0))
         throw FileError(file, "not a GLB file (wrong magic number; expected 'glTF')");
+
+    // GLB version 1 is glTF 1.0's binary form (KHR_binary_glTF), whose JSON tinygltf would read as 2.0's: nothing.
+    if (binary && bytes.size() >= 8) {
+        std::uint32_t version;
+        std::memcpy(&version, bytes.data() + 4, 4);
+        if (version == 1)
+            throw FileError(file, std::string("glTF 1.0 (GLB version 1) is not supported; ") + kConvertToGltf2);
+        if (version != 2)
+            throw FileError(file, "GLB version " + std::to_string(version) +
+                                      " is not supported (symcompress reads GLB version 2, glTF 2.0)");
+    }
 
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
