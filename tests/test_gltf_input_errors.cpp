@@ -1,6 +1,7 @@
 // Broken glTF input: an index that names no item, another glTF version, a node hierarchy that is no forest, an
-// accessor of a type or count glTF has not. Each is one clear error naming the file and the item, or,
-// where the item can be left out without losing geometry, a warning naming it.
+// accessor of a type or count glTF has not, a buffer outside the file's folder, a rotation of length 0. Each is one
+// clear error naming the file and the item, or, where the item can be left out without losing geometry, a warning
+// naming it.
 #include "symcompress/io.hpp"
 #include "symcompress/scene_ops.hpp"
 #include "test_support.hpp"
@@ -351,4 +352,29 @@ TEST_CASE("An accessor count that is no number of elements is refused naming the
         json["accessors"][0]["count"] = "12";
         expectError(folder, "scene.gltf", json.dump(), "accessor 0: count \"12\" is not a number of elements");
     }
+}
+
+TEST_CASE("A buffer uri that is not relative to the glTF file is refused saying so", "[io][bad-input]") {
+    TemporaryFolder folder;
+    Json json = triangleScene();
+    // Even a file that is there: tinygltf looks for every buffer in the glTF file's folder.
+    writeTextFile(folder / "triangle.bin", std::string(140, '\0'));
+    for (const std::string uri : {(folder / "triangle.bin").string(), std::string("file:///etc/passwd"),
+                                  std::string("https://example.com/triangle.bin")}) {
+        json["buffers"][0]["uri"] = uri;
+        expectError(folder, "scene.gltf", json.dump(),
+                    "buffer 0: its uri \"" + uri + "\" is not relative to the glTF file");
+    }
+    json["buffers"][0]["uri"] = "triangle.bin";  // the same file, named relative to the glTF file, is read
+    writeTextFile(folder / "relative.gltf", json.dump());
+    CHECK(worldMesh(readScene(folder / "relative.gltf")).triangles.size() == 1);
+}
+
+TEST_CASE("A node rotation of length 0 is read as none, with a warning", "[io][bad-input]") {
+    TemporaryFolder folder;
+    Json json = triangleScene();
+    json["nodes"][0]["rotation"] = {0, 0, 0, 0};
+    expectWarning(folder, json, "node 0: a rotation of (0, 0, 0, 0), which is no rotation glTF allows, read as none");
+    const Scene scene = readScene(folder / "warned.gltf");
+    CHECK(scene.nodes[0].transform.isIdentity());
 }

@@ -223,6 +223,25 @@ bool giveZerosABufferView(nlohmann::json& json, const std::vector<std::size_t>& 
     return true;
 }
 
+// A buffer's uri that is neither a data: URI nor a path relative to the glTF file refused, saying so: tinygltf
+// looks for it in the glTF file's folder, and would report a file that is there as "File not found".
+void refuseBuffersOutsideTheFolder(const nlohmann::json& json, const fs::path& file) {
+    const auto buffers = json.find("buffers");
+    if (buffers == json.end() || !buffers->is_array()) return;
+    for (std::size_t b = 0; b < buffers->size(); ++b) {
+        const auto uri = (*buffers)[b].find("uri");  // end() for what is not an object
+        if (uri == (*buffers)[b].end() || !uri->is_string()) continue;
+        const std::string text = uri->get<std::string>();
+        // A scheme (RFC 3986: a relative path has no ':' before its first '/'), or a path from the root.
+        const std::size_t colon = text.find(':');
+        const bool scheme = colon != std::string::npos && colon < text.find('/');
+        if ((scheme && text.rfind("data:", 0) != 0) || text.rfind('/', 0) == 0 || text.rfind('\\', 0) == 0)
+            throw FileError(file, "buffer " + std::to_string(b) + ": its uri " + uri->dump() +
+                                      " is not relative to the glTF file; symcompress reads buffers from data: "
+                                      "URIs and from files named relative to it");
+    }
+}
+
 // A required extension that symcompress neither reads nor may leave out (appearanceOnly) refused.
 void refuseUnreadable(const std::string& required, const fs::path& file) {
     if (!readExtension(required) && !appearanceOnly(required))
@@ -258,6 +277,7 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
     if (json.is_discarded() || !json.is_object()) return bytes;
     refuseIntegersBeyondInt(json, "", file);
     refuseBrokenStructure(json, file);
+    refuseBuffersOutsideTheFolder(json, file);
     // Before tinygltf, which would report what an unknown extension's data does to the file's layout instead (the
     // fallback buffer of KHR_meshopt_compression: "Invalid `byteLength'").
     if (json.contains("extensionsRequired") && json["extensionsRequired"].is_array())

@@ -594,6 +594,9 @@ Scene GltfReader::read() {
         node.extrasJson = extrasOf(source.extras_json_string);
         node.extensionsJson = passedThroughExtensions(source.extensions_json_string);
         node.transform = nodeTransform(source);
+        if (source.matrix.size() != 16 && source.rotation.size() == 4 &&
+            std::all_of(source.rotation.begin(), source.rotation.end(), [](double v) { return v == 0; }))
+            warnAbout(where + ": a rotation of (0, 0, 0, 0), which is no rotation glTF allows, read as none");
         // Indices in range: refuseBrokenStructure checked them before tinygltf parsed the file.
         node.mesh = source.mesh >= 0 && source.mesh < static_cast<int>(scene.meshes.size()) ? source.mesh : -1;
         for (int child : source.children) {
