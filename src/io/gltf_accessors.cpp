@@ -14,16 +14,15 @@
 namespace symcompress {
 namespace {
 
+// The bytes of one component of the types glTF allows (int and double, which tinygltf knows, are not); 0 for others.
 int componentSize(int componentType) {
     switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_INT:
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
     case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return 8;
     default: return 0;
     }
 }
@@ -51,10 +50,8 @@ double readComponent(const unsigned char* at, int componentType, bool normalized
         const double v = load(std::uint16_t());
         return normalized ? v / 65535.0 : v;
     }
-    case TINYGLTF_COMPONENT_TYPE_INT: return load(std::int32_t());
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load(std::uint32_t());
     case TINYGLTF_COMPONENT_TYPE_FLOAT: return load(float());
-    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return load(double());
     default: return 0;
     }
 }
@@ -81,7 +78,10 @@ std::vector<double> GltfReader::readAccessor(int accessorIndex, int expectedComp
     const std::string where = std::string(what) + " (accessor " + std::to_string(accessorIndex) + ")";
     const int components = componentCount(accessor.type);
     const int size = componentSize(accessor.componentType);
-    if (components == 0 || size == 0) fail(where + ": unknown type or component type");
+    // Both refused before tinygltf parsed the file (refuseBrokenStructure), along with what glTF allows.
+    if (size == 0)
+        fail(where + ": componentType " + std::to_string(accessor.componentType) + " is not one glTF allows");
+    if (components == 0) fail(where + ": its type is not one glTF allows");
     if (expectedComponents > 0 && components != expectedComponents)
         fail(where + ": has " + std::to_string(components) + " components, expected " +
              std::to_string(expectedComponents));

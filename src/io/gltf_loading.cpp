@@ -223,6 +223,25 @@ bool giveZerosABufferView(nlohmann::json& json, const std::vector<std::size_t>& 
     return true;
 }
 
+// A buffer's uri that is neither a data: URI nor a path relative to the glTF file refused, saying so: tinygltf
+// looks for it in the glTF file's folder, and would report a file that is there as "File not found".
+void refuseBuffersOutsideTheFolder(const nlohmann::json& json, const fs::path& file) {
+    const auto buffers = json.find("buffers");
+    if (buffers == json.end() || !buffers->is_array()) return;
+    for (std::size_t b = 0; b < buffers->size(); ++b) {
+        const auto uri = (*buffers)[b].find("uri");  // end() for what is not an object
+        if (uri == (*buffers)[b].end() || !uri->is_string()) continue;
+        const std::string text = uri->get<std::string>();
+        // A scheme (RFC 3986: a relative path has no ':' before its first '/'), or a path from the root.
+        const std::size_t colon = text.find(':');
+        const bool scheme = colon != std::string::npos && colon < text.find('/');
+        if ((scheme && text.rfind("data:", 0) != 0) || text.rfind('/', 0) == 0 || text.rfind('\\', 0) == 0)
+            throw FileError(file, "buffer " + std::to_string(b) + ": its uri " + uri->dump() +
+                                      " is not relative to the glTF file; symcompress reads buffers from data: "
+                                      "URIs and from files named relative to it");
+    }
+}
+
 // A required extension that symcompress neither reads nor may leave out (appearanceOnly) refused.
 void refuseUnreadable(const std::string& required, const fs::path& file) {
     if (!readExtension(required) && !appearanceOnly(required))
@@ -257,6 +276,8 @@ std::vector<unsigned char> preparedForTinygltf(const std::vector<unsigned char>&
                               bytes.begin() + static_cast<std::ptrdiff_t>(jsonBegin + jsonLength), nullptr, false);
     if (json.is_discarded() || !json.is_object()) return bytes;
     refuseIntegersBeyondInt(json, "", file);
+    refuseBrokenStructure(json, file);
+    refuseBuffersOutsideTheFolder(json, file);
     // Before tinygltf, which would report what an unknown extension's data does to the file's layout instead (the
     // fallback buffer of KHR_meshopt_compression: "Invalid `byteLength'").
     if (json.contains("extensionsRequired") && json["extensionsRequired"].is_array())
@@ -339,6 +360,17 @@ tinygltf::Model loadGltfModel(const fs::path& file) {
     if (formatFromExtension(file) == FileFormat::Glb &&
         (bytes.size() < 12 || std::memcmp(bytes.data(), "glTF", 4) != 0))
         throw FileError(file, "not a GLB file (wrong magic number; expected 'glTF')");
+
+    // GLB version 1 is glTF 1.0's binary form (KHR_binary_glTF), whose JSON tinygltf would read as 2.0's: nothing.
+    if (binary && bytes.size() >= 8) {
+        std::uint32_t version;
+        std::memcpy(&version, bytes.data() + 4, 4);
+        if (version == 1)
+            throw FileError(file, std::string("glTF 1.0 (GLB version 1) is not supported; ") + kConvertToGltf2);
+        if (version != 2)
+            throw FileError(file, "GLB version " + std::to_string(version) +
+                                      " is not supported (symcompress reads GLB version 2, glTF 2.0)");
+    }
 
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;

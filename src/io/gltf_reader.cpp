@@ -25,6 +25,48 @@ namespace {
 // is read can be written as X3D, nested, and read back.
 constexpr std::size_t kMaxNodeDepth = 256;
 
+// The cycle `start` is on (each node's parent in `parentOf`) from parent to child: "node 0 has child 1, which has
+// child 0", its first few links.
+std::string cycleThrough(int start, const std::vector<int>& parentOf) {
+    std::vector<int> cycle{start};  // child to parent
+    for (int n = parentOf[std::size_t(start)]; n != start; n = parentOf[std::size_t(n)]) cycle.push_back(n);
+    if (cycle.size() == 1) return "node " + std::to_string(start) + " is its own child";
+    std::reverse(cycle.begin(), cycle.end());  // parent to child, ending with `start`
+    std::rotate(cycle.begin(), cycle.end() - 1, cycle.end());
+    cycle.push_back(start);
+    constexpr std::size_t kLinksNamed = 6;
+    std::string text = "node " + std::to_string(cycle[0]);
+    for (std::size_t i = 1; i < cycle.size() && i <= kLinksNamed; ++i)
+        text += std::string(i == 1 ? " has" : ", which has") + " child " + std::to_string(cycle[i]);
+    return cycle.size() > kLinksNamed + 1 ? text + ", and so on round to node " + std::to_string(cycle[0]) : text;
+}
+
+// What is wrong with the node forest of `nodes` (with one parent at most each, in `parentOf`): nodes nested too deep,
+// or a cycle; nothing where it is right. Walked level by level without recursion, before any code that walks the
+// hierarchy recursively sees it. With one parent at most, a node no walk down from a parentless node reaches is on
+// a cycle or below one, and its ancestors lead round the cycle.
+std::string hierarchyProblem(const std::vector<Node>& nodes, const std::vector<int>& parentOf) {
+    std::vector<char> reached(parentOf.size(), 0);
+    std::vector<int> level;
+    for (int n = 0; n < static_cast<int>(parentOf.size()); ++n)
+        if (parentOf[std::size_t(n)] < 0) level.push_back(n);
+    for (std::size_t depth = 1; !level.empty(); ++depth) {
+        if (depth > kMaxNodeDepth) return "nodes nested deeper than " + std::to_string(kMaxNodeDepth) + " levels";
+        std::vector<int> next;
+        for (int n : level) {
+            reached[std::size_t(n)] = 1;
+            next.insert(next.end(), nodes[std::size_t(n)].children.begin(), nodes[std::size_t(n)].children.end());
+        }
+        level = std::move(next);
+    }
+    const auto unreached = std::find(reached.begin(), reached.end(), 0);
+    if (unreached == reached.end()) return "";
+    std::vector<char> seen(parentOf.size(), 0);
+    int n = int(unreached - reached.begin());
+    for (; !seen[std::size_t(n)]; n = parentOf[std::size_t(n)]) seen[std::size_t(n)] = 1;
+    return "the node hierarchy has a cycle: " + cycleThrough(n, parentOf);
+}
+
 }  // namespace
 
 void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, Scene& scene, const std::string& where) {
@@ -125,9 +167,11 @@ void GltfReader::readPrimitive(const tinygltf::Primitive& source, Mesh& mesh, Sc
         out.topology = Topology::Lines;
         out.lines = segmentsFromIndices(indices, mode);
     }
-    out.material = materialUnderVariants(
-        source.material >= 0 && source.material < static_cast<int>(model_.materials.size()) ? source.material : -1,
-        source.extensions_json_string, scene, where);
+    const bool material = source.material >= 0 && source.material < static_cast<int>(model_.materials.size());
+    if (source.material != -1 && !material)  // only its look is lost
+        warnAbout(referenceProblem(where, "material", source.material, model_.materials.size()) +
+                  ": drawn with the default material");
+    out.material = materialUnderVariants(material ? source.material : -1, source.extensions_json_string, scene, where);
     mesh.primitives.push_back(std::move(out));
 }
 
@@ -234,9 +278,18 @@ void GltfReader::readSkins(Scene& scene) {
         skin.joints = source.joints;
         skin.skeleton = source.skeleton;
         auto isNode = [&](int n) { return n >= 0 && n < static_cast<int>(model_.nodes.size()); };
-        if (skin.joints.empty() || !std::all_of(skin.joints.begin(), skin.joints.end(), isNode) ||
-            (skin.skeleton != -1 && !isNode(skin.skeleton))) {
-            warnAbout(where + " ignored: no joints, or a joint or skeleton that is no node of the file");
+        const auto badJoint = std::find_if_not(skin.joints.begin(), skin.joints.end(), isNode);
+        const std::string problem =
+            skin.joints.empty()             ? where + " has no joints"
+            : badJoint != skin.joints.end() ? referenceProblem(where, "node", *badJoint, model_.nodes.size(), "joints")
+            : skin.skeleton != -1 && !isNode(skin.skeleton)
+                ? referenceProblem(where, "node", skin.skeleton, model_.nodes.size(), "skeleton")
+            : source.inverseBindMatrices < -1 || source.inverseBindMatrices >= static_cast<int>(model_.accessors.size())
+                ? referenceProblem(where, "accessor", source.inverseBindMatrices, model_.accessors.size(),
+                                   "inverseBindMatrices")
+                : "";
+        if (!problem.empty()) {
+            warnAbout(problem + ": the skin ignored");
             continue;
         }
         if (source.inverseBindMatrices >= 0) {
@@ -254,8 +307,9 @@ void GltfReader::readSkins(Scene& scene) {
     }
     for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
         Node& node = scene.nodes[n];
-        if (node.skin >= static_cast<int>(skinIndex.size()))
-            warnAbout("node " + std::to_string(n) + ": skin index out of range, ignored");
+        if (node.skin < -1 || node.skin >= static_cast<int>(skinIndex.size()))
+            warnAbout(referenceProblem("node " + std::to_string(n), "skin", node.skin, skinIndex.size()) +
+                      ": the skin ignored");
         node.skin = node.skin >= 0 && node.skin < static_cast<int>(skinIndex.size()) ? skinIndex[node.skin] : -1;
         if (node.skin >= 0 && node.mesh < 0) {  // glTF: a skin needs the node's mesh
             warnAbout("node " + std::to_string(n) + ": a skin without a mesh ignored");
@@ -287,7 +341,9 @@ void GltfReader::readAnimations(Scene& scene) {
             out.node = channel.target_node;
             // The file's own nodes (the scene has the GPU instances' after them).
             if (out.node < 0 || out.node >= static_cast<int>(model_.nodes.size())) {
-                warnAbout(where + " ignored: it targets no node of the file");
+                warnAbout(out.node < 0 ? where + " ignored: it targets no node"
+                                       : referenceProblem(where, "node", out.node, model_.nodes.size(), "target") +
+                                             ": the channel ignored");
                 continue;
             }
             if (channel.target_path == "weights") {
@@ -311,10 +367,25 @@ void GltfReader::readAnimations(Scene& scene) {
                 continue;
             }
             if (channel.sampler < 0 || channel.sampler >= static_cast<int>(source.samplers.size())) {
-                warnAbout(where + " ignored: its sampler does not exist");
+                const std::size_t samplers = source.samplers.size();
+                warnAbout(where + " ignored: it refers to sampler " + std::to_string(channel.sampler) +
+                          ", but animation " + std::to_string(a) + " has " + std::to_string(samplers) +
+                          (samplers == 1 ? " sampler" : " samplers"));
                 continue;
             }
             const tinygltf::AnimationSampler& sampler = source.samplers[channel.sampler];
+            const std::string samplerWhere =
+                "animation " + std::to_string(a) + " sampler " + std::to_string(channel.sampler);
+            auto isAccessor = [&](int accessor) {
+                return accessor >= 0 && accessor < static_cast<int>(model_.accessors.size());
+            };
+            if (!isAccessor(sampler.input) || !isAccessor(sampler.output)) {
+                const bool input = !isAccessor(sampler.input);
+                warnAbout(referenceProblem(samplerWhere, "accessor", input ? sampler.input : sampler.output,
+                                           model_.accessors.size(), input ? "input" : "output") +
+                          ": channel " + std::to_string(c) + " ignored");
+                continue;
+            }
             if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR")
                 out.interpolation = AnimationChannel::Interpolation::Linear;
             else if (sampler.interpolation == "STEP")
@@ -405,8 +476,9 @@ void GltfReader::readCamerasAndLights(Scene& scene) {
         const tinygltf::Node& source = model_.nodes[n];
         if (source.camera >= 0 && std::size_t(source.camera) < cameraIndex.size())
             scene.nodes[n].camera = cameraIndex[source.camera];
-        else if (source.camera >= 0)
-            warnAbout("node " + std::to_string(n) + ": camera index out of range, ignored");
+        else if (source.camera != -1)
+            warnAbout(referenceProblem("node " + std::to_string(n), "camera", source.camera, cameraIndex.size()) +
+                      ": the camera ignored");
         const auto extension = source.extensions.find("KHR_lights_punctual");
         if (extension == source.extensions.end()) continue;
         const int light = indexIn(member(extension->second, "light"));
@@ -515,35 +587,35 @@ Scene GltfReader::read() {
         keepConsistentMorphTargets(mesh, "mesh " + std::to_string(m));
         scene.meshes.push_back(std::move(mesh));
     }
-    std::vector<int> parentCount(model_.nodes.size(), 0);
-    for (const tinygltf::Node& source : model_.nodes) {
+    std::vector<int> parentOf(model_.nodes.size(), -1);  // -1: none
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+        const tinygltf::Node& source = model_.nodes[n];
+        const std::string where = "node " + std::to_string(n);
         Node node;
         node.name = source.name;
         node.extrasJson = extrasOf(source.extras_json_string);
         node.extensionsJson = passedThroughExtensions(source.extensions_json_string);
         node.transform = nodeTransform(source);
+        if (source.matrix.size() != 16 && source.rotation.size() == 4 &&
+            std::all_of(source.rotation.begin(), source.rotation.end(), [](double v) { return v == 0; }))
+            warnAbout(where + ": a rotation of (0, 0, 0, 0), which is no rotation glTF allows, read as none");
+        // Indices in range: refuseBrokenStructure checked them before tinygltf parsed the file.
         node.mesh = source.mesh >= 0 && source.mesh < static_cast<int>(scene.meshes.size()) ? source.mesh : -1;
         for (int child : source.children) {
             if (child < 0 || child >= static_cast<int>(model_.nodes.size()))
-                fail("node '" + source.name + "': child out of range");
-            if (++parentCount[child] > 1) fail("node " + std::to_string(child) + " has more than one parent");
+                fail(referenceProblem(where, "node", child, model_.nodes.size(), "children"));
+            if (parentOf[child] == int(n)) fail(where + " lists node " + std::to_string(child) + " as its child twice");
+            if (parentOf[child] >= 0)
+                fail("node " + std::to_string(child) + " is a child of two nodes, " + std::to_string(parentOf[child]) +
+                     " and " + std::to_string(n) + ": glTF's nodes form trees, with one parent at most");
+            parentOf[child] = int(n);
             node.children.push_back(child);
         }
         node.skin = source.skin;  // checked by readSkins
         node.weights = source.weights;
         scene.nodes.push_back(std::move(node));
     }
-    // Deep chains are refused here, level by level without recursion, before any code that walks the
-    // hierarchy recursively sees them (a node in a cycle is never reached; validateScene refuses cycles).
-    std::vector<int> level;
-    for (int n = 0; n < static_cast<int>(parentCount.size()); ++n)
-        if (parentCount[n] == 0) level.push_back(n);
-    for (std::size_t depth = 1; !level.empty(); ++depth) {
-        if (depth > kMaxNodeDepth) fail("nodes nested deeper than " + std::to_string(kMaxNodeDepth) + " levels");
-        std::vector<int> next;
-        for (int n : level) next.insert(next.end(), scene.nodes[n].children.begin(), scene.nodes[n].children.end());
-        level = std::move(next);
-    }
+    if (const std::string problem = hierarchyProblem(scene.nodes, parentOf); !problem.empty()) fail(problem);
     readCamerasAndLights(scene);
     expandGpuInstances(scene);
     scene.rootExtrasJson = extrasOf(model_.extras_json_string);
@@ -552,14 +624,19 @@ Scene GltfReader::read() {
         scene.name = model_.scenes[sceneIndex].name;
         scene.sceneExtrasJson = extrasOf(model_.scenes[sceneIndex].extras_json_string);
         scene.sceneExtensionsJson = passedThroughExtensions(model_.scenes[sceneIndex].extensions_json_string);
+        const std::string where = "scene " + std::to_string(sceneIndex);
         for (int root : model_.scenes[sceneIndex].nodes) {
-            if (root < 0 || root >= static_cast<int>(model_.nodes.size())) fail("scene: root node out of range");
+            if (root < 0 || root >= static_cast<int>(model_.nodes.size()))
+                fail(referenceProblem(where, "node", root, model_.nodes.size()));
+            if (parentOf[root] >= 0)  // glTF: a scene's nodes are roots
+                fail(where + " lists node " + std::to_string(root) + " as a root, but it is a child of node " +
+                     std::to_string(parentOf[root]));
             scene.roots.push_back(root);
         }
     } else {
         // No scene: every node of the file without a parent is drawn (the GPU instances' have theirs).
-        for (int n = 0; n < static_cast<int>(parentCount.size()); ++n)
-            if (parentCount[n] == 0) scene.roots.push_back(n);
+        for (int n = 0; n < static_cast<int>(parentOf.size()); ++n)
+            if (parentOf[n] < 0) scene.roots.push_back(n);
     }
     if (model_.scenes.size() > 1)
         warnAbout(std::to_string(model_.scenes.size() - 1) + " scenes besides the default one ignored");

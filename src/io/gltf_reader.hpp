@@ -24,6 +24,20 @@ namespace symcompress {
 // parsed by tinygltf, EXT_meshopt_compression views decoded. Throws FileError.
 tinygltf::Model loadGltfModel(const std::filesystem::path& file);
 
+// What to do with a glTF 1.0 file, which symcompress does not read: gltf-pipeline (CesiumGS) upgrades it as it writes.
+inline constexpr const char* kConvertToGltf2 =
+    "convert it to glTF 2.0 (for example with gltf-pipeline: gltf-pipeline -i old.gltf -o new.glb)";
+
+// Refuses (FileError) what glTF 2.0 does not allow in the file's JSON and tinygltf takes, or refuses without saying
+// where: another glTF version, an index by which geometry is found that names nothing, an accessor's componentType
+// or type that glTF has not (gltf_structure.cpp).
+void refuseBrokenStructure(const nlohmann::json& gltf, const std::filesystem::path& file);
+
+// "node 0 refers to mesh 5, but the file has 1 mesh" (`referrer` "node 0", `kind` "mesh"), with " for its ROLE"
+// after the index where `role` is given (a primitive's "indices", an attribute's name).
+std::string referenceProblem(const std::string& referrer, const std::string& kind, std::int64_t index,
+                             std::size_t count, const std::string& role = "");
+
 // Whether symcompress reads the extension (the others are warned about, or refused where required).
 bool readExtension(const std::string& name);
 
