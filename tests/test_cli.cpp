@@ -202,3 +202,19 @@ TEST_CASE("a failed write never leaves a broken output behind", "[cli][atomic]")
         CHECK(files == 1);
     }
 }
+
+TEST_CASE("A tolerance above the default budget raises the budget, and one above a given budget is refused", "[cli]") {
+    // The tolerance is a part of the budget: --tolerance 1e-4 alone once wrote an output that did not verify.
+    TemporaryFolder folder;
+    const std::string model = quoted(modelPath("oded_wingnut/wingnut.obj"));
+    const std::string output = quoted(folder / "out.glb");
+    const CommandResult raised = runCommand(kSymcompress + " " + model + " -o " + output + " --tolerance 1e-4");
+    REQUIRE(raised.status == 0);
+    CHECK_THAT(raised.output, Catch::Contains("the budget is 0.0002"));
+    CHECK(runCommand(kSymdecompress + " " + output + " -o " + quoted(folder / "flat.glb") + " --verify " + model)
+              .status == 0);
+    const CommandResult refused =
+        runCommand(kSymcompress + " " + model + " -o " + output + " --tolerance 1e-4 --max-error 1e-4");
+    CHECK(refused.status != 0);
+    CHECK_THAT(refused.output, Catch::Contains("must be below --max-error"));
+}

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <stdexcept>
 
 namespace symcompress {
 namespace fs = std::filesystem;
@@ -143,6 +144,13 @@ double bytesPerInstance(const CompressedScene& compressed, const StorageCostMode
 // compressToFile, with the time the input took to read (in the report before the HTML report shows it).
 CompressionReport compressRead(Scene scene, const fs::path& output, const CompressOptions& requested,
                                const std::vector<fs::path>& inputs, double secondsRead) {
+    if (!requested.fixedPositionBits && requested.tolerance >= requested.maxError) {
+        std::string tolerance, budget;
+        appendShortest(tolerance, requested.tolerance);
+        appendShortest(budget, requested.maxError);
+        throw std::invalid_argument("--tolerance " + tolerance + " must be below --max-error " + budget +
+                                    ", the error budget it is a part of");
+    }
     const CompressOptions options = withKeepableBudget(requested, scene.warnings);
     CompressionReport report;
     report.secondsRead = secondsRead;

@@ -33,8 +33,8 @@ void refuseUnsupportedVersion(const Json& gltf, const fs::path& file) {
     const auto asset = gltf.find("asset");
     const auto version = asset != gltf.end() ? asset->find("version") : gltf.end();
     if (asset == gltf.end() || version == asset->end())
-        throw FileError(file, "no asset.version, which glTF 2.0 requires (if this is glTF 1.0, " +
-                                  std::string(kConvertToGltf2) + ")");
+        throw FileError(
+            file, "no asset.version, which glTF 2.0 requires; if this is glTF 1.0, " + std::string(kConvertToGltf2));
     const std::optional<std::pair<int, int>> parsed =
         version->is_string() ? parsedVersion(version->get<std::string>()) : std::nullopt;
     if (!parsed) throw FileError(file, "asset.version " + version->dump() + " is not a version such as \"2.0\"");

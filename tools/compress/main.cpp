@@ -486,6 +486,17 @@ int main(int argc, char** argv) {
         if (*compress) {
             // Bits given: every mesh quantized with them, as before the budget, and verified as then.
             compressRequest.options.fixedPositionBits = compress->count("--position-bits") > 0;
+            // A tolerance at or above the default budget leaves quantization nothing: the budget is raised to
+            // twice it, as the default split would have it, unless the budget was given too.
+            CompressOptions& asked = compressRequest.options;
+            if (compress->count("--tolerance") && !compress->count("--max-error") && !asked.fixedPositionBits &&
+                asked.tolerance >= asked.maxError) {
+                asked.maxError = std::min(0.5, 2 * asked.tolerance);
+                if (!compressRequest.quiet)
+                    std::fprintf(stderr,
+                                 "note: --tolerance %g is not below the default --max-error: the budget is %g\n",
+                                 asked.tolerance, asked.maxError);
+            }
             return runCompress(compressRequest);
         }
         if (*detect)
