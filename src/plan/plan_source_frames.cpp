@@ -27,6 +27,9 @@ constexpr double kMostAFrameSpares = 0.3;
 // (Printed coordinates have no trials: any saving counts.)
 constexpr double kLeastWorthFraming = 0.01;
 
+// Of a shared mesh's copies turned each their own way, the frames of this many nodes are tried.
+constexpr std::size_t kTurnsTried = 3;
+
 // Whether `linear` keeps the axes as axes (a signed permutation with scales): Draco's grid is then the same
 // in the world as in the node's frame, up to a scale per axis, and the frame spares nothing. A transform that
 // flattens has no frame to go back to: it keeps the world's.
@@ -74,6 +77,27 @@ std::optional<Eigen::Matrix3d> sharedTurn(const SceneAnalysis& analysis, const s
     const std::optional<double> scale = uniformScaleOf(*linear);
     if (!scale) return std::nullopt;
     return Eigen::Matrix3d(*linear / *scale);
+}
+
+// The turns (scaled alike on every axis at most, without a mirror, off the world's axes) of the nodes the first
+// of `tiles` come from, at most `most` distinct ones: copies turned each their own way share none, but the
+// stored copy is one of them, and its node's turn is the frame its author modelled it in.
+std::vector<Eigen::Matrix3d> turnsOfNodes(const SceneAnalysis& analysis, const std::vector<Eigen::Matrix4d>& world,
+                                          const std::vector<std::size_t>& tiles, std::size_t most) {
+    std::vector<Eigen::Matrix3d> turns;
+    for (std::size_t t : tiles) {
+        if (turns.size() == most) break;
+        const int node = onlyNodeOf(analysis, t);
+        if (node < 0) continue;
+        const Eigen::Matrix3d linear = world[std::size_t(node)].topLeftCorner<3, 3>();
+        const std::optional<double> scale = uniformScaleOf(linear);
+        if (keepsAxes(linear) || linear.determinant() < 0 || !scale) continue;
+        const Eigen::Matrix3d turn = linear / *scale;
+        if (std::none_of(turns.begin(), turns.end(),
+                         [&](const Eigen::Matrix3d& other) { return (other - turn).norm() <= 1e-9; }))
+            turns.push_back(turn);
+    }
+    return turns;
 }
 
 // The input node a group keeps, if it came from one.
@@ -202,22 +226,29 @@ void planSourceFrames(const Scene& input, const SceneAnalysis& analysis, Storage
         if (pays[i]) plan.framedTiles.push_back(std::move(candidates[i]));
 
     // A shared mesh (not a fundamental region, whose grid keeps its seams closed) likewise: turned into the
-    // frame its tiles' nodes share, and each node drawing it turned back after its transform.
+    // frame its tiles' nodes share, or else into the frame of one of their nodes (its own where the stored copy
+    // came from it: 50 wingnuts each turned by its node, stored in the world's turn of one, took 15 bits where
+    // its own frame takes 14), and each node drawing it turned back after its transform.
     tbb::parallel_for(std::size_t(0), plan.shared.size(), [&](std::size_t i) {
         SharedPart& part = plan.shared[i];
         if (part.mechanism == SharedPart::Mechanism::Region ||
             std::any_of(part.mesh.primitives.begin(), part.mesh.primitives.end(),
                         [](const Primitive& p) { return p.positionGrid.has_value(); }))
             return;
-        const std::optional<Eigen::Matrix3d> frame = sharedTurn(analysis, world, part.tiles);
-        if (!frame) return;
-        Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
-        turn.topLeftCorner<3, 3>() = *frame;
+        const std::optional<Eigen::Matrix3d> shared = sharedTurn(analysis, world, part.tiles);
+        const std::vector<Eigen::Matrix3d> frames =
+            shared ? std::vector<Eigen::Matrix3d>{*shared} : turnsOfNodes(analysis, world, part.tiles, kTurnsTried);
         // The nodes' turns print about as long either way (and their batches' streams code alike): only the
         // mesh is measured, and the job's world_frame plan measures the whole file.
-        if (costs.meshBytesQuickly(meshInFrame(part.mesh, turn)) <
-            (1 - kLeastWorthFraming) * costs.meshBytesQuickly(part.mesh))
-            part.frame = *frame;
+        double least = frames.empty() ? 0 : (1 - kLeastWorthFraming) * costs.meshBytesQuickly(part.mesh);
+        for (const Eigen::Matrix3d& frame : frames) {
+            Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
+            turn.topLeftCorner<3, 3>() = frame;
+            if (const double bytes = costs.meshBytesQuickly(meshInFrame(part.mesh, turn)); bytes < least) {
+                least = bytes;
+                part.frame = frame;
+            }
+        }
     });
 }
 
