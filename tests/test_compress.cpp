@@ -1397,6 +1397,22 @@ TEST_CASE("Groups the scene's symmetry needs are detected, small or not: the roo
     CHECK(asked == all);
 }
 
+namespace {
+
+// `count` root nodes drawing mesh 0, each turned at random, `spacing` apart along x.
+void addTurnedNodes(Scene& scene, int count, double spacing, std::mt19937_64& random) {
+    for (int k = 0; k < count; ++k) {
+        Node node;
+        node.mesh = 0;
+        node.transform.topLeftCorner<3, 3>() = samples::randomRotation(random);
+        node.transform.topRightCorner<3, 1>() = Eigen::Vector3d(spacing * k, 0, 0);
+        scene.roots.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(node);
+    }
+}
+
+}  // namespace
+
 TEST_CASE("What a file names and notes comes out with it: the root's extras, a part's mesh name and extras",
           "[compress]") {
     // A part drawn by three nodes, turned: too small for a node per copy to pay (stored as it is, merged), or
@@ -1411,14 +1427,7 @@ TEST_CASE("What a file names and notes comes out with it: the root's extras, a p
     scene.meshes[0].primitives.emplace_back();
     samples::appendMesh(scene.meshes[0].primitives[0],
                         large ? samples::unevenEllipsoid(48, 3) : samples::randomConvexPart(random));
-    for (int k = 0; k < 3; ++k) {
-        Node node;
-        node.mesh = 0;
-        node.transform.topLeftCorner<3, 3>() = samples::randomRotation(random);
-        node.transform.topRightCorner<3, 1>() = Eigen::Vector3d(5.0 * k, 0, 0);
-        scene.roots.push_back(int(scene.nodes.size()));
-        scene.nodes.push_back(node);
-    }
+    addTurnedNodes(scene, 3, 5, random);
     scene.rootExtrasJson = R"({"project":"mill"})";
     TemporaryFolder folder;
     WriteOptions plain;
@@ -1460,14 +1469,7 @@ TEST_CASE("Copies each turned its own way are stored in the frame of the node of
         return Eigen::Vector3d(box.sizes());
     };
     const Eigen::Vector3d modelled = boxSizes(scene.meshes[0].primitives[0].positions);
-    for (int k = 0; k < 3; ++k) {
-        Node node;
-        node.mesh = 0;
-        node.transform.topLeftCorner<3, 3>() = samples::randomRotation(random);
-        node.transform.topRightCorner<3, 1>() = Eigen::Vector3d(30.0 * k, 0, 0);
-        scene.roots.push_back(int(scene.nodes.size()));
-        scene.nodes.push_back(node);
-    }
+    addTurnedNodes(scene, 3, 30, random);
     TemporaryFolder folder;
     WriteOptions plain;
     plain.draco = false;

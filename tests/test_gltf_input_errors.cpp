@@ -46,23 +46,6 @@ Json triangleScene() {
                         "samplers": [{"input": 2, "output": 3}]}]})");
 }
 
-// `content` written as `name` in `folder` must be refused with an error naming the file and holding `problem`.
-void expectError(const TemporaryFolder& folder, const std::string& name, const std::string& content,
-                 const std::string& problem) {
-    const auto file = folder / name;
-    writeTextFile(file, content);
-    INFO(name);
-    try {
-        readScene(file);
-        FAIL("no error for " << name);
-    } catch (const FileError& error) {
-        const std::string message = error.what();
-        INFO(message);
-        CHECK(message.find(name) != std::string::npos);
-        CHECK(message.find(problem) != std::string::npos);
-    }
-}
-
 // The scene of `json` read: its one triangle still drawn, with a warning holding `warning`.
 void expectWarning(const TemporaryFolder& folder, const Json& json, const std::string& warning) {
     const auto file = folder / "warned.gltf";
@@ -104,7 +87,7 @@ TEST_CASE("A glTF index by which geometry is found that names no item is an erro
           "[io][bad-input]") {
     TemporaryFolder folder;
     Json json = triangleScene();
-    auto expect = [&](const std::string& problem) { expectError(folder, "scene.gltf", json.dump(), problem); };
+    auto expect = [&](const std::string& problem) { expectReadError(folder, "scene.gltf", json.dump(), problem); };
     SECTION("a node's mesh") {
         json["nodes"][0]["mesh"] = 5;
         expect("node 0 refers to mesh 5, but the file has 1 mesh");
@@ -236,34 +219,34 @@ TEST_CASE("glTF 1.0, and versions a glTF 2.0 reader may not read, are refused wi
     const std::string convert = "convert it to glTF 2.0 (for example with gltf-pipeline";
     SECTION("asset.version 1.0") {
         json["asset"]["version"] = "1.0";
-        expectError(folder, "old.gltf", json.dump(), "glTF 1.0 is not supported; " + convert);
+        expectReadError(folder, "old.gltf", json.dump(), "glTF 1.0 is not supported; " + convert);
     }
     SECTION("an empty glTF 1.0 file") {
-        expectError(folder, "old.gltf", R"({"asset": {"version": "1.0"}})", "glTF 1.0 is not supported");
+        expectReadError(folder, "old.gltf", R"({"asset": {"version": "1.0"}})", "glTF 1.0 is not supported");
     }
     SECTION("GLB version 1") {
-        expectError(folder, "old.glb", glb(json, 1), "glTF 1.0 (GLB version 1) is not supported; " + convert);
+        expectReadError(folder, "old.glb", glb(json, 1), "glTF 1.0 (GLB version 1) is not supported; " + convert);
     }
-    SECTION("GLB version 3") { expectError(folder, "new.glb", glb(json, 3), "GLB version 3 is not supported"); }
+    SECTION("GLB version 3") { expectReadError(folder, "new.glb", glb(json, 3), "GLB version 3 is not supported"); }
     SECTION("no asset.version") {
         json["asset"].erase("version");
-        expectError(folder, "scene.gltf", json.dump(), "no asset.version, which glTF 2.0 requires");
+        expectReadError(folder, "scene.gltf", json.dump(), "no asset.version, which glTF 2.0 requires");
     }
     SECTION("no asset") {
         json.erase("asset");
-        expectError(folder, "scene.gltf", json.dump(), "no asset.version");
+        expectReadError(folder, "scene.gltf", json.dump(), "no asset.version");
     }
     SECTION("asset.version that is no version") {
         json["asset"]["version"] = 2.0;
-        expectError(folder, "scene.gltf", json.dump(), "asset.version 2.0 is not a version such as \"2.0\"");
+        expectReadError(folder, "scene.gltf", json.dump(), "asset.version 2.0 is not a version such as \"2.0\"");
     }
     SECTION("glTF 3.0") {
         json["asset"]["version"] = "3.0";
-        expectError(folder, "scene.gltf", json.dump(), "glTF 3.0 is not supported");
+        expectReadError(folder, "scene.gltf", json.dump(), "glTF 3.0 is not supported");
     }
     SECTION("asset.minVersion above 2.0") {
         json["asset"]["minVersion"] = "2.1";
-        expectError(folder, "scene.gltf", json.dump(), "asset.minVersion is 2.1");
+        expectReadError(folder, "scene.gltf", json.dump(), "asset.minVersion is 2.1");
     }
     SECTION("glTF 2.1 and asset.minVersion 2.0 are read") {
         json["asset"]["version"] = "2.1";
@@ -279,7 +262,7 @@ TEST_CASE("A glTF node hierarchy with a cycle, or a node of two parents, is refu
     Json json = triangleScene();
     json.erase("animations");
     json.erase("skins");
-    auto expect = [&](const std::string& problem) { expectError(folder, "scene.gltf", json.dump(), problem); };
+    auto expect = [&](const std::string& problem) { expectReadError(folder, "scene.gltf", json.dump(), problem); };
     SECTION("a node that is its own child") {
         json["nodes"][0]["children"] = {0};
         expect("the node hierarchy has a cycle: node 0 is its own child");
@@ -317,7 +300,7 @@ TEST_CASE("An accessor's componentType or type that glTF does not allow is refus
           "[io][bad-input]") {
     TemporaryFolder folder;
     Json json = triangleScene();
-    auto expect = [&](const std::string& problem) { expectError(folder, "scene.gltf", json.dump(), problem); };
+    auto expect = [&](const std::string& problem) { expectReadError(folder, "scene.gltf", json.dump(), problem); };
     const std::string allowed = " is not one glTF allows (5120-5123, 5125, 5126)";
     SECTION("double") {
         json["accessors"][0]["componentType"] = 5130;
@@ -346,11 +329,11 @@ TEST_CASE("An accessor count that is no number of elements is refused naming the
     Json json = triangleScene();
     SECTION("negative") {
         json["accessors"][0]["count"] = -5;
-        expectError(folder, "scene.gltf", json.dump(), "accessor 0: count -5 is not a number of elements");
+        expectReadError(folder, "scene.gltf", json.dump(), "accessor 0: count -5 is not a number of elements");
     }
     SECTION("a string") {
         json["accessors"][0]["count"] = "12";
-        expectError(folder, "scene.gltf", json.dump(), "accessor 0: count \"12\" is not a number of elements");
+        expectReadError(folder, "scene.gltf", json.dump(), "accessor 0: count \"12\" is not a number of elements");
     }
 }
 
@@ -362,8 +345,8 @@ TEST_CASE("A buffer uri that is not relative to the glTF file is refused saying 
     for (const std::string uri : {(folder / "triangle.bin").string(), std::string("file:///etc/passwd"),
                                   std::string("https://example.com/triangle.bin")}) {
         json["buffers"][0]["uri"] = uri;
-        expectError(folder, "scene.gltf", json.dump(),
-                    "buffer 0: its uri \"" + uri + "\" is not relative to the glTF file");
+        expectReadError(folder, "scene.gltf", json.dump(),
+                        "buffer 0: its uri \"" + uri + "\" is not relative to the glTF file");
     }
     json["buffers"][0]["uri"] = "triangle.bin";  // the same file, named relative to the glTF file, is read
     writeTextFile(folder / "relative.gltf", json.dump());

@@ -1,6 +1,8 @@
 // Shared helpers for the tests: temporary folders, the shared models, running the tools.
 #pragma once
 
+#include "symcompress/io.hpp"
+
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -158,6 +160,24 @@ inline std::vector<std::string> validatorErrors(const std::filesystem::path& fil
         errors.push_back(code + " " + pointer + " " + text);
     }
     return errors;
+}
+
+// `content` written as `name` in `folder` must be refused by readScene with an error naming the file and holding
+// `problem`.
+inline void expectReadError(const TemporaryFolder& folder, const std::string& name, const std::string& content,
+                            const std::string& problem) {
+    const auto file = folder / name;
+    writeTextFile(file, content);
+    INFO(name);
+    try {
+        readScene(file);
+        FAIL("no error for " << name);
+    } catch (const FileError& error) {
+        const std::string message = error.what();
+        INFO(message);
+        CHECK(message.find(name) != std::string::npos);
+        CHECK(message.find(problem) != std::string::npos);
+    }
 }
 
 }  // namespace symcompress::testing
