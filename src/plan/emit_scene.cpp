@@ -281,8 +281,12 @@ CompressedScene emitScene(const Scene& input, const SceneAnalysis& analysis, con
     if (!unique.empty()) {
         Mesh mesh;
         unique.moveInto(mesh);
-        if (const Mesh* source = commonSourceMesh(input, analysis, uniqueTiles); source && analysis.zeroArea.empty())
-            mesh.name = source->name, mesh.extrasJson = source->extrasJson;
+        // The name and extras of the input mesh all its tiles came from (triangles of zero area come from any).
+        const Mesh* source = analysis.zeroArea.empty() ? commonSourceMesh(input, analysis, uniqueTiles) : nullptr;
+        if (source) {
+            mesh.name = source->name;
+            mesh.extrasJson = source->extrasJson;
+        }
         const Eigen::Matrix4d offset = centredIfFar(mesh, budget);
         out.meshes.push_back(std::move(mesh));
         addRootNode(out, int(out.meshes.size()) - 1, offset, merged.size() == 1 ? merged.begin()->second : nullptr);
