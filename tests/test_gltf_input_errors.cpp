@@ -294,6 +294,10 @@ TEST_CASE("A glTF node hierarchy with a cycle, or a node of two parents, is refu
         json["scenes"][0]["nodes"] = {0, 1};
         expect("scene 0 lists node 1 as a root, but it is a child of node 0");
     }
+    SECTION("a scene's node listed twice (found by fuzz_gltf: the X3D writer's DEFs then failed)") {
+        json["scenes"][0]["nodes"] = {0, 0};
+        expect("scene 0 lists node 0 as a root twice");
+    }
 }
 
 TEST_CASE("An accessor's componentType or type that glTF does not allow is refused naming the accessor",

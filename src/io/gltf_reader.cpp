@@ -631,6 +631,9 @@ Scene GltfReader::read() {
             if (parentOf[root] >= 0)  // glTF: a scene's nodes are roots
                 fail(where + " lists node " + std::to_string(root) + " as a root, but it is a child of node " +
                      std::to_string(parentOf[root]));
+            // glTF: a scene's nodes are unique (a root drawn twice left the X3D writer's DEFs inconsistent).
+            if (std::find(scene.roots.begin(), scene.roots.end(), root) != scene.roots.end())
+                fail(where + " lists node " + std::to_string(root) + " as a root twice");
             scene.roots.push_back(root);
         }
     } else {
