@@ -126,6 +126,10 @@ TEST_CASE("validateScene names each broken invariant", "[scene]") {
         scene.nodes[0].children = {0};
         CHECK_THROWS(validateScene(scene));
     }
+    SECTION("a root listed twice") {
+        scene.roots = {0, 0};
+        CHECK_THROWS_WITH(validateScene(scene), Catch::Contains("listed twice"));
+    }
     SECTION("material") {
         scene.meshes[0].primitives[0].material = 3;
         CHECK_THROWS_WITH(validateScene(scene), Catch::Contains("material"));

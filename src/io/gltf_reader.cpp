@@ -625,6 +625,7 @@ Scene GltfReader::read() {
         scene.sceneExtrasJson = extrasOf(model_.scenes[sceneIndex].extras_json_string);
         scene.sceneExtensionsJson = passedThroughExtensions(model_.scenes[sceneIndex].extensions_json_string);
         const std::string where = "scene " + std::to_string(sceneIndex);
+        std::vector<char> listed(model_.nodes.size(), 0);
         for (int root : model_.scenes[sceneIndex].nodes) {
             if (root < 0 || root >= static_cast<int>(model_.nodes.size()))
                 fail(referenceProblem(where, "node", root, model_.nodes.size()));
@@ -632,8 +633,7 @@ Scene GltfReader::read() {
                 fail(where + " lists node " + std::to_string(root) + " as a root, but it is a child of node " +
                      std::to_string(parentOf[root]));
             // glTF: a scene's nodes are unique (a root drawn twice left the X3D writer's DEFs inconsistent).
-            if (std::find(scene.roots.begin(), scene.roots.end(), root) != scene.roots.end())
-                fail(where + " lists node " + std::to_string(root) + " as a root twice");
+            if (listed[root]++) fail(where + " lists node " + std::to_string(root) + " as a root twice");
             scene.roots.push_back(root);
         }
     } else {

@@ -272,9 +272,11 @@ void validateScene(const Scene& scene) {
                 throw std::invalid_argument("node " + std::to_string(child) + " has more than one parent");
         }
     }
+    std::vector<char> listed(scene.nodes.size(), 0);  // a root drawn twice: the writers name each node once
     for (int root : scene.roots) {
         if (root < 0 || root >= nodeCount) throw std::invalid_argument("root node index out of range");
         if (parents[root] != 0) throw std::invalid_argument("root node " + std::to_string(root) + " has a parent");
+        if (listed[root]++) throw std::invalid_argument("root node " + std::to_string(root) + " listed twice");
     }
     // With one parent at most per node, a cycle is a set of nodes never reached from a parentless node.
     std::vector<char> reached(scene.nodes.size(), 0);
