@@ -14,7 +14,8 @@
 
 namespace symcompress {
 
-// A scene drawing one mesh of one primitive once, at the identity (materials are the caller's).
+// A scene drawing one mesh of one primitive once, at the identity, by a node named `name` (materials are the
+// caller's).
 Scene sceneOfOneMesh(const std::string& name, Primitive primitive);
 
 // Throws std::invalid_argument naming the first broken invariant of scene.hpp.
